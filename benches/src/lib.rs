@@ -1,0 +1,1 @@
+//! hsv-benches: criterion benchmarks comparing models on the sample vehicle; see `benches/`.

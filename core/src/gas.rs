@@ -1,0 +1,857 @@
+//! Perfect-gas relations: isentropic flow, normal and oblique shocks, Prandtl-Meyer expansions,
+//! Rayleigh flow, pitot and Newtonian stagnation pressures, and piston theory.
+//!
+//! Calorically perfect gas with constant ratio of specific heats γ. SI units; angles in radians.
+//! References: NACA Report 1135 (Ames Research Staff, 1953, "Equations, Tables, and Charts for
+//! Compressible Flow"); J. D. Anderson, "Modern Compressible Flow" (MCF) and "Hypersonic and
+//! High-Temperature Gas Dynamics"; Lighthill (1953) and Ashley & Zartarian (1956) for piston theory.
+//!
+//! Functions returning a bare `f64` are closed forms that assume valid input (Mach ≥ 0, γ > 1) and
+//! propagate NaN; every function that can fail checks its input and returns
+//! `Result<_, GasError>`.
+
+use std::f64::consts::FRAC_PI_2;
+
+/// Ratio of specific heats of air below dissociation temperatures.
+pub const GAMMA_AIR: f64 = 1.4;
+
+/// Specific gas constant of dry air, J/(kg K): R*/M0 with R* = 8314.32 J/(kmol K) and
+/// M0 = 28.96442 kg/kmol (the ICAO Standard Atmosphere value; USSA-1976's M0 = 28.9644 gives
+/// 287.0531, 7e-7 relative difference).
+pub const GAS_CONSTANT_AIR: f64 = 287.052_87;
+
+/// A calorically perfect gas: constant γ and specific gas constant R.
+#[derive(Clone, Copy, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
+pub struct PerfectGas {
+    /// Ratio of specific heats γ = cp/cv (> 1).
+    pub gamma: f64,
+    /// Specific gas constant R, J/(kg K).
+    pub gas_constant_j_kg_k: f64,
+}
+
+impl PerfectGas {
+    /// Dry air: γ = 1.4, R = 287.05287 J/(kg K).
+    pub const AIR: PerfectGas = PerfectGas {
+        gamma: GAMMA_AIR,
+        gas_constant_j_kg_k: GAS_CONSTANT_AIR,
+    };
+
+    /// A perfect gas with finite γ > 1 and finite R > 0 (J/(kg K)).
+    pub fn new(gamma: f64, gas_constant_j_kg_k: f64) -> Result<Self, GasError> {
+        check_gamma(gamma)?;
+        let r = finite("gas constant (J/(kg K))", gas_constant_j_kg_k)?;
+        if r <= 0.0 {
+            return Err(GasError::out_of_range(
+                "gas constant (J/(kg K))",
+                r,
+                "R > 0",
+            ));
+        }
+        Ok(Self {
+            gamma,
+            gas_constant_j_kg_k,
+        })
+    }
+
+    /// a = √(γ R T), m/s, for static temperature T in K (NaN for T < 0).
+    pub fn speed_of_sound(&self, temperature_k: f64) -> f64 {
+        (self.gamma * self.gas_constant_j_kg_k * temperature_k).sqrt()
+    }
+
+    /// cp = γ R / (γ - 1), J/(kg K).
+    pub fn cp(&self) -> f64 {
+        self.gamma * self.gas_constant_j_kg_k / (self.gamma - 1.0)
+    }
+
+    /// cv = R / (γ - 1), J/(kg K).
+    pub fn cv(&self) -> f64 {
+        self.gas_constant_j_kg_k / (self.gamma - 1.0)
+    }
+}
+
+impl Default for PerfectGas {
+    fn default() -> Self {
+        Self::AIR
+    }
+}
+
+/// Why a gas-dynamic relation could not be evaluated.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum GasError {
+    /// The relation needs supersonic flow.
+    #[error("Mach number {mach} is subsonic; {needed}")]
+    Subsonic {
+        /// The Mach number given.
+        mach: f64,
+        /// What needs supersonic flow, e.g. "an oblique shock needs M >= 1".
+        needed: &'static str,
+    },
+    /// The deflection exceeds the maximum for an attached oblique shock.
+    #[error(
+        "deflection {deflection_rad} rad exceeds the maximum {max_deflection_rad} rad for an \
+         attached oblique shock at Mach {mach}; the shock detaches"
+    )]
+    Detached {
+        /// Upstream Mach number.
+        mach: f64,
+        /// Deflection asked for, rad.
+        deflection_rad: f64,
+        /// Largest deflection with an attached shock at this Mach number, rad.
+        max_deflection_rad: f64,
+    },
+    /// An input is NaN or infinite.
+    #[error("{quantity} is not finite (NaN or infinite)")]
+    NonFinite {
+        /// The input's name.
+        quantity: &'static str,
+    },
+    /// An input is outside the relation's domain.
+    #[error("{quantity} = {value} is out of range; allowed: {allowed}")]
+    OutOfRange {
+        /// The input's name.
+        quantity: &'static str,
+        /// The value given.
+        value: f64,
+        /// The allowed range.
+        allowed: String,
+    },
+    /// More heat than the flow can take: T0/T0* > 1 chokes a Rayleigh flow.
+    #[error(
+        "total temperature ratio T0/T0* = {total_temperature_ratio} exceeds 1: the heat addition \
+         would thermally choke the Rayleigh flow"
+    )]
+    ThermalChoking {
+        /// The T0/T0* given.
+        total_temperature_ratio: f64,
+    },
+    /// A Prandtl-Meyer turn past ν_max: the flow would expand to vacuum.
+    #[error(
+        "turning Mach {mach} flow by {turn_rad} rad exceeds the {max_turn_rad} rad left before \
+         ν_max; the flow would expand to vacuum"
+    )]
+    VacuumExpansion {
+        /// Upstream Mach number.
+        mach: f64,
+        /// Turn asked for, rad.
+        turn_rad: f64,
+        /// ν_max - ν(M), rad.
+        max_turn_rad: f64,
+    },
+    /// A piston withdrawing faster than the gas can follow: the pressure would fall below zero.
+    #[error(
+        "normal velocity ratio w/a = {normal_velocity_over_sound_speed} is at or below the \
+         cavitation limit {limit} = -2/(γ-1); the gas separates from the surface"
+    )]
+    Cavitation {
+        /// The w/a given.
+        normal_velocity_over_sound_speed: f64,
+        /// -2/(γ-1).
+        limit: f64,
+    },
+}
+
+impl GasError {
+    fn out_of_range(quantity: &'static str, value: f64, allowed: impl Into<String>) -> Self {
+        Self::OutOfRange {
+            quantity,
+            value,
+            allowed: allowed.into(),
+        }
+    }
+}
+
+/// Which of the two oblique-shock solutions for a given deflection.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
+pub enum ShockBranch {
+    /// Smaller wave angle; downstream flow (nearly always) supersonic. What wedges and ramps show.
+    Weak,
+    /// Larger wave angle; downstream flow subsonic.
+    Strong,
+}
+
+/// Which of the two Mach numbers sharing an area ratio (or Rayleigh total-temperature ratio).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
+pub enum FlowBranch {
+    /// M < 1.
+    Subsonic,
+    /// M > 1.
+    Supersonic,
+}
+
+// ---------------------------------------------------------------------------------------------
+// Input checks
+// ---------------------------------------------------------------------------------------------
+
+fn finite(quantity: &'static str, value: f64) -> Result<f64, GasError> {
+    if value.is_finite() {
+        Ok(value)
+    } else {
+        Err(GasError::NonFinite { quantity })
+    }
+}
+
+fn check_gamma(gamma: f64) -> Result<f64, GasError> {
+    let g = finite("ratio of specific heats gamma", gamma)?;
+    if g <= 1.0 {
+        return Err(GasError::out_of_range(
+            "ratio of specific heats gamma",
+            g,
+            "gamma > 1",
+        ));
+    }
+    Ok(g)
+}
+
+fn check_mach_nonnegative(mach: f64) -> Result<f64, GasError> {
+    let m = finite("Mach number", mach)?;
+    if m < 0.0 {
+        return Err(GasError::out_of_range("Mach number", m, "M >= 0"));
+    }
+    Ok(m)
+}
+
+fn check_supersonic(mach: f64, needed: &'static str) -> Result<f64, GasError> {
+    let m = finite("Mach number", mach)?;
+    if m < 1.0 {
+        return Err(GasError::Subsonic { mach: m, needed });
+    }
+    Ok(m)
+}
+
+/// Root of `f` in `[lo, hi]` by Newton's method safeguarded with bisection (Numerical Recipes
+/// `rtsafe`). `f` returns (value, derivative); `increasing` tells the sign of `f` across the
+/// bracket (f(lo) <= 0 <= f(hi) when true). Stops at a relative step of 4 ulp.
+fn solve_bracketed(
+    f: impl Fn(f64) -> (f64, f64),
+    mut lo: f64,
+    mut hi: f64,
+    guess: f64,
+    increasing: bool,
+) -> f64 {
+    let mut x = if guess > lo && guess < hi {
+        guess
+    } else {
+        0.5 * (lo + hi)
+    };
+    for _ in 0..200 {
+        let (fx, dfx) = f(x);
+        if fx == 0.0 {
+            return x;
+        }
+        if (fx < 0.0) == increasing {
+            lo = x;
+        } else {
+            hi = x;
+        }
+        let newton = x - fx / dfx;
+        let next = if newton.is_finite() && newton > lo && newton < hi {
+            newton
+        } else {
+            0.5 * (lo + hi)
+        };
+        let tolerance = 4.0 * f64::EPSILON * next.abs().max(f64::MIN_POSITIVE);
+        if (next - x).abs() <= tolerance || hi - lo <= tolerance {
+            return next;
+        }
+        x = next;
+    }
+    x
+}
+
+// ---------------------------------------------------------------------------------------------
+// Isentropic flow
+// ---------------------------------------------------------------------------------------------
+
+/// T0/T = 1 + (γ-1)/2 M² (NACA 1135 eq. 43).
+pub fn total_temperature_ratio(mach: f64, gamma: f64) -> f64 {
+    1.0 + 0.5 * (gamma - 1.0) * mach * mach
+}
+
+/// p0/p = (1 + (γ-1)/2 M²)^(γ/(γ-1)) (NACA 1135 eq. 44).
+pub fn total_pressure_ratio(mach: f64, gamma: f64) -> f64 {
+    total_temperature_ratio(mach, gamma).powf(gamma / (gamma - 1.0))
+}
+
+/// ρ0/ρ = (1 + (γ-1)/2 M²)^(1/(γ-1)) (NACA 1135 eq. 45).
+pub fn total_density_ratio(mach: f64, gamma: f64) -> f64 {
+    total_temperature_ratio(mach, gamma).powf(1.0 / (gamma - 1.0))
+}
+
+/// A/A* = (1/M) [2/(γ+1) (1 + (γ-1)/2 M²)]^((γ+1)/(2(γ-1))) (NACA 1135 eq. 80); ∞ at M = 0.
+pub fn area_mach_ratio(mach: f64, gamma: f64) -> f64 {
+    let exponent = 0.5 * (gamma + 1.0) / (gamma - 1.0);
+    (2.0 / (gamma + 1.0) * total_temperature_ratio(mach, gamma)).powf(exponent) / mach
+}
+
+/// M from A/A* >= 1 on the chosen branch: inverse of NACA 1135 eq. 80 by safeguarded Newton in M.
+pub fn mach_from_area_ratio(
+    area_ratio: f64,
+    gamma: f64,
+    branch: FlowBranch,
+) -> Result<f64, GasError> {
+    let gamma = check_gamma(gamma)?;
+    let target = finite("area ratio A/A*", area_ratio)?;
+    if target < 1.0 {
+        return Err(GasError::out_of_range("area ratio A/A*", target, "A/A* >= 1"));
+    }
+    if target == 1.0 {
+        return Ok(1.0);
+    }
+    let ln_target = target.ln();
+    let half_gm1 = 0.5 * (gamma - 1.0);
+    let exponent = 0.5 * (gamma + 1.0) / (gamma - 1.0);
+    // ln(A/A*) - ln(target) and its M-derivative (M² - 1) / (M (1 + (γ-1)/2 M²)).
+    let residual = |m: f64| {
+        let t = 1.0 + half_gm1 * m * m;
+        let value = exponent * (2.0 / (gamma + 1.0) * t).ln() - m.ln() - ln_target;
+        (value, (m * m - 1.0) / (m * t))
+    };
+    // Near M = 1: ln(A/A*) ≈ 2 (M-1)² / (γ+1).
+    let near_sonic = (0.5 * (gamma + 1.0) * ln_target).sqrt();
+    let mach = match branch {
+        FlowBranch::Subsonic => {
+            // A/A* > (1/M) (1 + (γ-1)/2)^(-exponent), so M_lo = (1 + (γ-1)/2)^(-exponent) / target.
+            let lo = (1.0 + half_gm1).powf(-exponent) / target;
+            let guess = lo.max(1.0 - near_sonic);
+            solve_bracketed(residual, lo, 1.0, guess, false)
+        }
+        FlowBranch::Supersonic => {
+            // A/A* > K M^(2/(γ-1)) with K = ((γ-1)/(γ+1))^exponent.
+            let k = ((gamma - 1.0) / (gamma + 1.0)).powf(exponent);
+            let hi = (target / k).powf(half_gm1).max(1.0 + near_sonic);
+            let guess = hi.min(1.0 + near_sonic);
+            solve_bracketed(residual, 1.0, hi, guess, true)
+        }
+    };
+    Ok(mach)
+}
+
+/// M = √(2/(γ-1) ((p0/p)^((γ-1)/γ) - 1)), inverse of NACA 1135 eq. 44; needs p0/p >= 1.
+pub fn mach_from_total_pressure_ratio(p0_over_p: f64, gamma: f64) -> Result<f64, GasError> {
+    let gamma = check_gamma(gamma)?;
+    let ratio = finite("total pressure ratio p0/p", p0_over_p)?;
+    if ratio < 1.0 {
+        return Err(GasError::out_of_range(
+            "total pressure ratio p0/p",
+            ratio,
+            "p0/p >= 1",
+        ));
+    }
+    let excess = ((gamma - 1.0) / gamma * ratio.ln()).exp_m1();
+    Ok((2.0 / (gamma - 1.0) * excess).sqrt())
+}
+
+/// μ = asin(1/M), rad, for M >= 1 (Mach angle; Anderson MCF eq. 4.1).
+pub fn mach_angle(mach: f64) -> Result<f64, GasError> {
+    let m = check_supersonic(mach, "a Mach angle needs M >= 1")?;
+    Ok((1.0 / m).asin())
+}
+
+// ---------------------------------------------------------------------------------------------
+// Normal shock
+// ---------------------------------------------------------------------------------------------
+
+/// State change across a normal shock; every ratio is downstream over upstream.
+#[derive(Clone, Copy, Debug, PartialEq, serde::Serialize)]
+pub struct NormalShock {
+    /// M2 < 1 (= 1 for a Mach-1 "shock").
+    pub mach_downstream: f64,
+    /// p2/p1.
+    pub pressure_ratio: f64,
+    /// ρ2/ρ1 (= u1/u2).
+    pub density_ratio: f64,
+    /// T2/T1.
+    pub temperature_ratio: f64,
+    /// p02/p01 <= 1 (entropy rise).
+    pub total_pressure_ratio: f64,
+}
+
+/// Normal-shock relations for M >= 1 (unchecked): NACA 1135 eqs. 93 (p), 94 (ρ), 96 (M2), 99 (p0).
+fn normal_shock_unchecked(mach: f64, gamma: f64) -> NormalShock {
+    let m2 = mach.max(1.0).powi(2);
+    let pressure_ratio = 1.0 + 2.0 * gamma / (gamma + 1.0) * (m2 - 1.0);
+    let density_ratio = (gamma + 1.0) * m2 / ((gamma - 1.0) * m2 + 2.0);
+    let mach_downstream =
+        (((gamma - 1.0) * m2 + 2.0) / (2.0 * gamma * m2 - (gamma - 1.0))).sqrt();
+    // p02/p01 = (ρ2/ρ1)^(γ/(γ-1)) (p2/p1)^(-1/(γ-1)).
+    let total_pressure_ratio =
+        ((gamma * density_ratio.ln() - pressure_ratio.ln()) / (gamma - 1.0)).exp();
+    NormalShock {
+        mach_downstream,
+        pressure_ratio,
+        density_ratio,
+        temperature_ratio: pressure_ratio / density_ratio,
+        total_pressure_ratio: total_pressure_ratio.min(1.0),
+    }
+}
+
+/// Normal shock at upstream M >= 1: Rankine-Hugoniot ratios (NACA 1135 eqs. 93-99).
+pub fn normal_shock(mach: f64, gamma: f64) -> Result<NormalShock, GasError> {
+    let gamma = check_gamma(gamma)?;
+    let m = check_supersonic(mach, "a normal shock needs M >= 1")?;
+    Ok(normal_shock_unchecked(m, gamma))
+}
+
+// ---------------------------------------------------------------------------------------------
+// Oblique shock
+// ---------------------------------------------------------------------------------------------
+
+/// State change across a planar oblique shock; ratios are downstream over upstream.
+#[derive(Clone, Copy, Debug, PartialEq, serde::Serialize)]
+pub struct ObliqueShock {
+    /// Wave (shock) angle β to the upstream flow, rad.
+    pub wave_angle_rad: f64,
+    /// Flow deflection θ, rad.
+    pub deflection_rad: f64,
+    /// M1 sin β.
+    pub normal_mach_upstream: f64,
+    /// M2 = M2n / sin(β - θ).
+    pub mach_downstream: f64,
+    /// p2/p1.
+    pub pressure_ratio: f64,
+    /// ρ2/ρ1.
+    pub density_ratio: f64,
+    /// T2/T1.
+    pub temperature_ratio: f64,
+    /// p02/p01.
+    pub total_pressure_ratio: f64,
+}
+
+/// θ-β-M relation as (numerator, denominator) of tan θ = 2 cot β (M² sin²β - 1) / (M² (γ + cos 2β) + 2).
+fn theta_beta_parts(mach: f64, beta: f64, gamma: f64) -> (f64, f64) {
+    let m2 = mach * mach;
+    let (s, c) = beta.sin_cos();
+    let numerator = 2.0 * c / s * (m2 * s * s - 1.0);
+    let denominator = m2 * (gamma + (2.0 * beta).cos()) + 2.0;
+    (numerator, denominator)
+}
+
+/// θ(β) and dθ/dβ for the safeguarded Newton polish.
+fn theta_and_slope(mach: f64, beta: f64, gamma: f64) -> (f64, f64) {
+    let m2 = mach * mach;
+    let (s, c) = beta.sin_cos();
+    let (n, d) = theta_beta_parts(mach, beta, gamma);
+    let dn = -2.0 * (m2 * s * s - 1.0) / (s * s) + 4.0 * m2 * c * c;
+    let dd = -2.0 * m2 * (2.0 * beta).sin();
+    (n.atan2(d), (dn * d - n * dd) / (d * d + n * n))
+}
+
+/// Deflection θ(β) = atan[2 cot β (M² sin²β - 1) / (M² (γ + cos 2β) + 2)], rad (θ-β-M relation,
+/// Anderson MCF eq. 4.17). Negative for β below the Mach angle.
+pub fn deflection_from_wave_angle(mach: f64, wave_angle_rad: f64, gamma: f64) -> f64 {
+    let (n, d) = theta_beta_parts(mach, wave_angle_rad, gamma);
+    n.atan2(d)
+}
+
+/// sin²β at maximum deflection: [(γ+1)M² - 4 + √((γ+1)((γ+1)M⁴ + 8(γ-1)M² + 16))] / (4γM²)
+/// (NACA 1135, oblique-shock maximum-deflection relation).
+fn wave_angle_at_max_deflection(mach: f64, gamma: f64) -> f64 {
+    let m2 = mach * mach;
+    let gp1 = gamma + 1.0;
+    let root = (gp1 * (gp1 * m2 * m2 + 8.0 * (gamma - 1.0) * m2 + 16.0)).sqrt();
+    let sin2 = (gp1 * m2 - 4.0 + root) / (4.0 * gamma * m2);
+    sin2.clamp(0.0, 1.0).sqrt().asin()
+}
+
+/// (θ_max, β at θ_max), rad, for M >= 1: closed-form sin²β at θ_max (NACA 1135) into the θ-β-M
+/// relation.
+pub fn max_deflection(mach: f64, gamma: f64) -> Result<(f64, f64), GasError> {
+    let gamma = check_gamma(gamma)?;
+    let m = check_supersonic(mach, "an oblique shock needs M >= 1")?;
+    let beta = wave_angle_at_max_deflection(m, gamma);
+    Ok((deflection_from_wave_angle(m, beta, gamma).max(0.0), beta))
+}
+
+/// Thompson's closed form for β(M, θ) (Thompson 1950, as given in Anderson MCF ch. 4):
+/// tan β = [M² - 1 + 2λ cos((4πδ + acos χ)/3)] / [3 (1 + (γ-1)/2 M²) tan θ], δ = 1 weak, 0 strong.
+fn wave_angle_closed_form(mach: f64, theta: f64, gamma: f64, branch: ShockBranch) -> f64 {
+    let m2 = mach * mach;
+    let t = theta.tan();
+    let a = 1.0 + 0.5 * (gamma - 1.0) * m2;
+    let lambda2 = (m2 - 1.0).powi(2) - 3.0 * a * (1.0 + 0.5 * (gamma + 1.0) * m2) * t * t;
+    let lambda = lambda2.max(0.0).sqrt();
+    let chi = ((m2 - 1.0).powi(3) - 9.0 * a * (a + 0.25 * (gamma + 1.0) * m2 * m2) * t * t)
+        / (lambda * lambda * lambda);
+    let delta = match branch {
+        ShockBranch::Weak => 1.0,
+        ShockBranch::Strong => 0.0,
+    };
+    let angle = (4.0 * std::f64::consts::PI * delta + chi.clamp(-1.0, 1.0).acos()) / 3.0;
+    ((m2 - 1.0 + 2.0 * lambda * angle.cos()) / (3.0 * a * t)).atan()
+}
+
+/// Oblique-shock ratios from M and β: normal-shock relations on M1n = M1 sin β, M2 = M2n / sin(β - θ).
+fn oblique_from_beta(mach: f64, beta: f64, theta: f64, gamma: f64) -> ObliqueShock {
+    let normal_mach_upstream = (mach * beta.sin()).max(1.0);
+    let normal = normal_shock_unchecked(normal_mach_upstream, gamma);
+    let turn = beta - theta;
+    let mach_downstream = if turn > 0.0 {
+        normal.mach_downstream / turn.sin()
+    } else {
+        0.0
+    };
+    ObliqueShock {
+        wave_angle_rad: beta,
+        deflection_rad: theta,
+        normal_mach_upstream,
+        mach_downstream,
+        pressure_ratio: normal.pressure_ratio,
+        density_ratio: normal.density_ratio,
+        temperature_ratio: normal.temperature_ratio,
+        total_pressure_ratio: normal.total_pressure_ratio,
+    }
+}
+
+/// Oblique shock turning M >= 1 flow by θ in [0, θ_max] rad on the chosen branch: Thompson's
+/// closed form polished by safeguarded Newton on the θ-β-M relation (Anderson MCF eq. 4.17).
+pub fn oblique_shock(
+    mach: f64,
+    deflection_rad: f64,
+    gamma: f64,
+    branch: ShockBranch,
+) -> Result<ObliqueShock, GasError> {
+    let gamma = check_gamma(gamma)?;
+    let m = check_supersonic(mach, "an oblique shock needs M >= 1")?;
+    let theta = finite("deflection (rad)", deflection_rad)?;
+    if theta < 0.0 {
+        return Err(GasError::out_of_range(
+            "deflection (rad)",
+            theta,
+            "theta >= 0 (a negative turn is an expansion)",
+        ));
+    }
+    let beta_max = wave_angle_at_max_deflection(m, gamma);
+    let theta_max = deflection_from_wave_angle(m, beta_max, gamma).max(0.0);
+    if theta > theta_max {
+        return Err(GasError::Detached {
+            mach: m,
+            deflection_rad: theta,
+            max_deflection_rad: theta_max,
+        });
+    }
+    let mu = (1.0 / m).asin();
+    let beta = if theta == theta_max {
+        beta_max
+    } else if theta == 0.0 {
+        match branch {
+            ShockBranch::Weak => mu,
+            ShockBranch::Strong => FRAC_PI_2,
+        }
+    } else {
+        let guess = wave_angle_closed_form(m, theta, gamma, branch);
+        let residual = |b: f64| {
+            let (t, slope) = theta_and_slope(m, b, gamma);
+            (t - theta, slope)
+        };
+        match branch {
+            ShockBranch::Weak => solve_bracketed(residual, mu, beta_max, guess, true),
+            ShockBranch::Strong => solve_bracketed(residual, beta_max, FRAC_PI_2, guess, false),
+        }
+    };
+    Ok(oblique_from_beta(m, beta, theta, gamma))
+}
+
+/// Oblique shock from M >= 1 and wave angle β in [asin(1/M), π/2] rad; θ from the θ-β-M relation.
+pub fn oblique_shock_from_wave_angle(
+    mach: f64,
+    wave_angle_rad: f64,
+    gamma: f64,
+) -> Result<ObliqueShock, GasError> {
+    let gamma = check_gamma(gamma)?;
+    let m = check_supersonic(mach, "an oblique shock needs M >= 1")?;
+    let beta = finite("wave angle (rad)", wave_angle_rad)?;
+    let mu = (1.0 / m).asin();
+    // Allow a few ulp below the Mach angle so asin(1/M) computed by a caller is accepted.
+    if beta < mu - 8.0 * f64::EPSILON || beta > FRAC_PI_2 + 8.0 * f64::EPSILON {
+        return Err(GasError::out_of_range(
+            "wave angle (rad)",
+            beta,
+            format!("Mach angle asin(1/M) = {mu} <= beta <= pi/2"),
+        ));
+    }
+    let beta = beta.clamp(mu, FRAC_PI_2);
+    let theta = deflection_from_wave_angle(m, beta, gamma).max(0.0);
+    Ok(oblique_from_beta(m, beta, theta, gamma))
+}
+
+// ---------------------------------------------------------------------------------------------
+// Prandtl-Meyer expansion
+// ---------------------------------------------------------------------------------------------
+
+/// √((γ+1)/(γ-1)), the Prandtl-Meyer scale.
+fn pm_scale(gamma: f64) -> f64 {
+    ((gamma + 1.0) / (gamma - 1.0)).sqrt()
+}
+
+/// ν(x) = a atan(x/a) - atan(x) with x = √(M²-1), a = √((γ+1)/(γ-1)).
+fn pm_of_x(x: f64, a: f64) -> f64 {
+    a * (x / a).atan() - x.atan()
+}
+
+/// ν_max - ν(x) = a atan(a/x) - atan(1/x), accurate for large x.
+fn pm_deficit_of_x(x: f64, a: f64) -> f64 {
+    a * (a / x).atan() - (1.0 / x).atan()
+}
+
+/// dν/dx = x² (1 - 1/a²) / ((1 + x²/a²)(1 + x²)).
+fn pm_slope_of_x(x: f64, a: f64) -> f64 {
+    let x2 = x * x;
+    x2 * (1.0 - 1.0 / (a * a)) / ((1.0 + x2 / (a * a)) * (1.0 + x2))
+}
+
+/// ν(M) = √((γ+1)/(γ-1)) atan √((γ-1)/(γ+1) (M²-1)) - atan √(M²-1), rad, M >= 1
+/// (Anderson MCF eq. 4.44).
+pub fn prandtl_meyer(mach: f64, gamma: f64) -> Result<f64, GasError> {
+    let gamma = check_gamma(gamma)?;
+    let m = check_supersonic(mach, "the Prandtl-Meyer function needs M >= 1")?;
+    let x = ((m - 1.0) * (m + 1.0)).sqrt();
+    Ok(pm_of_x(x, pm_scale(gamma)))
+}
+
+/// ν_max = π/2 (√((γ+1)/(γ-1)) - 1), rad: the turn from M = 1 to M = ∞ (Anderson MCF eq. 4.44, M → ∞).
+pub fn max_prandtl_meyer(gamma: f64) -> f64 {
+    FRAC_PI_2 * (pm_scale(gamma) - 1.0)
+}
+
+/// M(ν) for ν in [0, ν_max) rad: Hall (1975) rational approximation as the start, then safeguarded
+/// Newton on ν(√(M²-1)) to machine precision (Hall, Aeronautical J. 79, 1975, p. 417).
+pub fn inverse_prandtl_meyer(nu_rad: f64, gamma: f64) -> Result<f64, GasError> {
+    let gamma = check_gamma(gamma)?;
+    let nu = finite("Prandtl-Meyer angle (rad)", nu_rad)?;
+    let nu_max = max_prandtl_meyer(gamma);
+    if !(0.0..nu_max).contains(&nu) {
+        return Err(GasError::out_of_range(
+            "Prandtl-Meyer angle (rad)",
+            nu,
+            format!("0 <= nu < nu_max = {nu_max}"),
+        ));
+    }
+    if nu == 0.0 {
+        return Ok(1.0);
+    }
+    let a = pm_scale(gamma);
+    // Hall's fit (exact coefficients for γ = 1.4; a fair start for other γ).
+    let y = (nu / nu_max).powf(2.0 / 3.0);
+    let hall = (1.0 + y * (1.360_4 + y * (0.096_2 - 0.512_7 * y)))
+        / (1.0 - y * (0.672_2 + 0.327_8 * y));
+    let deficit = nu_max - nu;
+    // ν_max - ν(x) < (a²-1)/x, so x = (a²-1)/deficit brackets the root from above.
+    let hi = (a * a - 1.0) / deficit;
+    let guess = if hall.is_finite() && hall > 1.0 {
+        ((hall - 1.0) * (hall + 1.0)).sqrt()
+    } else {
+        0.5 * hi
+    };
+    let x = if nu <= 0.5 * nu_max {
+        solve_bracketed(
+            |x| (pm_of_x(x, a) - nu, pm_slope_of_x(x, a)),
+            0.0,
+            hi,
+            guess,
+            true,
+        )
+    } else {
+        solve_bracketed(
+            |x| (pm_deficit_of_x(x, a) - deficit, -pm_slope_of_x(x, a)),
+            0.0,
+            hi,
+            guess,
+            false,
+        )
+    };
+    Ok((1.0 + x * x).sqrt())
+}
+
+/// Isentropic state change through a Prandtl-Meyer expansion fan; ratios are downstream over upstream.
+#[derive(Clone, Copy, Debug, PartialEq, serde::Serialize)]
+pub struct Expansion {
+    /// M2 >= M1.
+    pub mach_downstream: f64,
+    /// p2/p1 <= 1.
+    pub pressure_ratio: f64,
+    /// T2/T1 <= 1.
+    pub temperature_ratio: f64,
+    /// ρ2/ρ1 <= 1.
+    pub density_ratio: f64,
+}
+
+/// Expansion of M >= 1 flow turning away from itself by `turn_rad` >= 0: ν(M2) = ν(M1) + turn,
+/// isentropic ratios T2/T1 = (1 + (γ-1)/2 M1²)/(1 + (γ-1)/2 M2²) (NACA 1135 eqs. 43-45).
+pub fn prandtl_meyer_expansion(
+    mach: f64,
+    turn_rad: f64,
+    gamma: f64,
+) -> Result<Expansion, GasError> {
+    let gamma = check_gamma(gamma)?;
+    let m1 = check_supersonic(mach, "a Prandtl-Meyer expansion needs M >= 1")?;
+    let turn = finite("expansion turn (rad)", turn_rad)?;
+    if turn < 0.0 {
+        return Err(GasError::out_of_range(
+            "expansion turn (rad)",
+            turn,
+            "turn >= 0 (a turn into the flow is a compression)",
+        ));
+    }
+    let nu1 = prandtl_meyer(m1, gamma)?;
+    let max_turn = max_prandtl_meyer(gamma) - nu1;
+    if turn >= max_turn {
+        return Err(GasError::VacuumExpansion {
+            mach: m1,
+            turn_rad: turn,
+            max_turn_rad: max_turn,
+        });
+    }
+    let m2 = if turn == 0.0 {
+        m1
+    } else {
+        inverse_prandtl_meyer(nu1 + turn, gamma)?
+    };
+    let temperature_ratio = total_temperature_ratio(m1, gamma) / total_temperature_ratio(m2, gamma);
+    Ok(Expansion {
+        mach_downstream: m2,
+        pressure_ratio: temperature_ratio.powf(gamma / (gamma - 1.0)),
+        temperature_ratio,
+        density_ratio: temperature_ratio.powf(1.0 / (gamma - 1.0)),
+    })
+}
+
+// ---------------------------------------------------------------------------------------------
+// Pitot and Newtonian stagnation pressure
+// ---------------------------------------------------------------------------------------------
+
+/// p02/p1 = [(γ+1)²M²/(4γM² - 2(γ-1))]^(γ/(γ-1)) (1 - γ + 2γM²)/(γ+1) for M >= 1 (Rayleigh pitot
+/// formula, NACA 1135 eq. 100); isentropic p0/p (eq. 44) for 0 <= M < 1.
+pub fn rayleigh_pitot_pressure_ratio(mach: f64, gamma: f64) -> Result<f64, GasError> {
+    let gamma = check_gamma(gamma)?;
+    let m = check_mach_nonnegative(mach)?;
+    if m < 1.0 {
+        return Ok(total_pressure_ratio(m, gamma));
+    }
+    let m2 = m * m;
+    let bracket = (gamma + 1.0).powi(2) * m2 / (4.0 * gamma * m2 - 2.0 * (gamma - 1.0));
+    Ok(bracket.powf(gamma / (gamma - 1.0)) * (1.0 - gamma + 2.0 * gamma * m2) / (gamma + 1.0))
+}
+
+/// Cp,max = (p02/p1 - 1) / (γ/2 M²), the modified-Newtonian stagnation coefficient for M > 0
+/// (Anderson, Hypersonic and High-Temperature Gas Dynamics, eq. 3.15).
+pub fn newtonian_cp_max(mach: f64, gamma: f64) -> Result<f64, GasError> {
+    let m = check_mach_nonnegative(mach)?;
+    if m == 0.0 {
+        return Err(GasError::out_of_range("Mach number", m, "M > 0"));
+    }
+    let pitot = rayleigh_pitot_pressure_ratio(m, gamma)?;
+    Ok((pitot - 1.0) / (0.5 * gamma * m * m))
+}
+
+// ---------------------------------------------------------------------------------------------
+// Rayleigh flow (heat addition in a constant-area duct)
+// ---------------------------------------------------------------------------------------------
+
+/// Rayleigh-flow state over the sonic (star) state of the same flow.
+#[derive(Clone, Copy, Debug, PartialEq, serde::Serialize)]
+pub struct RayleighFlow {
+    /// T0/T0*.
+    pub total_temperature_ratio: f64,
+    /// T/T*.
+    pub temperature_ratio: f64,
+    /// p/p*.
+    pub pressure_ratio: f64,
+    /// p0/p0*.
+    pub total_pressure_ratio: f64,
+    /// V/V* = ρ*/ρ.
+    pub velocity_ratio: f64,
+}
+
+/// Rayleigh-flow ratios for M >= 0 (Anderson MCF, Rayleigh-flow relations): p/p* = (1+γ)/(1+γM²),
+/// T/T* = M² (p/p*)², T0/T0* = (γ+1)M²(2 + (γ-1)M²)/(1+γM²)², V/V* = (γ+1)M²/(1+γM²),
+/// p0/p0* = (p/p*) [(2 + (γ-1)M²)/(γ+1)]^(γ/(γ-1)).
+pub fn rayleigh_flow(mach: f64, gamma: f64) -> Result<RayleighFlow, GasError> {
+    let gamma = check_gamma(gamma)?;
+    let m = check_mach_nonnegative(mach)?;
+    let m2 = m * m;
+    let denominator = 1.0 + gamma * m2;
+    let pressure_ratio = (1.0 + gamma) / denominator;
+    let stagnation = (2.0 + (gamma - 1.0) * m2) / (gamma + 1.0);
+    Ok(RayleighFlow {
+        total_temperature_ratio: (gamma + 1.0).powi(2) * m2 * stagnation
+            / (denominator * denominator),
+        temperature_ratio: m2 * pressure_ratio * pressure_ratio,
+        pressure_ratio,
+        total_pressure_ratio: pressure_ratio * stagnation.powf(gamma / (gamma - 1.0)),
+        velocity_ratio: (gamma + 1.0) * m2 / denominator,
+    })
+}
+
+/// M from T0/T0* in [0, 1] on the chosen branch: the quadratic in M² from the Rayleigh T0/T0*
+/// relation, M² = r / q (subsonic) or q / (rγ² - γ² + 1) (supersonic), with
+/// q = γ + 1 - rγ + (γ+1)√(1-r). T0/T0* > 1 is thermal choking; supersonic needs
+/// T0/T0* > (γ²-1)/γ², its M → ∞ limit.
+pub fn rayleigh_mach_from_total_temperature_ratio(
+    t0_over_t0_star: f64,
+    gamma: f64,
+    branch: FlowBranch,
+) -> Result<f64, GasError> {
+    let gamma = check_gamma(gamma)?;
+    let r = finite("total temperature ratio T0/T0*", t0_over_t0_star)?;
+    if r > 1.0 {
+        return Err(GasError::ThermalChoking {
+            total_temperature_ratio: r,
+        });
+    }
+    if r < 0.0 {
+        return Err(GasError::out_of_range(
+            "total temperature ratio T0/T0*",
+            r,
+            "0 <= T0/T0* <= 1",
+        ));
+    }
+    let q = gamma + 1.0 - r * gamma + (gamma + 1.0) * (1.0 - r).sqrt();
+    match branch {
+        FlowBranch::Subsonic => Ok((r / q).sqrt()),
+        FlowBranch::Supersonic => {
+            let a = r * gamma * gamma - (gamma * gamma - 1.0);
+            if a <= 0.0 {
+                let limit = (gamma * gamma - 1.0) / (gamma * gamma);
+                return Err(GasError::out_of_range(
+                    "total temperature ratio T0/T0*",
+                    r,
+                    format!("{limit} < T0/T0* <= 1 for supersonic Rayleigh flow"),
+                ));
+            }
+            Ok((q / a).sqrt())
+        }
+    }
+}
+
+// ---------------------------------------------------------------------------------------------
+// Piston theory
+// ---------------------------------------------------------------------------------------------
+
+/// p/p∞ = (1 + (γ-1)/2 · w/a)^(2γ/(γ-1)), simple-wave pressure on a piston moving into the gas at
+/// normal velocity w (Lighthill 1953); w/a <= -2/(γ-1) is cavitation.
+pub fn piston_pressure_ratio_exact(
+    normal_velocity_over_sound_speed: f64,
+    gamma: f64,
+) -> Result<f64, GasError> {
+    let gamma = check_gamma(gamma)?;
+    let w = finite(
+        "normal velocity over sound speed w/a",
+        normal_velocity_over_sound_speed,
+    )?;
+    let limit = -2.0 / (gamma - 1.0);
+    if w <= limit {
+        return Err(GasError::Cavitation {
+            normal_velocity_over_sound_speed: w,
+            limit,
+        });
+    }
+    Ok((1.0 + 0.5 * (gamma - 1.0) * w).powf(2.0 * gamma / (gamma - 1.0)))
+}
+
+/// p/p∞ = 1 + γ w/a + γ(γ+1)/4 (w/a)² + γ(γ+1)/12 (w/a)³, third-order piston theory
+/// (Ashley & Zartarian 1956).
+pub fn piston_pressure_ratio_third_order(normal_velocity_over_sound_speed: f64, gamma: f64) -> f64 {
+    let w = normal_velocity_over_sound_speed;
+    let c2 = gamma * (gamma + 1.0) / 4.0;
+    1.0 + w * (gamma + w * (c2 + w * c2 / 3.0))
+}

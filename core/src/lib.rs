@@ -1,0 +1,27 @@
+//! hsv-core: the contracts every hsv model implements and the physics they all share.
+//!
+//! Models and plugins depend on this crate only. It owns the role traits (aero, heat flux,
+//! conduction, structure, propulsion), the `inventory` registry that names models, the
+//! publish-subscribe data manager regions talk through, the US Standard Atmosphere 1976,
+//! perfect-gas relations, frames, and panel meshes. SI units throughout.
+
+pub mod atmosphere;
+pub mod gas;
+pub mod frames;
+pub mod mesh;
+pub mod stl;
+
+pub mod aero;
+pub mod data;
+pub mod error;
+pub mod flow;
+pub mod propulsion;
+pub mod registry;
+pub mod structure;
+pub mod thermal;
+
+pub use error::ModelError;
+/// Re-exported so [`register_model!`] works from crates that do not depend on `inventory`.
+pub use inventory;
+pub mod config;
+pub mod plugin;

@@ -1,0 +1,588 @@
+//! Panel meshes of the outer mold line: vertices, triangle/quad panels with their geometry,
+//! streamwise strips, named surfaces tagged by region, and modal deformation of the mesh.
+//!
+//! Conventions: coordinates in body axes (x forward, y right, z down), metres. Panel vertices are
+//! counter-clockwise seen from outside, so the right-hand-rule normal points out of the body
+//! (into the flow). A quad may be non-planar: its normal is the unit cross product of its
+//! diagonals and its area half the magnitude of that product (exact for planar quads).
+
+use std::collections::HashMap;
+
+use nalgebra::{DMatrix, DVector, Point3, Vector3};
+
+/// Which region of the vehicle owns a surface (and therefore which model loads it).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, serde::Serialize, serde::Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum RegionKind {
+    MainBody,
+    LiftingSurface,
+    Propulsion,
+    Other,
+}
+
+/// A named part of a mesh, e.g. "upper-forebody" (main body) or "inlet-ramp" (propulsion).
+#[derive(Clone, Debug, PartialEq, serde::Serialize)]
+pub struct Surface {
+    pub name: String,
+    pub region: RegionKind,
+}
+
+impl Surface {
+    /// A surface named `name` in `region`.
+    pub fn new(name: impl Into<String>, region: RegionKind) -> Self {
+        Self {
+            name: name.into(),
+            region,
+        }
+    }
+}
+
+/// One panel: a triangle or a (possibly non-planar) quad, with its current geometry.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Panel {
+    /// Indices into [`PanelMesh::vertices`], counter-clockwise seen from outside. For triangles
+    /// the fourth entry repeats the third.
+    pub vertices: [usize; 4],
+    /// 3 (triangle) or 4 (quad).
+    pub vertex_count: u8,
+    /// Area centroid, m.
+    pub centroid: Point3<f64>,
+    /// Outward unit normal.
+    pub normal: Vector3<f64>,
+    /// Area, m².
+    pub area_m2: f64,
+    /// Index into [`PanelMesh::surfaces`].
+    pub surface: u16,
+}
+
+impl Panel {
+    /// The panel's vertex indices (3 or 4 of them).
+    pub fn vertex_indices(&self) -> &[usize] {
+        &self.vertices[..usize::from(self.vertex_count.clamp(3, 4))]
+    }
+}
+
+/// Panel indices ordered upstream (leading edge / nose) to downstream.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct Strip {
+    pub panels: Vec<usize>,
+}
+
+/// Connectivity of one panel for [`PanelMesh::new`]: vertex indices, counter-clockwise seen from
+/// outside, and the surface it belongs to.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct PanelSpec {
+    /// For triangles the fourth entry is ignored.
+    pub vertices: [usize; 4],
+    /// 3 or 4.
+    pub vertex_count: u8,
+    pub surface: u16,
+}
+
+impl PanelSpec {
+    /// A triangle (a, b, c).
+    pub fn triangle(a: usize, b: usize, c: usize, surface: u16) -> Self {
+        Self {
+            vertices: [a, b, c, c],
+            vertex_count: 3,
+            surface,
+        }
+    }
+
+    /// A quad (a, b, c, d).
+    pub fn quad(a: usize, b: usize, c: usize, d: usize, surface: u16) -> Self {
+        Self {
+            vertices: [a, b, c, d],
+            vertex_count: 4,
+            surface,
+        }
+    }
+}
+
+/// Why a mesh could not be built.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum MeshError {
+    #[error("mesh has no panels")]
+    Empty,
+    #[error("vertex {vertex} has a non-finite coordinate ({x}, {y}, {z})")]
+    NonFiniteVertex { vertex: usize, x: f64, y: f64, z: f64 },
+    #[error("panel {panel} has {count} vertices; panels have 3 or 4")]
+    BadVertexCount { panel: usize, count: u8 },
+    #[error("panel {panel} refers to vertex {vertex}, but the mesh has {n_vertices} vertices")]
+    BadVertexIndex {
+        panel: usize,
+        vertex: usize,
+        n_vertices: usize,
+    },
+    #[error("panel {panel} refers to surface {surface}, but the mesh has {n_surfaces} surfaces")]
+    BadSurfaceIndex {
+        panel: usize,
+        surface: u16,
+        n_surfaces: usize,
+    },
+    #[error("panel {panel} is degenerate (area {area_m2:e} m²)")]
+    DegeneratePanel { panel: usize, area_m2: f64 },
+    #[error("strip {strip} refers to panel {panel}, but the mesh has {n_panels} panels")]
+    BadStripPanel {
+        strip: usize,
+        panel: usize,
+        n_panels: usize,
+    },
+    #[error("strip {strip} is empty")]
+    EmptyStrip { strip: usize },
+    #[error("too many surfaces ({count}); at most {max}", max = u16::MAX)]
+    TooManySurfaces { count: usize },
+    #[error(
+        "mode shapes have {rows} rows, but the mesh has {n_vertices} vertices (needs 3 x {n_vertices})"
+    )]
+    ModeShapeSize { rows: usize, n_vertices: usize },
+}
+
+/// A panel mesh: shared vertices, panels, optional streamwise strips and named surfaces.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct PanelMesh {
+    /// m, body axes.
+    pub vertices: Vec<Point3<f64>>,
+    pub panels: Vec<Panel>,
+    /// Empty for unstructured meshes (e.g. from STL).
+    pub strips: Vec<Strip>,
+    pub surfaces: Vec<Surface>,
+}
+
+/// Centroid, normal and area of the polygon `idx` over `vertices`.
+///
+/// Normal n = d1 × d2 / |d1 × d2| with diagonals d1 = v2 - v0, d2 = v3 - v1 (v3 = v2 for a
+/// triangle), area |d1 × d2| / 2; centroid: area-weighted centroids of triangles (0,1,2) and
+/// (0,2,3). Reference: Hess & Smith, "Calculation of potential flow about arbitrary bodies",
+/// Prog. Aerospace Sci. 8 (1967) (quadrilateral element normal from the diagonals).
+fn panel_geometry(
+    vertices: &[Point3<f64>],
+    idx: &[usize; 4],
+    count: u8,
+) -> (Point3<f64>, Vector3<f64>, f64) {
+    let v0 = vertices[idx[0]];
+    let v1 = vertices[idx[1]];
+    let v2 = vertices[idx[2]];
+    let v3 = if count == 4 { vertices[idx[3]] } else { v2 };
+    let cross = (v2 - v0).cross(&(v3 - v1));
+    let twice_area = cross.norm();
+    let normal = if twice_area > 0.0 {
+        cross / twice_area
+    } else {
+        Vector3::zeros()
+    };
+    let a1 = (v1 - v0).cross(&(v2 - v0)).norm();
+    let a2 = (v2 - v0).cross(&(v3 - v0)).norm();
+    let c1 = (v0.coords + v1.coords + v2.coords) / 3.0;
+    let c2 = (v0.coords + v2.coords + v3.coords) / 3.0;
+    let centroid = if a1 + a2 > 0.0 {
+        Point3::from((c1 * a1 + c2 * a2) / (a1 + a2))
+    } else {
+        Point3::from((v0.coords + v1.coords + v2.coords + v3.coords) / 4.0)
+    };
+    (centroid, normal, 0.5 * twice_area)
+}
+
+impl PanelMesh {
+    /// Builds a mesh from vertices and panel connectivity, computes every panel's geometry and
+    /// validates indices, strips and panel areas.
+    pub fn new(
+        vertices: Vec<Point3<f64>>,
+        panels: &[PanelSpec],
+        strips: Vec<Strip>,
+        surfaces: Vec<Surface>,
+    ) -> Result<Self, MeshError> {
+        if panels.is_empty() {
+            return Err(MeshError::Empty);
+        }
+        if surfaces.len() > usize::from(u16::MAX) {
+            return Err(MeshError::TooManySurfaces {
+                count: surfaces.len(),
+            });
+        }
+        for (i, v) in vertices.iter().enumerate() {
+            if !(v.x.is_finite() && v.y.is_finite() && v.z.is_finite()) {
+                return Err(MeshError::NonFiniteVertex {
+                    vertex: i,
+                    x: v.x,
+                    y: v.y,
+                    z: v.z,
+                });
+            }
+        }
+        let (lo, hi) = bounding_box_of(&vertices);
+        let size = (hi - lo).norm();
+        // Areas below this are round-off, not geometry.
+        let min_area = (size * 1e-10).powi(2);
+        let mut out = Vec::with_capacity(panels.len());
+        for (p, spec) in panels.iter().enumerate() {
+            if spec.vertex_count != 3 && spec.vertex_count != 4 {
+                return Err(MeshError::BadVertexCount {
+                    panel: p,
+                    count: spec.vertex_count,
+                });
+            }
+            let mut idx = spec.vertices;
+            if spec.vertex_count == 3 {
+                idx[3] = idx[2];
+            }
+            for &v in &idx[..usize::from(spec.vertex_count)] {
+                if v >= vertices.len() {
+                    return Err(MeshError::BadVertexIndex {
+                        panel: p,
+                        vertex: v,
+                        n_vertices: vertices.len(),
+                    });
+                }
+            }
+            if usize::from(spec.surface) >= surfaces.len() {
+                return Err(MeshError::BadSurfaceIndex {
+                    panel: p,
+                    surface: spec.surface,
+                    n_surfaces: surfaces.len(),
+                });
+            }
+            let (centroid, normal, area_m2) = panel_geometry(&vertices, &idx, spec.vertex_count);
+            if area_m2 <= min_area || normal == Vector3::zeros() {
+                return Err(MeshError::DegeneratePanel { panel: p, area_m2 });
+            }
+            out.push(Panel {
+                vertices: idx,
+                vertex_count: spec.vertex_count,
+                centroid,
+                normal,
+                area_m2,
+                surface: spec.surface,
+            });
+        }
+        for (s, strip) in strips.iter().enumerate() {
+            if strip.panels.is_empty() {
+                return Err(MeshError::EmptyStrip { strip: s });
+            }
+            if let Some(&bad) = strip.panels.iter().find(|&&p| p >= out.len()) {
+                return Err(MeshError::BadStripPanel {
+                    strip: s,
+                    panel: bad,
+                    n_panels: out.len(),
+                });
+            }
+        }
+        Ok(Self {
+            vertices,
+            panels: out,
+            strips,
+            surfaces,
+        })
+    }
+
+    /// An unstructured mesh of triangles on one surface (no strips).
+    pub fn from_triangles(
+        vertices: Vec<Point3<f64>>,
+        triangles: &[[usize; 3]],
+        surface: Surface,
+    ) -> Result<Self, MeshError> {
+        let specs: Vec<PanelSpec> = triangles
+            .iter()
+            .map(|t| PanelSpec::triangle(t[0], t[1], t[2], 0))
+            .collect();
+        Self::new(vertices, &specs, Vec::new(), vec![surface])
+    }
+
+    /// Recomputes every panel's centroid, normal and area from the current vertices (after
+    /// deformation). Allocates nothing. A panel that collapsed keeps its previous normal and
+    /// gets zero area.
+    pub fn update_geometry(&mut self) {
+        let vertices = &self.vertices;
+        for panel in &mut self.panels {
+            let (centroid, normal, area) =
+                panel_geometry(vertices, &panel.vertices, panel.vertex_count);
+            panel.centroid = centroid;
+            panel.area_m2 = area;
+            if normal != Vector3::zeros() {
+                panel.normal = normal;
+            }
+        }
+    }
+
+    /// True when the mesh has streamwise strips.
+    pub fn is_structured(&self) -> bool {
+        !self.strips.is_empty()
+    }
+
+    /// Sum of the panel areas, m².
+    pub fn total_area_m2(&self) -> f64 {
+        self.panels.iter().map(|p| p.area_m2).sum()
+    }
+
+    /// Enclosed volume by the divergence theorem, V = Σ v0 · (v1 × v2) / 6 over the triangles
+    /// (0,1,2), (0,2,3) of each panel, m³. Positive for a closed mesh with outward normals.
+    /// Reference: Zhang & Chen, "Efficient feature extraction for 2D/3D objects in mesh
+    /// representation", ICIP 2001 (signed tetrahedron volumes).
+    pub fn enclosed_volume_m3(&self) -> f64 {
+        let mut six_v = 0.0;
+        for p in &self.panels {
+            let v = |k: usize| self.vertices[p.vertices[k]].coords;
+            six_v += v(0).dot(&v(1).cross(&v(2)));
+            if p.vertex_count == 4 {
+                six_v += v(0).dot(&v(2).cross(&v(3)));
+            }
+        }
+        six_v / 6.0
+    }
+
+    /// Directed edges of every panel, counted by undirected edge: (uses a->b with a<b, uses b->a).
+    fn edge_uses(&self) -> HashMap<(usize, usize), (u32, u32)> {
+        let mut edges: HashMap<(usize, usize), (u32, u32)> =
+            HashMap::with_capacity(self.panels.len() * 2);
+        for p in &self.panels {
+            let idx = p.vertex_indices();
+            for k in 0..idx.len() {
+                let (a, b) = (idx[k], idx[(k + 1) % idx.len()]);
+                let entry = edges.entry((a.min(b), a.max(b))).or_default();
+                if a < b {
+                    entry.0 += 1;
+                } else {
+                    entry.1 += 1;
+                }
+            }
+        }
+        edges
+    }
+
+    /// True when every edge is shared by exactly two panels (vertex-welded, watertight).
+    pub fn is_closed(&self) -> bool {
+        !self.panels.is_empty() && self.edge_uses().values().all(|&(f, b)| f + b == 2)
+    }
+
+    /// True when every edge shared by two panels is traversed once in each direction, so all
+    /// normals point to the same side.
+    pub fn is_consistently_oriented(&self) -> bool {
+        self.edge_uses().values().all(|&(f, b)| f <= 1 && b <= 1)
+    }
+
+    /// Appends `other`, offsetting its vertex, panel and surface indices.
+    pub fn merge(&mut self, other: &PanelMesh) {
+        let v_off = self.vertices.len();
+        let p_off = self.panels.len();
+        // Surface indices are u16; PanelMesh::new caps the count, merging two capped meshes
+        // could exceed it, so saturate rather than wrap.
+        let s_off = u16::try_from(self.surfaces.len()).unwrap_or(u16::MAX);
+        self.vertices.extend_from_slice(&other.vertices);
+        self.surfaces.extend(other.surfaces.iter().cloned());
+        self.panels.extend(other.panels.iter().map(|p| {
+            let mut q = *p;
+            for v in &mut q.vertices {
+                *v += v_off;
+            }
+            q.surface = q.surface.saturating_add(s_off);
+            q
+        }));
+        self.strips.extend(other.strips.iter().map(|s| Strip {
+            panels: s.panels.iter().map(|&p| p + p_off).collect(),
+        }));
+    }
+
+    /// Indices of the panels whose surface belongs to `region`.
+    pub fn panels_in_region(&self, region: RegionKind) -> impl Iterator<Item = usize> + '_ {
+        self.panels.iter().enumerate().filter_map(move |(i, p)| {
+            (self.surfaces.get(usize::from(p.surface)).map(|s| s.region) == Some(region))
+                .then_some(i)
+        })
+    }
+
+    /// Index of the surface called `name`.
+    pub fn surface_index(&self, name: &str) -> Option<u16> {
+        self.surfaces
+            .iter()
+            .position(|s| s.name == name)
+            .and_then(|i| u16::try_from(i).ok())
+    }
+
+    /// Indices of the panels on surface `surface`.
+    pub fn panels_in_surface(&self, surface: u16) -> impl Iterator<Item = usize> + '_ {
+        self.panels
+            .iter()
+            .enumerate()
+            .filter_map(move |(i, p)| (p.surface == surface).then_some(i))
+    }
+
+    /// Axis-aligned bounding box (min, max) of the vertices, m; the origin twice when empty.
+    pub fn bounding_box(&self) -> (Point3<f64>, Point3<f64>) {
+        bounding_box_of(&self.vertices)
+    }
+}
+
+/// Axis-aligned bounding box of `points`; the origin twice when empty.
+pub fn bounding_box_of(points: &[Point3<f64>]) -> (Point3<f64>, Point3<f64>) {
+    let Some(first) = points.first() else {
+        return (Point3::origin(), Point3::origin());
+    };
+    points.iter().fold((*first, *first), |(lo, hi), p| {
+        (
+            Point3::new(lo.x.min(p.x), lo.y.min(p.y), lo.z.min(p.z)),
+            Point3::new(hi.x.max(p.x), hi.y.max(p.y), hi.z.max(p.z)),
+        )
+    })
+}
+
+/// Merges points closer than `tolerance_m` (first come, first kept) with a uniform hash grid.
+///
+/// Returns the unique points and, for each input point, its index among them.
+pub fn weld_vertices(points: &[Point3<f64>], tolerance_m: f64) -> (Vec<Point3<f64>>, Vec<usize>) {
+    let tol = if tolerance_m.is_finite() && tolerance_m > 0.0 {
+        tolerance_m
+    } else {
+        0.0
+    };
+    let mut unique: Vec<Point3<f64>> = Vec::with_capacity(points.len());
+    let mut map = Vec::with_capacity(points.len());
+    if tol == 0.0 {
+        // Exact matches only.
+        let mut seen: HashMap<[u64; 3], usize> = HashMap::with_capacity(points.len());
+        for p in points {
+            let key = [p.x.to_bits(), p.y.to_bits(), p.z.to_bits()];
+            let id = *seen.entry(key).or_insert_with(|| {
+                unique.push(*p);
+                unique.len() - 1
+            });
+            map.push(id);
+        }
+        return (unique, map);
+    }
+    let cell_of = |p: &Point3<f64>| -> [i64; 3] {
+        // `as` saturates for huge values, which only coarsens the grid there.
+        [
+            (p.x / tol).floor() as i64,
+            (p.y / tol).floor() as i64,
+            (p.z / tol).floor() as i64,
+        ]
+    };
+    let mut grid: HashMap<[i64; 3], Vec<usize>> = HashMap::with_capacity(points.len());
+    let tol2 = tol * tol;
+    for p in points {
+        let c = cell_of(p);
+        let mut found = None;
+        'search: for dx in -1i64..=1 {
+            for dy in -1i64..=1 {
+                for dz in -1i64..=1 {
+                    let key = [
+                        c[0].saturating_add(dx),
+                        c[1].saturating_add(dy),
+                        c[2].saturating_add(dz),
+                    ];
+                    if let Some(ids) = grid.get(&key) {
+                        for &id in ids {
+                            if (unique[id] - p).norm_squared() <= tol2 {
+                                found = Some(id);
+                                break 'search;
+                            }
+                        }
+                    }
+                }
+            }
+        }
+        let id = match found {
+            Some(id) => id,
+            None => {
+                unique.push(*p);
+                let id = unique.len() - 1;
+                grid.entry(c).or_default().push(id);
+                id
+            }
+        };
+        map.push(id);
+    }
+    (unique, map)
+}
+
+/// Modal displacement field on a mesh: column k holds the displacement (x,y,z interleaved per
+/// vertex, m per unit modal coordinate) of mode k.
+#[derive(Clone, Debug, PartialEq)]
+pub struct ModeShapes {
+    /// 3 n_vertices x n_modes.
+    pub vertex_displacement: DMatrix<f64>,
+}
+
+impl ModeShapes {
+    /// Number of modes (columns).
+    pub fn n_modes(&self) -> usize {
+        self.vertex_displacement.ncols()
+    }
+
+    /// Checks that the shapes fit `mesh` (3 rows per vertex); call once at assembly.
+    pub fn check(&self, mesh: &PanelMesh) -> Result<(), MeshError> {
+        if self.vertex_displacement.nrows() != 3 * mesh.vertices.len() {
+            return Err(MeshError::ModeShapeSize {
+                rows: self.vertex_displacement.nrows(),
+                n_vertices: mesh.vertices.len(),
+            });
+        }
+        Ok(())
+    }
+
+    /// Deformed mesh: vertices = base + Φ q, then `update_geometry`, m.
+    ///
+    /// Allocates nothing once `out` has `base`'s topology (the first call copies `base` into
+    /// `out` when it does not). Sizes must agree ([`ModeShapes::check`]); extra rows, modes or
+    /// coordinates are ignored.
+    pub fn deform(&self, base: &PanelMesh, modal_coordinates: &DVector<f64>, out: &mut PanelMesh) {
+        debug_assert_eq!(self.vertex_displacement.nrows(), 3 * base.vertices.len());
+        debug_assert_eq!(modal_coordinates.len(), self.n_modes());
+        if out.vertices.len() != base.vertices.len() || out.panels.len() != base.panels.len() {
+            out.clone_from(base);
+        } else {
+            out.vertices.copy_from_slice(&base.vertices);
+        }
+        let n_rows = self.vertex_displacement.nrows();
+        let n_modes = self.n_modes().min(modal_coordinates.len());
+        for k in 0..n_modes {
+            let q = modal_coordinates[k];
+            if q == 0.0 {
+                continue;
+            }
+            let col = self.vertex_displacement.column(k);
+            for (i, v) in out.vertices.iter_mut().enumerate() {
+                let r = 3 * i;
+                if r + 2 >= n_rows {
+                    break;
+                }
+                v.x += col[r] * q;
+                v.y += col[r + 1] * q;
+                v.z += col[r + 2] * q;
+            }
+        }
+        out.update_geometry();
+    }
+
+    /// Velocity of each panel centroid from modal velocities (mean of its vertices' Φ q̇), m/s,
+    /// written into `out` (len = panels). Allocates nothing.
+    pub fn panel_velocities(
+        &self,
+        mesh: &PanelMesh,
+        modal_velocities: &DVector<f64>,
+        out: &mut [Vector3<f64>],
+    ) {
+        debug_assert_eq!(out.len(), mesh.panels.len());
+        debug_assert_eq!(modal_velocities.len(), self.n_modes());
+        let n_rows = self.vertex_displacement.nrows();
+        let n_modes = self.n_modes().min(modal_velocities.len());
+        let phi = &self.vertex_displacement;
+        for (panel, v_out) in mesh.panels.iter().zip(out.iter_mut()) {
+            let idx = panel.vertex_indices();
+            let mut sum = Vector3::zeros();
+            for &vi in idx {
+                let r = 3 * vi;
+                if r + 2 >= n_rows {
+                    continue;
+                }
+                for k in 0..n_modes {
+                    let qd = modal_velocities[k];
+                    sum.x += phi[(r, k)] * qd;
+                    sum.y += phi[(r + 1, k)] * qd;
+                    sum.z += phi[(r + 2, k)] * qd;
+                }
+            }
+            *v_out = sum / idx.len() as f64;
+        }
+    }
+}

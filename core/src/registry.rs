@@ -1,0 +1,577 @@
+//! The model registry: every model known by name, from built-in crates (`inventory`) and plugins.
+//!
+//! A model crate registers itself with [`register_model!`]; the binary links it with a
+//! `use hsv_model_x as _;` line. [`Registry::builtin`] collects the descriptors, sorts them by
+//! name and rejects duplicates; look-ups of unknown names answer with the closest known names.
+
+use std::collections::BTreeMap;
+use std::fmt;
+use std::sync::Arc;
+
+use serde::de::DeserializeOwned;
+
+use crate::aero::AeroModel;
+use crate::error::ModelError;
+use crate::propulsion::PropulsionModel;
+use crate::structure::StructureModel;
+use crate::thermal::{ConductionModel, HeatFluxModel};
+
+/// The four model families of the design card.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash, serde::Serialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum Family {
+    Aero,
+    Thermal,
+    Structure,
+    Propulsion,
+}
+
+/// What a model does; thermal models split into heat flux at the wall and conduction inside.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash, serde::Serialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum Role {
+    Aero,
+    HeatFlux,
+    Conduction,
+    Structure,
+    Propulsion,
+}
+
+impl Role {
+    pub fn family(self) -> Family {
+        match self {
+            Role::Aero => Family::Aero,
+            Role::HeatFlux | Role::Conduction => Family::Thermal,
+            Role::Structure => Family::Structure,
+            Role::Propulsion => Family::Propulsion,
+        }
+    }
+
+    pub fn as_str(self) -> &'static str {
+        match self {
+            Role::Aero => "aero",
+            Role::HeatFlux => "heat-flux",
+            Role::Conduction => "conduction",
+            Role::Structure => "structure",
+            Role::Propulsion => "propulsion",
+        }
+    }
+}
+
+impl fmt::Display for Role {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(self.as_str())
+    }
+}
+
+impl fmt::Display for Family {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(match self {
+            Family::Aero => "aero",
+            Family::Thermal => "thermal",
+            Family::Structure => "structure",
+            Family::Propulsion => "propulsion",
+        })
+    }
+}
+
+/// What a constructor gets: its own settings table plus the whole vehicle config.
+#[derive(Debug, Clone, Copy)]
+pub struct ModelContext<'a> {
+    /// The model's settings (`[models.<name>]`), empty when the config has none.
+    pub settings: &'a toml::Table,
+    /// Dotted key path of `settings` in the config file, for error messages.
+    pub key_path: &'a str,
+    /// The config file the settings come from.
+    pub file: &'a str,
+    /// The whole vehicle config, for models that need geometry or materials from it.
+    pub config: &'a toml::Table,
+}
+
+impl<'a> ModelContext<'a> {
+    /// Parses the settings table into `T`, naming file and full key path on any error.
+    ///
+    /// `T` should be `#[serde(deny_unknown_fields)]` so misspelt keys are caught.
+    pub fn parse_settings<T: DeserializeOwned>(&self) -> Result<T, ModelError> {
+        crate::config::parse_table(self.settings, self.file, self.key_path)
+            .map_err(ModelError::from)
+    }
+
+    /// Parses a top-level table of the vehicle config (for example `lifting_surface`).
+    pub fn parse_config_table<T: DeserializeOwned>(&self, key: &str) -> Result<T, ModelError> {
+        let Some(value) = self.config.get(key) else {
+            return Err(ModelError::Settings {
+                file: self.file.to_owned(),
+                key_path: key.to_owned(),
+                message: "missing table".to_owned(),
+            });
+        };
+        let table = value.as_table().ok_or_else(|| ModelError::Settings {
+            file: self.file.to_owned(),
+            key_path: key.to_owned(),
+            message: format!("expected a table, found {}", value.type_str()),
+        })?;
+        crate::config::parse_table(table, self.file, key).map_err(ModelError::from)
+    }
+}
+
+/// A constructor for each role. Built-in models give plain function pointers.
+pub type AeroConstructor = fn(&ModelContext<'_>) -> Result<Box<dyn AeroModel>, ModelError>;
+pub type HeatFluxConstructor = fn(&ModelContext<'_>) -> Result<Box<dyn HeatFluxModel>, ModelError>;
+pub type ConductionConstructor =
+    fn(&ModelContext<'_>) -> Result<Box<dyn ConductionModel>, ModelError>;
+pub type StructureConstructor =
+    fn(&ModelContext<'_>) -> Result<Box<dyn StructureModel>, ModelError>;
+pub type PropulsionConstructor =
+    fn(&ModelContext<'_>) -> Result<Box<dyn PropulsionModel>, ModelError>;
+
+/// The constructor of a built-in model; its variant fixes the model's role.
+#[derive(Clone, Copy)]
+pub enum Constructor {
+    Aero(AeroConstructor),
+    HeatFlux(HeatFluxConstructor),
+    Conduction(ConductionConstructor),
+    Structure(StructureConstructor),
+    Propulsion(PropulsionConstructor),
+}
+
+impl Constructor {
+    pub fn role(&self) -> Role {
+        match self {
+            Constructor::Aero(_) => Role::Aero,
+            Constructor::HeatFlux(_) => Role::HeatFlux,
+            Constructor::Conduction(_) => Role::Conduction,
+            Constructor::Structure(_) => Role::Structure,
+            Constructor::Propulsion(_) => Role::Propulsion,
+        }
+    }
+}
+
+/// What a built-in model crate submits with [`register_model!`].
+pub struct ModelDescriptor {
+    /// Stable kebab-case name; the user's interface.
+    pub name: &'static str,
+    /// Crate that registered it (`env!("CARGO_PKG_NAME")`).
+    pub origin: &'static str,
+    /// Fidelity rank within its role: higher resolves more physics (and usually costs more).
+    pub fidelity: u8,
+    /// One-line summary.
+    pub summary: &'static str,
+    /// Settings the model reads from `[models.<name>]`, one `key = default  # meaning` per line.
+    pub settings_doc: &'static str,
+    pub constructor: Constructor,
+}
+
+inventory::collect!(ModelDescriptor);
+
+/// Registers a built-in model: `hsv_core::register_model!(ModelDescriptor { .. });`
+#[macro_export]
+macro_rules! register_model {
+    ($descriptor:expr) => {
+        $crate::inventory::submit! { $descriptor }
+    };
+}
+
+/// A shared constructor: boxed so plugin adapters (closures over a loaded library) fit beside
+/// built-in function pointers.
+pub type SharedConstructor<M> =
+    Arc<dyn Fn(&ModelContext<'_>) -> Result<Box<M>, ModelError> + Send + Sync>;
+
+/// Constructors as the registry stores them.
+#[derive(Clone)]
+pub enum Factory {
+    Aero(SharedConstructor<dyn AeroModel>),
+    HeatFlux(SharedConstructor<dyn HeatFluxModel>),
+    Conduction(SharedConstructor<dyn ConductionModel>),
+    Structure(SharedConstructor<dyn StructureModel>),
+    Propulsion(SharedConstructor<dyn PropulsionModel>),
+}
+
+impl Factory {
+    pub fn role(&self) -> Role {
+        match self {
+            Factory::Aero(_) => Role::Aero,
+            Factory::HeatFlux(_) => Role::HeatFlux,
+            Factory::Conduction(_) => Role::Conduction,
+            Factory::Structure(_) => Role::Structure,
+            Factory::Propulsion(_) => Role::Propulsion,
+        }
+    }
+}
+
+impl From<Constructor> for Factory {
+    fn from(constructor: Constructor) -> Self {
+        match constructor {
+            Constructor::Aero(f) => Factory::Aero(Arc::new(f)),
+            Constructor::HeatFlux(f) => Factory::HeatFlux(Arc::new(f)),
+            Constructor::Conduction(f) => Factory::Conduction(Arc::new(f)),
+            Constructor::Structure(f) => Factory::Structure(Arc::new(f)),
+            Constructor::Propulsion(f) => Factory::Propulsion(Arc::new(f)),
+        }
+    }
+}
+
+/// Where a registered model comes from.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub enum Origin {
+    /// A crate linked into the binary.
+    BuiltIn(String),
+    /// A dylib plugin loaded from this path.
+    Plugin(String),
+}
+
+impl fmt::Display for Origin {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            Origin::BuiltIn(krate) => write!(f, "built-in ({krate})"),
+            Origin::Plugin(path) => write!(f, "plugin ({path})"),
+        }
+    }
+}
+
+/// One registered model.
+#[derive(Clone)]
+pub struct RegistryEntry {
+    pub name: String,
+    pub fidelity: u8,
+    pub summary: String,
+    pub settings_doc: String,
+    pub origin: Origin,
+    pub factory: Factory,
+}
+
+impl RegistryEntry {
+    pub fn role(&self) -> Role {
+        self.factory.role()
+    }
+}
+
+impl fmt::Debug for RegistryEntry {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.debug_struct("RegistryEntry")
+            .field("name", &self.name)
+            .field("role", &self.role())
+            .field("fidelity", &self.fidelity)
+            .field("origin", &self.origin)
+            .finish()
+    }
+}
+
+/// Why a registry operation failed.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum RegistryError {
+    #[error("unknown {role} model `{name}`{hint}")]
+    Unknown {
+        name: String,
+        role: String,
+        /// ", did you mean `x`? (known: ...)" or the list of known names.
+        hint: String,
+    },
+    #[error("model `{name}` is a {actual} model, but a {wanted} model is needed here")]
+    WrongRole {
+        name: String,
+        actual: Role,
+        wanted: Role,
+    },
+    #[error("model name `{name}` is registered twice: by {first} and by {second}")]
+    Duplicate {
+        name: String,
+        first: String,
+        second: String,
+    },
+    #[error("model name `{name}` is not kebab-case (lowercase letters, digits and '-')")]
+    BadName { name: String },
+    #[error(transparent)]
+    Model(#[from] ModelError),
+    #[error(transparent)]
+    Plugin(#[from] crate::plugin::PluginError),
+}
+
+/// Every model known by name.
+#[derive(Clone, Default)]
+pub struct Registry {
+    entries: BTreeMap<String, RegistryEntry>,
+}
+
+fn is_kebab_case(name: &str) -> bool {
+    !name.is_empty()
+        && !name.starts_with('-')
+        && !name.ends_with('-')
+        && name
+            .chars()
+            .all(|c| c.is_ascii_lowercase() || c.is_ascii_digit() || c == '-')
+}
+
+impl Registry {
+    /// An empty registry (tests and plugin hosts build their own).
+    pub fn empty() -> Self {
+        Self::default()
+    }
+
+    /// All models linked into this binary.
+    pub fn builtin() -> Result<Self, RegistryError> {
+        let mut registry = Self::empty();
+        for descriptor in inventory::iter::<ModelDescriptor> {
+            registry.insert(RegistryEntry {
+                name: descriptor.name.to_owned(),
+                fidelity: descriptor.fidelity,
+                summary: descriptor.summary.to_owned(),
+                settings_doc: descriptor.settings_doc.to_owned(),
+                origin: Origin::BuiltIn(descriptor.origin.to_owned()),
+                factory: descriptor.constructor.into(),
+            })?;
+        }
+        Ok(registry)
+    }
+
+    /// Loads the dylib plugin at `path` and registers its models; returns how many.
+    pub fn load_plugin(&mut self, path: &std::path::Path) -> Result<usize, RegistryError> {
+        let entries = crate::plugin::load_plugin(path)?;
+        let count = entries.len();
+        for entry in entries {
+            self.insert(entry)?;
+        }
+        Ok(count)
+    }
+
+    /// Adds one model; a name already taken is an error naming both origins.
+    pub fn insert(&mut self, entry: RegistryEntry) -> Result<(), RegistryError> {
+        if !is_kebab_case(&entry.name) {
+            return Err(RegistryError::BadName { name: entry.name });
+        }
+        if let Some(existing) = self.entries.get(&entry.name) {
+            return Err(RegistryError::Duplicate {
+                name: entry.name.clone(),
+                first: existing.origin.to_string(),
+                second: entry.origin.to_string(),
+            });
+        }
+        self.entries.insert(entry.name.clone(), entry);
+        Ok(())
+    }
+
+    /// Entries sorted by name.
+    pub fn iter(&self) -> impl Iterator<Item = &RegistryEntry> {
+        self.entries.values()
+    }
+
+    /// Names of the models with `role`, sorted.
+    pub fn names(&self, role: Role) -> Vec<&str> {
+        self.iter()
+            .filter(|e| e.role() == role)
+            .map(|e| e.name.as_str())
+            .collect()
+    }
+
+    pub fn len(&self) -> usize {
+        self.entries.len()
+    }
+
+    pub fn is_empty(&self) -> bool {
+        self.entries.is_empty()
+    }
+
+    /// The entry called `name`; unknown names get the closest known names as a hint.
+    pub fn get(&self, name: &str) -> Result<&RegistryEntry, RegistryError> {
+        self.entries
+            .get(name)
+            .ok_or_else(|| self.unknown(name, None))
+    }
+
+    fn unknown(&self, name: &str, role: Option<Role>) -> RegistryError {
+        let candidates: Vec<&str> = self
+            .iter()
+            .filter(|e| role.is_none_or(|r| e.role() == r))
+            .map(|e| e.name.as_str())
+            .collect();
+        let mut scored: Vec<(f64, &str)> = candidates
+            .iter()
+            .map(|c| (strsim::normalized_damerau_levenshtein(name, c), *c))
+            .filter(|(score, c)| *score >= 0.5 || c.contains(name) || name.contains(*c))
+            .collect();
+        scored.sort_by(|a, b| b.0.total_cmp(&a.0));
+        let close: Vec<String> = scored.iter().take(3).map(|(_, c)| format!("`{c}`")).collect();
+        let known = if candidates.is_empty() {
+            "none registered".to_owned()
+        } else {
+            candidates.join(", ")
+        };
+        let hint = if close.is_empty() {
+            format!(" (known: {known})")
+        } else {
+            format!("; did you mean {}? (known: {known})", close.join(" or "))
+        };
+        RegistryError::Unknown {
+            name: name.to_owned(),
+            role: role.map_or_else(|| "hsv".to_owned(), |r| r.to_string()),
+            hint,
+        }
+    }
+
+    fn entry_for(&self, name: &str, wanted: Role) -> Result<&RegistryEntry, RegistryError> {
+        let entry = self
+            .entries
+            .get(name)
+            .ok_or_else(|| self.unknown(name, Some(wanted)))?;
+        if entry.role() != wanted {
+            return Err(wrong_role(name, entry.role(), wanted));
+        }
+        Ok(entry)
+    }
+
+    /// Builds the aero model `name`.
+    pub fn create_aero(
+        &self,
+        name: &str,
+        context: &ModelContext<'_>,
+    ) -> Result<Box<dyn AeroModel>, RegistryError> {
+        match &self.entry_for(name, Role::Aero)?.factory {
+            Factory::Aero(build) => Ok(build(context)?),
+            other => Err(wrong_role(name, other.role(), Role::Aero)),
+        }
+    }
+
+    /// Builds the heat-flux model `name`.
+    pub fn create_heat_flux(
+        &self,
+        name: &str,
+        context: &ModelContext<'_>,
+    ) -> Result<Box<dyn HeatFluxModel>, RegistryError> {
+        match &self.entry_for(name, Role::HeatFlux)?.factory {
+            Factory::HeatFlux(build) => Ok(build(context)?),
+            other => Err(wrong_role(name, other.role(), Role::HeatFlux)),
+        }
+    }
+
+    /// Builds the conduction model `name`.
+    pub fn create_conduction(
+        &self,
+        name: &str,
+        context: &ModelContext<'_>,
+    ) -> Result<Box<dyn ConductionModel>, RegistryError> {
+        match &self.entry_for(name, Role::Conduction)?.factory {
+            Factory::Conduction(build) => Ok(build(context)?),
+            other => Err(wrong_role(name, other.role(), Role::Conduction)),
+        }
+    }
+
+    /// Builds the structure model `name`.
+    pub fn create_structure(
+        &self,
+        name: &str,
+        context: &ModelContext<'_>,
+    ) -> Result<Box<dyn StructureModel>, RegistryError> {
+        match &self.entry_for(name, Role::Structure)?.factory {
+            Factory::Structure(build) => Ok(build(context)?),
+            other => Err(wrong_role(name, other.role(), Role::Structure)),
+        }
+    }
+
+    /// Builds the propulsion model `name`.
+    pub fn create_propulsion(
+        &self,
+        name: &str,
+        context: &ModelContext<'_>,
+    ) -> Result<Box<dyn PropulsionModel>, RegistryError> {
+        match &self.entry_for(name, Role::Propulsion)?.factory {
+            Factory::Propulsion(build) => Ok(build(context)?),
+            other => Err(wrong_role(name, other.role(), Role::Propulsion)),
+        }
+    }
+
+}
+
+fn wrong_role(name: &str, actual: Role, wanted: Role) -> RegistryError {
+    RegistryError::WrongRole {
+        name: name.to_owned(),
+        actual,
+        wanted,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::aero::{AeroSolution, PanelMotion};
+    use crate::flow::FlightCondition;
+    use crate::mesh::PanelMesh;
+
+    struct Freestream;
+    impl AeroModel for Freestream {
+        fn name(&self) -> &str {
+            "freestream-pressure"
+        }
+        fn evaluate(
+            &mut self,
+            mesh: &PanelMesh,
+            flight: &FlightCondition,
+            _motion: &PanelMotion<'_>,
+            out: &mut AeroSolution,
+        ) -> Result<(), ModelError> {
+            out.reset(mesh.panels.len());
+            out.pressure_pa.fill(flight.freestream.pressure_pa);
+            Ok(())
+        }
+    }
+
+    fn entry(name: &str, origin: &str) -> RegistryEntry {
+        RegistryEntry {
+            name: name.to_owned(),
+            fidelity: 0,
+            summary: String::new(),
+            settings_doc: String::new(),
+            origin: Origin::BuiltIn(origin.to_owned()),
+            factory: Factory::Aero(Arc::new(|_| Ok(Box::new(Freestream)))),
+        }
+    }
+
+    #[test]
+    fn duplicate_names_name_both_origins() {
+        let mut registry = Registry::empty();
+        registry.insert(entry("freestream-pressure", "crate-a")).unwrap();
+        let err = registry
+            .insert(entry("freestream-pressure", "crate-b"))
+            .unwrap_err()
+            .to_string();
+        assert!(err.contains("crate-a") && err.contains("crate-b"), "{err}");
+    }
+
+    #[test]
+    fn unknown_names_suggest_the_closest() {
+        let mut registry = Registry::empty();
+        registry.insert(entry("shock-expansion", "a")).unwrap();
+        registry.insert(entry("newtonian-vector", "a")).unwrap();
+        let err = registry.get("shock-expanson").unwrap_err().to_string();
+        assert!(err.contains("did you mean `shock-expansion`"), "{err}");
+        let err = registry.get("vortex-lattice").unwrap_err().to_string();
+        assert!(err.contains("known: newtonian-vector, shock-expansion"), "{err}");
+    }
+
+    #[test]
+    fn wrong_role_is_reported() {
+        let mut registry = Registry::empty();
+        registry.insert(entry("shock-expansion", "a")).unwrap();
+        let table = toml::Table::new();
+        let context = ModelContext {
+            settings: &table,
+            key_path: "models.shock-expansion",
+            file: "test.toml",
+            config: &table,
+        };
+        let err = registry
+            .create_structure("shock-expansion", &context)
+            .err()
+            .unwrap();
+        assert!(matches!(err, RegistryError::WrongRole { .. }), "{err}");
+        assert!(registry.create_aero("shock-expansion", &context).is_ok());
+    }
+
+    #[test]
+    fn names_must_be_kebab_case() {
+        let mut registry = Registry::empty();
+        assert!(matches!(
+            registry.insert(entry("Shock_Expansion", "a")),
+            Err(RegistryError::BadName { .. })
+        ));
+    }
+}

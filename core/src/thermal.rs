@@ -1,0 +1,62 @@
+//! The two thermal roles: heat flux into the wall from the flow, and conduction in the structure.
+
+use nalgebra::DVector;
+
+use crate::aero::AeroSolution;
+use crate::error::ModelError;
+use crate::flow::FlightCondition;
+use crate::mesh::PanelMesh;
+
+/// Aeroheating: the net heat flux into the structure at every panel of a wetted mesh.
+pub trait HeatFluxModel: Send {
+    /// The registered name (`eckert`, `kriging-stanton`, ...).
+    fn name(&self) -> &str;
+
+    /// Net heat flux into the wall (convection minus re-radiation), W/m², positive into the
+    /// structure, for every panel of `mesh`, from the edge states of an aero evaluation and the
+    /// wall temperature of each panel (K).
+    fn heat_flux(
+        &mut self,
+        mesh: &PanelMesh,
+        flight: &FlightCondition,
+        aero: &AeroSolution,
+        wall_temperature_k: &[f64],
+        out_w_m2: &mut [f64],
+    ) -> Result<(), ModelError>;
+}
+
+/// Transient heat conduction in a structure, advanced by the heat flux on its wetted panels.
+///
+/// The thermal state is plain data owned by the caller (a full temperature field or POD
+/// coefficients), so a run can be cloned, rolled back and linearized.
+pub trait ConductionModel: Send {
+    /// The registered name (`full-order`, `pod`, ...).
+    fn name(&self) -> &str;
+
+    /// Length of the thermal state vector.
+    fn n_states(&self) -> usize;
+
+    /// Number of structural nodes whose temperature [`Self::node_temperatures`] reports.
+    fn n_nodes(&self) -> usize;
+
+    /// Number of wetted panels that [`Self::step`] takes a heat flux for and
+    /// [`Self::surface_temperatures`] reports.
+    fn n_surface_panels(&self) -> usize;
+
+    /// State of a structure at a uniform temperature (K).
+    fn uniform_state(&self, temperature_k: f64) -> Result<DVector<f64>, ModelError>;
+
+    /// Advances `state` by `dt_s` seconds under the given surface heat flux (W/m² per panel).
+    fn step(
+        &mut self,
+        state: &mut DVector<f64>,
+        surface_heat_flux_w_m2: &[f64],
+        dt_s: f64,
+    ) -> Result<(), ModelError>;
+
+    /// Wall temperature of each wetted panel, K.
+    fn surface_temperatures(&self, state: &DVector<f64>, out_k: &mut [f64]);
+
+    /// Temperature of each structural node, K (what the structure model degrades stiffness from).
+    fn node_temperatures(&self, state: &DVector<f64>, out_k: &mut [f64]);
+}

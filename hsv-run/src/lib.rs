@@ -1,0 +1,8 @@
+//! hsv-run: assembles a vehicle from named models and runs the analyses of the hsv simulator.
+//!
+//! The binary (`hsv-run`) is a thin CLI over this library so tests and benches drive the same code.
+
+pub mod aero_job;
+pub mod linked;
+
+pub use linked::registry;

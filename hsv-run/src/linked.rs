@@ -1,0 +1,15 @@
+//! The one place that names every built-in model crate, so their `inventory` entries are linked.
+//!
+//! A crate that is only listed in Cargo.toml is never linked and its registrations vanish; each
+//! `use ... as _;` below keeps one in. Add a line here when you add a model crate.
+
+use hsv_core::registry::{Registry, RegistryError};
+
+use hsv_model_newtonian as _;
+use hsv_model_piston_theory as _;
+use hsv_model_shock_expansion as _;
+
+/// Every built-in model of this binary.
+pub fn registry() -> Result<Registry, RegistryError> {
+    Registry::builtin()
+}

@@ -1,0 +1,246 @@
+//! The `shock-expansion` model: steady shock-expansion theory along streamwise strips, tangent
+//! wedge / Prandtl-Meyer panel by panel elsewhere.
+
+use hsv_core::aero::{AeroDiagnostics, AeroModel, AeroSolution, PanelMotion};
+use hsv_core::error::ModelError;
+use hsv_core::flow::FlightCondition;
+use hsv_core::mesh::PanelMesh;
+use nalgebra::Vector3;
+
+use crate::wave::{self, Flow, Local, Regime};
+
+/// Registered name of the steady model.
+pub const NAME: &str = "shock-expansion";
+
+/// Steady shock-expansion theory (Anderson, Modern Compressible Flow, 3rd ed., §4.15).
+///
+/// Each panel's inclination to the flow is θ = asin(n · V̂) (n outward, V̂ the direction of the
+/// vehicle's velocity through the air; θ > 0 windward). Along each strip of a structured mesh the
+/// first panel turns the freestream by θ_0 and each following panel turns the local flow by
+/// Δθ = θ_i - θ_{i-1}: weak oblique shock for Δθ > 0, Prandtl-Meyer expansion for Δθ < 0.
+/// Panels in no strip (all panels of an unstructured mesh) turn the freestream by their own θ
+/// (tangent wedge / Prandtl-Meyer).
+///
+/// Beyond the maximum deflection the shock detaches and the panel gets the stagnation state
+/// behind a normal shock (pressure from the Rayleigh pitot formula, M = 0, T = T0); a
+/// compression of subsonic local flow does the same with the isentropic stagnation state.
+/// Downstream of a subsonic panel the flow keeps its state while Δθ = 0, stagnates further
+/// while Δθ > 0, and at the first expansion corner accelerates isentropically to sonic and then
+/// expands by the turn from M = 1 (the sonic-shoulder assumption of blunt-body flows).
+/// Expansions past ν_max give vacuum: p = ρ = 0 (see [`wave::VACUUM_EDGE_MACH`]); downstream
+/// panels of that strip stay at vacuum.
+///
+/// Steady: body rates and elastic velocities are ignored (only the current geometry matters);
+/// use `shock-expansion-piston` for the unsteady pressures.
+#[derive(Debug, Clone)]
+pub struct ShockExpansion {
+    /// Name in messages: [`NAME`], or the piston model's when it runs this as its mean flow.
+    name: &'static str,
+    /// Inclination θ of each panel, rad.
+    theta: Vec<f64>,
+    /// Local flow over each panel.
+    local: Vec<Local>,
+    /// Whether a strip has set the panel.
+    in_strip: Vec<bool>,
+}
+
+impl ShockExpansion {
+    pub fn new() -> Self {
+        Self::named(NAME)
+    }
+
+    /// The steady model reporting errors as `name`.
+    pub(crate) fn named(name: &'static str) -> Self {
+        Self {
+            name,
+            theta: Vec::new(),
+            local: Vec::new(),
+            in_strip: Vec::new(),
+        }
+    }
+
+    /// Local flow of each panel from the last evaluation.
+    pub(crate) fn local(&self) -> &[Local] {
+        &self.local
+    }
+
+    /// Fills the scratch buffers with θ and the local flow of every panel.
+    fn solve(&mut self, mesh: &PanelMesh, flight: &FlightCondition) -> Result<(), ModelError> {
+        let freestream = freestream_local(self.name, flight)?;
+        let gamma = flight.freestream.gas.gamma;
+        let direction = flight_direction(self.name, flight)?;
+        let n = mesh.panels.len();
+        self.theta.clear();
+        self.theta.reserve(n);
+        for (index, panel) in mesh.panels.iter().enumerate() {
+            let theta = inclination(&panel.normal, &direction);
+            if !theta.is_finite() {
+                return Err(non_finite(self.name, "panel inclination", index));
+            }
+            self.theta.push(theta);
+        }
+        self.local.clear();
+        self.local.resize(n, freestream);
+        self.in_strip.clear();
+        self.in_strip.resize(n, false);
+        for (s, strip) in mesh.strips.iter().enumerate() {
+            let mut state = freestream;
+            let mut previous = 0.0;
+            for &index in &strip.panels {
+                let Some(&theta) = self.theta.get(index) else {
+                    return Err(ModelError::inconsistent(
+                        self.name,
+                        format!("strip {s} refers to panel {index}, but the mesh has {n} panels"),
+                    ));
+                };
+                state = wave::turn(state, theta - previous, gamma)?;
+                self.local[index] = state;
+                self.in_strip[index] = true;
+                previous = theta;
+            }
+        }
+        for index in 0..n {
+            if !self.in_strip[index] {
+                self.local[index] = wave::turn(freestream, self.theta[index], gamma)?;
+            }
+        }
+        Ok(())
+    }
+
+    /// Copies pressures, edge states and diagnostics into `out`, rejecting non-finite values.
+    fn write(&self, flight: &FlightCondition, out: &mut AeroSolution) -> Result<(), ModelError> {
+        let gas = &flight.freestream.gas;
+        out.reset(self.local.len());
+        let mut diagnostics = AeroDiagnostics::default();
+        for (index, (local, &theta)) in self.local.iter().zip(&self.theta).enumerate() {
+            let edge = local.flow.edge(gas);
+            if !edge.pressure_pa.is_finite() {
+                return Err(non_finite(self.name, "pressure", index));
+            }
+            if !(edge.temperature_k.is_finite()
+                && edge.density_kg_m3.is_finite()
+                && edge.velocity_m_s.is_finite()
+                && edge.mach.is_finite())
+            {
+                return Err(non_finite(self.name, "edge state", index));
+            }
+            out.pressure_pa[index] = edge.pressure_pa;
+            out.edge[index] = edge;
+            diagnostics.shadowed_panels += usize::from(theta < 0.0);
+            diagnostics.detached_shocks += usize::from(local.regime == Regime::Detached);
+            diagnostics.vacuum_expansions += usize::from(local.regime == Regime::Vacuum);
+        }
+        out.diagnostics = diagnostics;
+        Ok(())
+    }
+
+    /// The steady evaluation shared with `shock-expansion-piston`.
+    pub(crate) fn evaluate_steady(
+        &mut self,
+        mesh: &PanelMesh,
+        flight: &FlightCondition,
+        out: &mut AeroSolution,
+    ) -> Result<(), ModelError> {
+        self.solve(mesh, flight)?;
+        self.write(flight, out)
+    }
+}
+
+impl Default for ShockExpansion {
+    fn default() -> Self {
+        Self::new()
+    }
+}
+
+impl AeroModel for ShockExpansion {
+    fn name(&self) -> &str {
+        self.name
+    }
+
+    fn evaluate(
+        &mut self,
+        mesh: &PanelMesh,
+        flight: &FlightCondition,
+        _motion: &PanelMotion<'_>,
+        out: &mut AeroSolution,
+    ) -> Result<(), ModelError> {
+        self.evaluate_steady(mesh, flight, out)
+    }
+}
+
+/// θ = asin(n · V̂), rad: the panel's inclination to the flow, > 0 windward (Newtonian impact
+/// angle; Anderson, Hypersonic and High-Temperature Gas Dynamics, §3.2).
+pub(crate) fn inclination(normal: &Vector3<f64>, direction: &Vector3<f64>) -> f64 {
+    normal.dot(direction).clamp(-1.0, 1.0).asin()
+}
+
+/// V̂ = V / |V|, the vehicle's direction of motion through the air in body axes.
+fn flight_direction(model: &str, flight: &FlightCondition) -> Result<Vector3<f64>, ModelError> {
+    let velocity = flight.velocity_body_m_s();
+    let speed = velocity.norm();
+    if !(speed.is_finite() && speed > 0.0) {
+        return Err(ModelError::out_of_range(
+            model,
+            "airspeed (m/s)",
+            speed,
+            "finite and > 0",
+        ));
+    }
+    Ok(velocity / speed)
+}
+
+/// Checks the flight condition and returns the freestream as the strips' starting state.
+fn freestream_local(model: &str, flight: &FlightCondition) -> Result<Local, ModelError> {
+    flight.check_finite()?;
+    let f = &flight.freestream;
+    if f.mach < 1.0 {
+        return Err(ModelError::out_of_range(
+            model,
+            "Mach number",
+            f.mach,
+            ">= 1 (supersonic methods)",
+        ));
+    }
+    let positive = [
+        ("freestream pressure (Pa)", f.pressure_pa),
+        ("freestream temperature (K)", f.temperature_k),
+        ("freestream density (kg/m^3)", f.density_kg_m3),
+        ("gas constant (J/(kg K))", f.gas.gas_constant_j_kg_k),
+    ];
+    for (quantity, value) in positive {
+        if !(value.is_finite() && value > 0.0) {
+            return Err(ModelError::out_of_range(
+                model,
+                quantity,
+                value,
+                "finite and > 0",
+            ));
+        }
+    }
+    if !(f.gas.gamma.is_finite() && f.gas.gamma > 1.0) {
+        return Err(ModelError::out_of_range(
+            model,
+            "ratio of specific heats",
+            f.gas.gamma,
+            "finite and > 1",
+        ));
+    }
+    Ok(Local {
+        flow: Flow {
+            mach: f.mach,
+            pressure_pa: f.pressure_pa,
+            temperature_k: f.temperature_k,
+            density_kg_m3: f.density_kg_m3,
+        },
+        regime: Regime::Freestream,
+    })
+}
+
+/// [`ModelError::NonFinite`] for `quantity` at panel `index`.
+pub(crate) fn non_finite(model: &str, quantity: &str, index: usize) -> ModelError {
+    ModelError::NonFinite {
+        model: model.to_owned(),
+        quantity: quantity.to_owned(),
+        location: format!(" at panel {index}"),
+    }
+}

@@ -1,0 +1,1 @@
+//! hsv-tests: cross-crate integration and validation tests; the tests live in `tests/`.

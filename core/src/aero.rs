@@ -175,7 +175,11 @@ pub struct Coefficients {
 impl Coefficients {
     /// Lift is normal to the velocity in the body x-z plane (positive up), drag along -V, side force
     /// completes the wind frame; moments are body-axis moments over q S l.
-    pub fn from_loads(loads: &Loads, flight: &FlightCondition, reference: &ReferenceValues) -> Self {
+    pub fn from_loads(
+        loads: &Loads,
+        flight: &FlightCondition,
+        reference: &ReferenceValues,
+    ) -> Self {
         let q_s = flight.freestream.dynamic_pressure_pa * reference.area_m2;
         let (sa, ca) = flight.alpha_rad.sin_cos();
         let (sb, cb) = flight.beta_rad.sin_cos();

@@ -36,12 +36,13 @@ const GMR: f64 = STANDARD_GRAVITY_M_S2 * SEA_LEVEL_MOLECULAR_WEIGHT / UNIVERSAL_
 const SEA_LEVEL_PRESSURE_PA: f64 = 101_325.0;
 
 /// Base geopotential altitudes H_b of the seven layers, m' (USSA-1976 Table 4).
-const LAYER_BASE_M: [f64; 7] = [0.0, 11_000.0, 20_000.0, 32_000.0, 47_000.0, 51_000.0, 71_000.0];
+const LAYER_BASE_M: [f64; 7] = [
+    0.0, 11_000.0, 20_000.0, 32_000.0, 47_000.0, 51_000.0, 71_000.0,
+];
 /// Molecular-scale temperature gradients L_M,b, K/m' (USSA-1976 Table 4).
 const LAYER_LAPSE_K_M: [f64; 7] = [-0.0065, 0.0, 0.001, 0.0028, 0.0, -0.0028, -0.002];
 /// Base molecular-scale temperatures T_M,b, K (USSA-1976 Table 4, from 288.15 K and the gradients).
-const LAYER_BASE_TEMPERATURE_K: [f64; 7] =
-    [288.15, 216.65, 216.65, 228.65, 270.65, 270.65, 214.65];
+const LAYER_BASE_TEMPERATURE_K: [f64; 7] = [288.15, 216.65, 216.65, 228.65, 270.65, 270.65, 214.65];
 
 /// Base pressures P_b, Pa, from 101 325 Pa through eqs. 33a/33b layer by layer.
 static LAYER_BASE_PRESSURE_PA: LazyLock<[f64; 7]> = LazyLock::new(|| {
@@ -128,7 +129,8 @@ fn molecular_weight_ratio(z: f64) -> f64 {
     // Truncation to the row index is intended; position is finite and >= 0 here.
     let row = (position.floor() as usize).min(last - 1);
     let fraction = (position - row as f64).min(1.0);
-    MOLECULAR_WEIGHT_RATIO[row] + fraction * (MOLECULAR_WEIGHT_RATIO[row + 1] - MOLECULAR_WEIGHT_RATIO[row])
+    MOLECULAR_WEIGHT_RATIO[row]
+        + fraction * (MOLECULAR_WEIGHT_RATIO[row + 1] - MOLECULAR_WEIGHT_RATIO[row])
 }
 
 /// H = r0 Z / (r0 + Z), geopotential altitude in m' for geometric altitude Z in m (USSA-1976 eq. 18).
@@ -165,11 +167,15 @@ pub fn us_standard_atmosphere_1976(
         return Err(AtmosphereError::OutOfRange { altitude_m: z });
     }
     let h = geopotential_altitude(z);
-    let layer = LAYER_BASE_M.iter().rposition(|&base| base <= h).unwrap_or(0);
+    let layer = LAYER_BASE_M
+        .iter()
+        .rposition(|&base| base <= h)
+        .unwrap_or(0);
     let height = h - LAYER_BASE_M[layer];
     let molecular_temperature = LAYER_BASE_TEMPERATURE_K[layer] + LAYER_LAPSE_K_M[layer] * height;
     let pressure = layer_pressure(layer, LAYER_BASE_PRESSURE_PA[layer], height);
-    let density = pressure * SEA_LEVEL_MOLECULAR_WEIGHT / (UNIVERSAL_GAS_CONSTANT * molecular_temperature);
+    let density =
+        pressure * SEA_LEVEL_MOLECULAR_WEIGHT / (UNIVERSAL_GAS_CONSTANT * molecular_temperature);
     let temperature = molecular_temperature * molecular_weight_ratio(z);
     let viscosity = sutherland_viscosity(temperature);
     Ok(AtmosphereState {

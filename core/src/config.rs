@@ -11,6 +11,7 @@ use serde::de::DeserializeOwned;
 use crate::aero::ReferenceValues;
 use crate::error::ModelError;
 use crate::gas::PerfectGas;
+use crate::vehicle::{GeometryConfig, LiftingSurfaceConfig};
 
 /// The sample vehicle config, embedded in every binary.
 pub const SAMPLE_CONFIG_TOML: &str = include_str!("../../configs/sample-hsv.toml");
@@ -81,8 +82,8 @@ pub struct HsvConfig {
     pub reference: ReferenceValues,
     #[serde(default)]
     pub gas: PerfectGas,
-    pub geometry: toml::Table,
-    pub lifting_surface: toml::Table,
+    pub geometry: GeometryConfig,
+    pub lifting_surface: LiftingSurfaceConfig,
     #[serde(default)]
     pub regions: RegionsConfig,
     /// Per-model settings, `[models.<name>]`; checked by each model's constructor.
@@ -136,10 +137,18 @@ impl LoadedConfig {
 
 /// Parses config text; `file` names it in errors.
 pub fn parse_config(text: &str, file: &str) -> Result<LoadedConfig, ConfigError> {
-    let raw: toml::Table = toml::from_str(text).map_err(|e| ConfigError {
-        file: file.to_owned(),
-        key_path: String::new(),
-        message: format!("not valid TOML: {}", e.to_string().trim_end()),
+    let raw: toml::Table = toml::from_str(text).map_err(|e| {
+        let place = e.span().map_or_else(String::new, |span| {
+            let before = &text[..span.start.min(text.len())];
+            let line = before.matches('\n').count() + 1;
+            let column = before.len() - before.rfind('\n').map_or(0, |i| i + 1) + 1;
+            format!(" at line {line}, column {column}")
+        });
+        ConfigError {
+            file: file.to_owned(),
+            key_path: String::new(),
+            message: format!("not valid TOML{place}: {}", first_line(e.message())),
+        }
     })?;
     let config: HsvConfig = parse_table(&raw, file, "")?;
     Ok(LoadedConfig {
@@ -167,7 +176,12 @@ pub fn parse_table<T: DeserializeOwned>(
         ConfigError {
             file: file.to_owned(),
             key_path: path,
-            message: error.inner().to_string(),
+            message: first_line(&error.inner().to_string()),
         }
     })
+}
+
+/// The first line of a message: deserializer errors append context lines the key path already gives.
+fn first_line(message: &str) -> String {
+    message.lines().next().unwrap_or_default().trim().to_owned()
 }

@@ -22,13 +22,17 @@ pub enum DataError {
         subscribers: String,
         known: String,
     },
-    #[error("topic `{topic}` is published by both `{first}` and `{second}`; a topic has one publisher")]
+    #[error(
+        "topic `{topic}` is published by both `{first}` and `{second}`; a topic has one publisher"
+    )]
     DuplicatePublisher {
         topic: String,
         first: String,
         second: String,
     },
-    #[error("topic `{topic}` is declared as `{first}` by `{first_region}` but as `{second}` by `{second_region}`")]
+    #[error(
+        "topic `{topic}` is declared as `{first}` by `{first_region}` but as `{second}` by `{second_region}`"
+    )]
     TypeMismatch {
         topic: String,
         first: &'static str,
@@ -290,8 +294,12 @@ mod tests {
     #[test]
     fn subscriber_reads_what_publisher_wrote_with_stamps() {
         let mut builder = DataManagerBuilder::new();
-        let root_motion = builder.publish::<[f64; 2]>("main-body", "root-motion").unwrap();
-        let reader = builder.subscribe::<[f64; 2]>("left-surface", "root-motion").unwrap();
+        let root_motion = builder
+            .publish::<[f64; 2]>("main-body", "root-motion")
+            .unwrap();
+        let reader = builder
+            .subscribe::<[f64; 2]>("left-surface", "root-motion")
+            .unwrap();
         let mut data = builder.build().unwrap();
         assert!(matches!(
             data.read(reader),
@@ -308,8 +316,12 @@ mod tests {
     #[test]
     fn publish_with_updates_in_place() {
         let mut builder = DataManagerBuilder::new();
-        let loads = builder.publish::<Vec<f64>>("propulsion", "engine-loads").unwrap();
-        let reader = builder.subscribe::<Vec<f64>>("main-body", "engine-loads").unwrap();
+        let loads = builder
+            .publish::<Vec<f64>>("propulsion", "engine-loads")
+            .unwrap();
+        let reader = builder
+            .subscribe::<Vec<f64>>("main-body", "engine-loads")
+            .unwrap();
         let mut data = builder.build().unwrap();
         data.publish_with(loads, 0.0, |v| v.resize(3, 1.0));
         let first_ptr = data.read(reader).unwrap().value.as_ptr();
@@ -322,7 +334,9 @@ mod tests {
     #[test]
     fn assembly_rejects_orphan_subscription() {
         let mut builder = DataManagerBuilder::new();
-        builder.publish::<f64>("main-body", "flight-condition").unwrap();
+        builder
+            .publish::<f64>("main-body", "flight-condition")
+            .unwrap();
         builder.subscribe::<f64>("propulsion", "body-oml").unwrap();
         let err = builder.build().err().unwrap();
         let message = err.to_string();

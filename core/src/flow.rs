@@ -99,7 +99,10 @@ impl FlightCondition {
 
     /// Velocity of a body-fixed point relative to the air: V + ω × (r - r_c), m/s.
     pub fn point_velocity_m_s(&self, point: &Point3<f64>) -> Vector3<f64> {
-        self.velocity_body_m_s() + self.angular_velocity_rad_s.cross(&(point - self.rotation_center_m))
+        self.velocity_body_m_s()
+            + self
+                .angular_velocity_rad_s
+                .cross(&(point - self.rotation_center_m))
     }
 
     /// Checks that every number is finite, naming the first that is not.

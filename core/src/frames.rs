@@ -121,11 +121,7 @@ mod tests {
 
     #[test]
     fn wind_angles_round_trip() {
-        for &(v, a, b) in &[
-            (1800.0, 0.05, 0.0),
-            (300.0, -0.2, 0.1),
-            (10.0, 1.0, -0.5),
-        ] {
+        for &(v, a, b) in &[(1800.0, 0.05, 0.0), (300.0, -0.2, 0.1), (10.0, 1.0, -0.5)] {
             let vel = body_velocity_from_wind(v, a, b);
             let (v2, a2, b2) = wind_angles(&vel);
             assert_relative_eq!(v2, v, max_relative = 1e-12);

@@ -220,23 +220,33 @@ fn check_supersonic(mach: f64, needed: &'static str) -> Result<f64, GasError> {
 
 /// Root of `f` in `[lo, hi]` by Newton's method safeguarded with bisection (Numerical Recipes
 /// `rtsafe`). `f` returns (value, derivative); `increasing` tells the sign of `f` across the
-/// bracket (f(lo) <= 0 <= f(hi) when true). Stops at a relative step of 4 ulp.
+/// bracket (f(lo) <= 0 <= f(hi) when true). Stops when |f| <= `f_tolerance`, when the Newton step
+/// falls to 4 ulp, when the bracket closes, or when |f| stops falling once within 1e-6 of the root
+/// (the residual's rounding noise has been reached).
 fn solve_bracketed(
     f: impl Fn(f64) -> (f64, f64),
     mut lo: f64,
     mut hi: f64,
     guess: f64,
     increasing: bool,
+    f_tolerance: f64,
 ) -> f64 {
     let mut x = if guess > lo && guess < hi {
         guess
     } else {
         0.5 * (lo + hi)
     };
+    let mut best = (x, f64::INFINITY);
+    let mut close = false;
     for _ in 0..200 {
         let (fx, dfx) = f(x);
-        if fx == 0.0 {
+        if fx.abs() <= f_tolerance {
             return x;
+        }
+        if fx.abs() < best.1 {
+            best = (x, fx.abs());
+        } else if close {
+            return best.0;
         }
         if (fx < 0.0) == increasing {
             lo = x;
@@ -244,13 +254,17 @@ fn solve_bracketed(
             hi = x;
         }
         let newton = x - fx / dfx;
+        let step = (newton - x).abs();
+        if newton.is_finite() && step <= 4.0 * f64::EPSILON * x.abs() {
+            return newton;
+        }
+        close = newton.is_finite() && step <= 1e-6 * x.abs();
         let next = if newton.is_finite() && newton > lo && newton < hi {
             newton
         } else {
             0.5 * (lo + hi)
         };
-        let tolerance = 4.0 * f64::EPSILON * next.abs().max(f64::MIN_POSITIVE);
-        if (next - x).abs() <= tolerance || hi - lo <= tolerance {
+        if hi - lo <= 4.0 * f64::EPSILON * next.abs() {
             return next;
         }
         x = next;
@@ -283,7 +297,7 @@ pub fn area_mach_ratio(mach: f64, gamma: f64) -> f64 {
     (2.0 / (gamma + 1.0) * total_temperature_ratio(mach, gamma)).powf(exponent) / mach
 }
 
-/// M from A/A* >= 1 on the chosen branch: inverse of NACA 1135 eq. 80 by safeguarded Newton in M.
+/// M from A/A* >= 1 on the chosen branch: inverse of NACA 1135 eq. 80 by safeguarded Newton in ln M.
 pub fn mach_from_area_ratio(
     area_ratio: f64,
     gamma: f64,
@@ -292,7 +306,11 @@ pub fn mach_from_area_ratio(
     let gamma = check_gamma(gamma)?;
     let target = finite("area ratio A/A*", area_ratio)?;
     if target < 1.0 {
-        return Err(GasError::out_of_range("area ratio A/A*", target, "A/A* >= 1"));
+        return Err(GasError::out_of_range(
+            "area ratio A/A*",
+            target,
+            "A/A* >= 1",
+        ));
     }
     if target == 1.0 {
         return Ok(1.0);
@@ -300,29 +318,32 @@ pub fn mach_from_area_ratio(
     let ln_target = target.ln();
     let half_gm1 = 0.5 * (gamma - 1.0);
     let exponent = 0.5 * (gamma + 1.0) / (gamma - 1.0);
-    // ln(A/A*) - ln(target) and its M-derivative (M² - 1) / (M (1 + (γ-1)/2 M²)).
-    let residual = |m: f64| {
+    // Residual in u = ln M: ln(A/A*) - ln(target), slope d ln(A/A*)/d ln M = (M²-1)/(1 + (γ-1)/2 M²).
+    let residual = |u: f64| {
+        let m = u.exp();
         let t = 1.0 + half_gm1 * m * m;
-        let value = exponent * (2.0 / (gamma + 1.0) * t).ln() - m.ln() - ln_target;
-        (value, (m * m - 1.0) / (m * t))
+        let value = exponent * (2.0 / (gamma + 1.0) * t).ln() - u - ln_target;
+        (value, (m - 1.0) * (m + 1.0) / t)
     };
     // Near M = 1: ln(A/A*) ≈ 2 (M-1)² / (γ+1).
     let near_sonic = (0.5 * (gamma + 1.0) * ln_target).sqrt();
-    let mach = match branch {
+    let f_tolerance = 4.0 * f64::EPSILON * ln_target.max(1.0);
+    let ln_mach = match branch {
         FlowBranch::Subsonic => {
             // A/A* > (1/M) (1 + (γ-1)/2)^(-exponent), so M_lo = (1 + (γ-1)/2)^(-exponent) / target.
-            let lo = (1.0 + half_gm1).powf(-exponent) / target;
-            let guess = lo.max(1.0 - near_sonic);
-            solve_bracketed(residual, lo, 1.0, guess, false)
+            let ln_lo = -exponent * (1.0 + half_gm1).ln() - ln_target;
+            let guess = ln_lo.max((1.0 - near_sonic).max(f64::MIN_POSITIVE).ln());
+            solve_bracketed(residual, ln_lo, 0.0, guess, false, f_tolerance)
         }
         FlowBranch::Supersonic => {
             // A/A* > K M^(2/(γ-1)) with K = ((γ-1)/(γ+1))^exponent.
-            let k = ((gamma - 1.0) / (gamma + 1.0)).powf(exponent);
-            let hi = (target / k).powf(half_gm1).max(1.0 + near_sonic);
-            let guess = hi.min(1.0 + near_sonic);
-            solve_bracketed(residual, 1.0, hi, guess, true)
+            let ln_k = exponent * ((gamma - 1.0) / (gamma + 1.0)).ln();
+            let ln_hi = (half_gm1 * (ln_target - ln_k)).max(near_sonic.ln_1p());
+            let guess = ln_hi.min(near_sonic.ln_1p());
+            solve_bracketed(residual, 0.0, ln_hi, guess, true, f_tolerance)
         }
     };
+    let mach = ln_mach.exp();
     Ok(mach)
 }
 
@@ -371,8 +392,7 @@ fn normal_shock_unchecked(mach: f64, gamma: f64) -> NormalShock {
     let m2 = mach.max(1.0).powi(2);
     let pressure_ratio = 1.0 + 2.0 * gamma / (gamma + 1.0) * (m2 - 1.0);
     let density_ratio = (gamma + 1.0) * m2 / ((gamma - 1.0) * m2 + 2.0);
-    let mach_downstream =
-        (((gamma - 1.0) * m2 + 2.0) / (2.0 * gamma * m2 - (gamma - 1.0))).sqrt();
+    let mach_downstream = (((gamma - 1.0) * m2 + 2.0) / (2.0 * gamma * m2 - (gamma - 1.0))).sqrt();
     // p02/p01 = (ρ2/ρ1)^(γ/(γ-1)) (p2/p1)^(-1/(γ-1)).
     let total_pressure_ratio =
         ((gamma * density_ratio.ln() - pressure_ratio.ln()) / (gamma - 1.0)).exp();
@@ -538,14 +558,24 @@ pub fn oblique_shock(
             ShockBranch::Strong => FRAC_PI_2,
         }
     } else {
-        let guess = wave_angle_closed_form(m, theta, gamma, branch);
+        // The closed form loses precision as θ → 0 on the weak branch (1 - χ cancels); there the
+        // small-deflection slope dβ/dθ = (γ+1) M² / (4 (M² - 1)) is the better start.
+        let guess = if branch == ShockBranch::Weak && theta < 1e-3 * theta_max {
+            mu + (gamma + 1.0) * m * m / (4.0 * (m - 1.0) * (m + 1.0)) * theta
+        } else {
+            wave_angle_closed_form(m, theta, gamma, branch)
+        };
         let residual = |b: f64| {
             let (t, slope) = theta_and_slope(m, b, gamma);
             (t - theta, slope)
         };
+        // θ(β) carries a few ulp of rounding; stop there.
+        let f_tolerance = 8.0 * f64::EPSILON;
         match branch {
-            ShockBranch::Weak => solve_bracketed(residual, mu, beta_max, guess, true),
-            ShockBranch::Strong => solve_bracketed(residual, beta_max, FRAC_PI_2, guess, false),
+            ShockBranch::Weak => solve_bracketed(residual, mu, beta_max, guess, true, f_tolerance),
+            ShockBranch::Strong => {
+                solve_bracketed(residual, beta_max, FRAC_PI_2, guess, false, f_tolerance)
+            }
         }
     };
     Ok(oblique_from_beta(m, beta, theta, gamma))
@@ -632,12 +662,15 @@ pub fn inverse_prandtl_meyer(nu_rad: f64, gamma: f64) -> Result<f64, GasError> {
     let a = pm_scale(gamma);
     // Hall's fit (exact coefficients for γ = 1.4; a fair start for other γ).
     let y = (nu / nu_max).powf(2.0 / 3.0);
-    let hall = (1.0 + y * (1.360_4 + y * (0.096_2 - 0.512_7 * y)))
-        / (1.0 - y * (0.672_2 + 0.327_8 * y));
+    let hall =
+        (1.0 + y * (1.360_4 + y * (0.096_2 - 0.512_7 * y))) / (1.0 - y * (0.672_2 + 0.327_8 * y));
     let deficit = nu_max - nu;
     // ν_max - ν(x) < (a²-1)/x, so x = (a²-1)/deficit brackets the root from above.
     let hi = (a * a - 1.0) / deficit;
-    let guess = if hall.is_finite() && hall > 1.0 {
+    let guess = if nu < 1e-6 * nu_max {
+        // Small-turn asymptote ν ≈ (1 - 1/a²) x³ / 3.
+        (3.0 * nu / (1.0 - 1.0 / (a * a))).cbrt()
+    } else if hall.is_finite() && hall > 1.0 {
         ((hall - 1.0) * (hall + 1.0)).sqrt()
     } else {
         0.5 * hi
@@ -649,6 +682,7 @@ pub fn inverse_prandtl_meyer(nu_rad: f64, gamma: f64) -> Result<f64, GasError> {
             hi,
             guess,
             true,
+            0.0,
         )
     } else {
         solve_bracketed(
@@ -657,6 +691,7 @@ pub fn inverse_prandtl_meyer(nu_rad: f64, gamma: f64) -> Result<f64, GasError> {
             hi,
             guess,
             false,
+            0.0,
         )
     };
     Ok((1.0 + x * x).sqrt())
@@ -838,14 +873,15 @@ pub fn piston_pressure_ratio_exact(
         "normal velocity over sound speed w/a",
         normal_velocity_over_sound_speed,
     )?;
-    let limit = -2.0 / (gamma - 1.0);
-    if w <= limit {
+    // a/a∞ = 1 + (γ-1)/2 w/a must stay positive.
+    let sound_speed_ratio = 1.0 + 0.5 * (gamma - 1.0) * w;
+    if sound_speed_ratio <= 0.0 {
         return Err(GasError::Cavitation {
             normal_velocity_over_sound_speed: w,
-            limit,
+            limit: -2.0 / (gamma - 1.0),
         });
     }
-    Ok((1.0 + 0.5 * (gamma - 1.0) * w).powf(2.0 * gamma / (gamma - 1.0)))
+    Ok(sound_speed_ratio.powf(2.0 * gamma / (gamma - 1.0)))
 }
 
 /// p/p∞ = 1 + γ w/a + γ(γ+1)/4 (w/a)² + γ(γ+1)/12 (w/a)³, third-order piston theory

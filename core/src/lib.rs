@@ -6,10 +6,11 @@
 //! perfect-gas relations, frames, and panel meshes. SI units throughout.
 
 pub mod atmosphere;
-pub mod gas;
 pub mod frames;
+pub mod gas;
 pub mod mesh;
 pub mod stl;
+pub mod vehicle;
 
 pub mod aero;
 pub mod data;

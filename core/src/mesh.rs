@@ -105,7 +105,12 @@ pub enum MeshError {
     #[error("mesh has no panels")]
     Empty,
     #[error("vertex {vertex} has a non-finite coordinate ({x}, {y}, {z})")]
-    NonFiniteVertex { vertex: usize, x: f64, y: f64, z: f64 },
+    NonFiniteVertex {
+        vertex: usize,
+        x: f64,
+        y: f64,
+        z: f64,
+    },
     #[error("panel {panel} has {count} vertices; panels have 3 or 4")]
     BadVertexCount { panel: usize, count: u8 },
     #[error("panel {panel} refers to vertex {vertex}, but the mesh has {n_vertices} vertices")]
@@ -152,8 +157,8 @@ pub struct PanelMesh {
 /// Centroid, normal and area of the polygon `idx` over `vertices`.
 ///
 /// Normal n = d1 × d2 / |d1 × d2| with diagonals d1 = v2 - v0, d2 = v3 - v1 (v3 = v2 for a
-/// triangle), area |d1 × d2| / 2; centroid: area-weighted centroids of triangles (0,1,2) and
-/// (0,2,3). Reference: Hess & Smith, "Calculation of potential flow about arbitrary bodies",
+/// triangle), area |d1 × d2| / 2; centroid: area-weighted centroid of the two triangles on
+/// either diagonal, averaged over both diagonals. Reference: Hess & Smith, "Calculation of potential flow about arbitrary bodies",
 /// Prog. Aerospace Sci. 8 (1967) (quadrilateral element normal from the diagonals).
 fn panel_geometry(
     vertices: &[Point3<f64>],
@@ -171,14 +176,18 @@ fn panel_geometry(
     } else {
         Vector3::zeros()
     };
-    let a1 = (v1 - v0).cross(&(v2 - v0)).norm();
-    let a2 = (v2 - v0).cross(&(v3 - v0)).norm();
-    let c1 = (v0.coords + v1.coords + v2.coords) / 3.0;
-    let c2 = (v0.coords + v2.coords + v3.coords) / 3.0;
-    let centroid = if a1 + a2 > 0.0 {
-        Point3::from((c1 * a1 + c2 * a2) / (a1 + a2))
-    } else {
-        Point3::from((v0.coords + v1.coords + v2.coords + v3.coords) / 4.0)
+    // Area-weighted centroid of the split along one diagonal, averaged with the split along the
+    // other: exact for planar panels, symmetric for warped ones.
+    let split = |a: &Point3<f64>, b: &Point3<f64>, c: &Point3<f64>, d: &Point3<f64>| {
+        let w1 = (b - a).cross(&(c - a)).norm();
+        let w2 = (c - a).cross(&(d - a)).norm();
+        let c1 = (a.coords + b.coords + c.coords) / 3.0;
+        let c2 = (a.coords + c.coords + d.coords) / 3.0;
+        (w1 + w2 > 0.0).then(|| (c1 * w1 + c2 * w2) / (w1 + w2))
+    };
+    let centroid = match (split(&v0, &v1, &v2, &v3), split(&v1, &v2, &v3, &v0)) {
+        (Some(a), Some(b)) => Point3::from((a + b) / 2.0),
+        _ => Point3::from((v0.coords + v1.coords + v2.coords + v3.coords) / 4.0),
     };
     (centroid, normal, 0.5 * twice_area)
 }

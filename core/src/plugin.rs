@@ -67,7 +67,8 @@ pub struct PluginModelTable {
     pub destroy: unsafe extern "C" fn(handle: *mut c_void),
     /// Copies the last error message (UTF-8, no NUL) of `handle` (or of the last failed
     /// `create` when null) into `buffer`; returns its full length.
-    pub last_error: unsafe extern "C" fn(handle: *mut c_void, buffer: *mut u8, capacity: usize) -> usize,
+    pub last_error:
+        unsafe extern "C" fn(handle: *mut c_void, buffer: *mut u8, capacity: usize) -> usize,
 }
 
 unsafe impl Sync for PluginModelTable {}
@@ -117,7 +118,9 @@ pub struct AeroOutputAbi {
 pub enum PluginError {
     #[error("plugin {path}: cannot load the library: {message}")]
     Load { path: String, message: String },
-    #[error("plugin {path}: no `{PLUGIN_ENTRY_SYMBOL}` entry point; is it an hsv plugin? ({message})")]
+    #[error(
+        "plugin {path}: no `{PLUGIN_ENTRY_SYMBOL}` entry point; is it an hsv plugin? ({message})"
+    )]
     NoEntry { path: String, message: String },
     #[error("plugin {path}: {message}")]
     BadHeader { path: String, message: String },
@@ -276,7 +279,10 @@ impl PluginAeroModel {
         if handle.is_null() {
             return Err(ModelError::inconsistent(
                 name,
-                format!("plugin could not create the model: {}", plugin_error(table, handle)),
+                format!(
+                    "plugin could not create the model: {}",
+                    plugin_error(table, handle)
+                ),
             ));
         }
         Ok(Self {
@@ -319,7 +325,8 @@ impl AeroModel for PluginAeroModel {
         self.area.clear();
         self.velocity.clear();
         for (i, panel) in mesh.panels.iter().enumerate() {
-            self.centroid.extend_from_slice(panel.centroid.coords.as_slice());
+            self.centroid
+                .extend_from_slice(panel.centroid.coords.as_slice());
             self.normal.extend_from_slice(panel.normal.as_slice());
             self.area.push(panel.area_m2);
             let v: Vector3<f64> = motion.panel_velocity_m_s(flight, mesh, i);
@@ -367,7 +374,10 @@ impl AeroModel for PluginAeroModel {
         if status != 0 {
             return Err(ModelError::inconsistent(
                 &self.name,
-                format!("plugin evaluation failed: {}", plugin_error(self.table, self.handle)),
+                format!(
+                    "plugin evaluation failed: {}",
+                    plugin_error(self.table, self.handle)
+                ),
             ));
         }
         for (i, edge) in out.edge.iter_mut().enumerate() {
@@ -465,7 +475,10 @@ pub mod export {
         }));
         let outcome = match result {
             Ok(outcome) => outcome,
-            Err(payload) => Err(format!("plugin panicked in create: {}", panic_message(payload))),
+            Err(payload) => Err(format!(
+                "plugin panicked in create: {}",
+                panic_message(payload)
+            )),
         };
         match outcome {
             Ok(model) => Box::into_raw(Box::new(Instance {
@@ -517,7 +530,9 @@ pub mod export {
                 },
             )
         };
-        let result = catch_unwind(AssertUnwindSafe(|| instance.model.evaluate(&view, &mut out)));
+        let result = catch_unwind(AssertUnwindSafe(|| {
+            instance.model.evaluate(&view, &mut out)
+        }));
         let message = match result {
             Ok(Ok(())) => return 0,
             Ok(Err(message)) => message,
@@ -564,7 +579,10 @@ pub mod export {
 #[macro_export]
 macro_rules! export_aero_plugin {
     ($model:ty, name: $name:literal, fidelity: $fidelity:literal, summary: $summary:literal, settings: $settings:literal $(,)?) => {
-        unsafe extern "C" fn __hsv_create(settings: *const u8, len: usize) -> *mut ::std::ffi::c_void {
+        unsafe extern "C" fn __hsv_create(
+            settings: *const u8,
+            len: usize,
+        ) -> *mut ::std::ffi::c_void {
             unsafe { $crate::plugin::export::create::<$model>(settings, len) }
         }
         unsafe extern "C" fn __hsv_evaluate(
@@ -584,17 +602,18 @@ macro_rules! export_aero_plugin {
         ) -> usize {
             unsafe { $crate::plugin::export::last_error::<$model>(handle, buffer, capacity) }
         }
-        static __HSV_MODELS: [$crate::plugin::PluginModelTable; 1] = [$crate::plugin::PluginModelTable {
-            role: $crate::plugin::PLUGIN_ROLE_AERO,
-            name: concat!($name, "\0").as_ptr() as *const ::std::ffi::c_char,
-            summary: concat!($summary, "\0").as_ptr() as *const ::std::ffi::c_char,
-            settings_doc: concat!($settings, "\0").as_ptr() as *const ::std::ffi::c_char,
-            fidelity: $fidelity,
-            create: __hsv_create,
-            evaluate_aero: __hsv_evaluate,
-            destroy: __hsv_destroy,
-            last_error: __hsv_last_error,
-        }];
+        static __HSV_MODELS: [$crate::plugin::PluginModelTable; 1] =
+            [$crate::plugin::PluginModelTable {
+                role: $crate::plugin::PLUGIN_ROLE_AERO,
+                name: concat!($name, "\0").as_ptr() as *const ::std::ffi::c_char,
+                summary: concat!($summary, "\0").as_ptr() as *const ::std::ffi::c_char,
+                settings_doc: concat!($settings, "\0").as_ptr() as *const ::std::ffi::c_char,
+                fidelity: $fidelity,
+                create: __hsv_create,
+                evaluate_aero: __hsv_evaluate,
+                destroy: __hsv_destroy,
+                last_error: __hsv_last_error,
+            }];
         static __HSV_HEADER: $crate::plugin::PluginHeader = $crate::plugin::PluginHeader {
             magic: $crate::plugin::PLUGIN_MAGIC,
             abi_version: $crate::plugin::PLUGIN_ABI_VERSION,

@@ -390,7 +390,11 @@ impl Registry {
             .filter(|(score, c)| *score >= 0.5 || c.contains(name) || name.contains(*c))
             .collect();
         scored.sort_by(|a, b| b.0.total_cmp(&a.0));
-        let close: Vec<String> = scored.iter().take(3).map(|(_, c)| format!("`{c}`")).collect();
+        let close: Vec<String> = scored
+            .iter()
+            .take(3)
+            .map(|(_, c)| format!("`{c}`"))
+            .collect();
         let known = if candidates.is_empty() {
             "none registered".to_owned()
         } else {
@@ -478,7 +482,6 @@ impl Registry {
             other => Err(wrong_role(name, other.role(), Role::Propulsion)),
         }
     }
-
 }
 
 fn wrong_role(name: &str, actual: Role, wanted: Role) -> RegistryError {
@@ -528,7 +531,9 @@ mod tests {
     #[test]
     fn duplicate_names_name_both_origins() {
         let mut registry = Registry::empty();
-        registry.insert(entry("freestream-pressure", "crate-a")).unwrap();
+        registry
+            .insert(entry("freestream-pressure", "crate-a"))
+            .unwrap();
         let err = registry
             .insert(entry("freestream-pressure", "crate-b"))
             .unwrap_err()
@@ -544,7 +549,10 @@ mod tests {
         let err = registry.get("shock-expanson").unwrap_err().to_string();
         assert!(err.contains("did you mean `shock-expansion`"), "{err}");
         let err = registry.get("vortex-lattice").unwrap_err().to_string();
-        assert!(err.contains("known: newtonian-vector, shock-expansion"), "{err}");
+        assert!(
+            err.contains("known: newtonian-vector, shock-expansion"),
+            "{err}"
+        );
     }
 
     #[test]

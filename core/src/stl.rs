@@ -116,11 +116,7 @@ pub fn parse_stl_with_report(
     parse_named(bytes, origin, &name)
 }
 
-fn parse_named(
-    bytes: &[u8],
-    origin: &str,
-    name: &str,
-) -> Result<(PanelMesh, StlReport), StlError> {
+fn parse_named(bytes: &[u8], origin: &str, name: &str) -> Result<(PanelMesh, StlReport), StlError> {
     if bytes.iter().all(u8::is_ascii_whitespace) {
         return Err(StlError::Empty {
             origin: origin.to_owned(),

@@ -38,9 +38,6 @@ use serde::{Deserialize, Serialize};
 
 use crate::mesh::{MeshError, PanelMesh, PanelSpec, RegionKind, Strip, Surface, weld_vertices};
 
-/// The embedded sample configuration (`configs/sample-hsv.toml`).
-pub const SAMPLE_CONFIG_TOML: &str = include_str!("../../configs/sample-hsv.toml");
-
 /// The `[geometry]` table: the body profile after Bolender & Doman (2007) and its discretisation.
 /// Distances in m, angles in degrees (radians internally), all measured in the body frame
 /// described in the module docs.
@@ -372,7 +369,14 @@ impl Profile {
                 ),
             )
         })?;
-        check_range(T, "inlet_height_m", g.inlet_height_m, 0.0, g.length_m, false)?;
+        check_range(
+            T,
+            "inlet_height_m",
+            g.inlet_height_m,
+            0.0,
+            g.length_m,
+            false,
+        )?;
         check_range(
             T,
             "combustor_height_m",
@@ -416,7 +420,8 @@ impl Profile {
                 ));
             }
         }
-        let tail = p.z_lower(p.length) - p.z_upper(p.length);
+        let nozzle_end = p.z_ramp_end - (p.length - p.exit) * p.tan_nozzle;
+        let tail = nozzle_end - p.z_upper(p.length);
         if tail < -1e-9 * p.length {
             return Err(invalid(
                 T,
@@ -446,6 +451,7 @@ impl Profile {
         } else if s <= self.exit {
             self.z_ramp_end
         } else {
+            // Validation keeps the nozzle below the upper surface; `max` only absorbs round-off.
             (self.z_ramp_end - (s - self.exit) * self.tan_nozzle).max(self.z_upper(s))
         }
     }
@@ -492,10 +498,7 @@ fn distribute(n: usize, lengths: &[f64]) -> Vec<usize> {
     let total: f64 = lengths.iter().sum();
     let n = n.max(lengths.len());
     let spare = n - lengths.len();
-    let ideal: Vec<f64> = lengths
-        .iter()
-        .map(|l| spare as f64 * l / total)
-        .collect();
+    let ideal: Vec<f64> = lengths.iter().map(|l| spare as f64 * l / total).collect();
     let mut counts: Vec<usize> = ideal.iter().map(|x| 1 + x.floor() as usize).collect();
     let mut left = n.saturating_sub(counts.iter().sum());
     let mut order: Vec<usize> = (0..lengths.len()).collect();
@@ -687,12 +690,30 @@ pub fn body_mesh(geometry: &GeometryConfig) -> Result<PanelMesh, VehicleError> {
             .map(|&s| ys.iter().map(|&y| p3(s, y, z(s))).collect())
             .collect::<Vec<Vec<_>>>()
     };
-    b.grid(&lower(0..=i_inlet, &|s| prof.z_lower(s)), |_| ramp, down, true);
-    b.grid(&lower(i_inlet..=i_exit, &|_| prof.z_cowl), |_| cowl, down, true);
-    b.grid(&lower(i_exit..=n, &|s| prof.z_lower(s)), |_| nozzle, down, true);
+    b.grid(
+        &lower(0..=i_inlet, &|s| prof.z_lower(s)),
+        |_| ramp,
+        down,
+        true,
+    );
+    b.grid(
+        &lower(i_inlet..=i_exit, &|_| prof.z_cowl),
+        |_| cowl,
+        down,
+        true,
+    );
+    b.grid(
+        &lower(i_exit..=n, &|s| prof.z_lower(s)),
+        |_| nozzle,
+        down,
+        true,
+    );
 
     // Sides: above the flow path (nose to tail) and the engine walls (inlet to exit).
-    for (y, surface, outward) in [(-half_w, left, -Vector3::y()), (half_w, right, Vector3::y())] {
+    for (y, surface, outward) in [
+        (-half_w, left, -Vector3::y()),
+        (half_w, right, Vector3::y()),
+    ] {
         let nodes: Vec<Vec<Point3<f64>>> = xs
             .iter()
             .map(|&s| {
@@ -709,7 +730,13 @@ pub fn body_mesh(geometry: &GeometryConfig) -> Result<PanelMesh, VehicleError> {
             .iter()
             .map(|&s| {
                 (0..=ne)
-                    .map(|k| p3(s, y, lerp(prof.z_ramp_end, prof.z_cowl, k as f64 / ne as f64)))
+                    .map(|k| {
+                        p3(
+                            s,
+                            y,
+                            lerp(prof.z_ramp_end, prof.z_cowl, k as f64 / ne as f64),
+                        )
+                    })
                     .collect()
             })
             .collect();
@@ -775,7 +802,14 @@ impl Planform {
             80.0,
             true,
         )?;
-        check_range(T, "thickness_to_chord", c.thickness_to_chord, 0.0, 0.5, false)?;
+        check_range(
+            T,
+            "thickness_to_chord",
+            c.thickness_to_chord,
+            0.0,
+            0.5,
+            false,
+        )?;
         check_range(
             T,
             "max_thickness_chord_fraction",
@@ -942,42 +976,13 @@ pub fn build_vehicle(
     })
 }
 
-/// Deserializes table `key` of `doc` into `T`, naming the full key path on error.
-fn table_from<T: for<'de> Deserialize<'de>>(
-    doc: &toml::Table,
-    key: &str,
-    origin: &str,
-) -> Result<T, VehicleError> {
-    let value = doc.get(key).ok_or_else(|| VehicleError::Parse {
-        origin: origin.to_owned(),
-        message: format!("missing table [{key}]"),
-    })?;
-    serde_path_to_error::deserialize(value.clone()).map_err(|e| VehicleError::Parse {
-        origin: origin.to_owned(),
-        message: format!("[{key}] {}: {}", e.path(), e.inner()),
-    })
-}
-
-/// The `[geometry]` and `[lifting_surface]` tables of a config file's text (other tables are
-/// ignored); `origin` names the file in errors.
-pub fn parse_vehicle_tables(
-    toml_text: &str,
-    origin: &str,
-) -> Result<(GeometryConfig, LiftingSurfaceConfig), VehicleError> {
-    let doc: toml::Table = toml::from_str(toml_text).map_err(|e| VehicleError::Parse {
-        origin: origin.to_owned(),
-        message: e.to_string().trim_end().to_owned(),
-    })?;
-    Ok((
-        table_from(&doc, "geometry", origin)?,
-        table_from(&doc, "lifting_surface", origin)?,
-    ))
-}
-
 /// The embedded sample vehicle (`configs/sample-hsv.toml`).
 pub fn build_sample_vehicle() -> Result<VehicleGeometry, VehicleError> {
-    let (g, l) = parse_vehicle_tables(SAMPLE_CONFIG_TOML, "configs/sample-hsv.toml (embedded)")?;
-    build_vehicle(&g, &l)
+    let loaded = crate::config::LoadedConfig::sample().map_err(|e| VehicleError::Parse {
+        origin: e.file.clone(),
+        message: e.to_string(),
+    })?;
+    build_vehicle(&loaded.config.geometry, &loaded.config.lifting_surface)
 }
 
 #[cfg(test)]
@@ -985,8 +990,17 @@ mod tests {
     use super::*;
     use approx::assert_relative_eq;
 
+    /// The error message of `r`, failing the test (without dumping meshes) when it is `Ok`.
+    fn err_of<T>(r: Result<T, VehicleError>, case: &str) -> String {
+        match r {
+            Ok(_) => panic!("{case}: expected an error"),
+            Err(e) => e.to_string(),
+        }
+    }
+
     fn sample() -> (GeometryConfig, LiftingSurfaceConfig) {
-        parse_vehicle_tables(SAMPLE_CONFIG_TOML, "sample").expect("sample config parses")
+        let loaded = crate::config::LoadedConfig::sample().expect("sample config parses");
+        (loaded.config.geometry, loaded.config.lifting_surface)
     }
 
     /// Strips run upstream to downstream: centroid x strictly decreasing (x points forward).
@@ -994,7 +1008,12 @@ mod tests {
         for (s, strip) in mesh.strips.iter().enumerate() {
             for w in strip.panels.windows(2) {
                 let (a, b) = (mesh.panels[w[0]].centroid.x, mesh.panels[w[1]].centroid.x);
-                assert!(b < a, "strip {s}: panel {} (x {b}) not aft of {} (x {a})", w[1], w[0]);
+                assert!(
+                    b < a,
+                    "strip {s}: panel {} (x {b}) not aft of {} (x {a})",
+                    w[1],
+                    w[0]
+                );
             }
         }
     }
@@ -1002,10 +1021,13 @@ mod tests {
     #[test]
     fn sample_tables_parse_from_the_embedded_config() {
         // Other tables live in the same file; pick ours out of the whole document.
-        let doc: toml::Table = toml::from_str(SAMPLE_CONFIG_TOML).expect("valid TOML");
+        let doc: toml::Table =
+            toml::from_str(crate::config::SAMPLE_CONFIG_TOML).expect("valid TOML");
         let g: GeometryConfig = doc["geometry"].clone().try_into().expect("[geometry]");
-        let l: LiftingSurfaceConfig =
-            doc["lifting_surface"].clone().try_into().expect("[lifting_surface]");
+        let l: LiftingSurfaceConfig = doc["lifting_surface"]
+            .clone()
+            .try_into()
+            .expect("[lifting_surface]");
         assert_eq!((g.clone(), l.clone()), sample());
         // Paper Table 1: L_f = L_a = 15.2 m.
         assert_eq!(g.forebody_length_m, 15.2);
@@ -1017,12 +1039,16 @@ mod tests {
 
     #[test]
     fn unknown_and_missing_keys_are_errors_naming_the_key() {
+        use crate::config::{SAMPLE_CONFIG_TOML, parse_config};
         let text = SAMPLE_CONFIG_TOML.replace("width_m = 3.0", "widht_m = 3.0");
-        let err = parse_vehicle_tables(&text, "my.toml").unwrap_err().to_string();
-        assert!(err.contains("my.toml") && err.contains("widht_m"), "{err}");
+        let err = parse_config(&text, "my.toml").unwrap_err().to_string();
+        assert!(
+            err.contains("my.toml") && err.contains("geometry.widht_m"),
+            "{err}"
+        );
         let text = SAMPLE_CONFIG_TOML.replace("[lifting_surface]", "[lifting_surfaces]");
-        let err = parse_vehicle_tables(&text, "my.toml").unwrap_err().to_string();
-        assert!(err.contains("missing table [lifting_surface]"), "{err}");
+        let err = parse_config(&text, "my.toml").unwrap_err().to_string();
+        assert!(err.contains("lifting_surface"), "{err}");
     }
 
     #[test]
@@ -1037,7 +1063,10 @@ mod tests {
         let area = profile.perimeter_m() * g.width_m + 2.0 * profile.area_m2();
         assert_relative_eq!(body.enclosed_volume_m3(), volume, max_relative = 1e-10);
         assert_relative_eq!(body.total_area_m2(), area, max_relative = 1e-10);
-        assert!(body.enclosed_volume_m3() > 0.0, "outward normals give a positive volume");
+        assert!(
+            body.enclosed_volume_m3() > 0.0,
+            "outward normals give a positive volume"
+        );
         // Profile by hand (B&D, metric): ramp end 14.3 tan 6.2 deg below the nose line, upper
         // surface at the tail 30.4 tan 3 deg above it.
         let z_r = 14.3 * 6.2f64.to_radians().tan();
@@ -1049,7 +1078,10 @@ mod tests {
             epsilon = 1e-12
         );
         let base = profile.tail_lower_m.y - profile.tail_upper_m.y;
-        assert!(base > 0.0 && base < 0.02, "B&D's aftbody nearly closes: base {base} m");
+        assert!(
+            base > 0.0 && base < 0.02,
+            "B&D's aftbody nearly closes: base {base} m"
+        );
     }
 
     #[test]
@@ -1096,7 +1128,10 @@ mod tests {
         }
         // Outward normals by surface.
         for (name, check) in [
-            ("upper-forebody", (|n: Vector3<f64>| n.z < -0.99) as fn(Vector3<f64>) -> bool),
+            (
+                "upper-forebody",
+                (|n: Vector3<f64>| n.z < -0.99) as fn(Vector3<f64>) -> bool,
+            ),
             ("upper-aftbody", |n| n.z < -0.99),
             ("inlet-ramp", |n| n.z > 0.99 && n.x > 0.0),
             ("cowl", |n| n.z > 0.999),
@@ -1110,7 +1145,11 @@ mod tests {
             let s = surf(name);
             assert!(body.panels_in_surface(s).count() > 0, "{name} has panels");
             for p in body.panels_in_surface(s) {
-                assert!(check(body.panels[p].normal), "{name}: {}", body.panels[p].normal);
+                assert!(
+                    check(body.panels[p].normal),
+                    "{name}: {}",
+                    body.panels[p].normal
+                );
             }
         }
     }
@@ -1127,7 +1166,11 @@ mod tests {
                 in_strip[p] += 1;
             }
         }
-        let name_of = |p: usize| body.surfaces[usize::from(body.panels[p].surface)].name.as_str();
+        let name_of = |p: usize| {
+            body.surfaces[usize::from(body.panels[p].surface)]
+                .name
+                .as_str()
+        };
         for (p, &c) in in_strip.iter().enumerate() {
             let expect = u32::from(!matches!(name_of(p), "base" | "inlet-face" | "nozzle-exit"));
             assert_eq!(c, expect, "panel {p} on {} is in {c} strips", name_of(p));
@@ -1163,9 +1206,13 @@ mod tests {
             assert_relative_eq!(m.enclosed_volume_m3(), v, max_relative = 1e-10);
             // Planform: projected area of the upper surface = (c_r + c_t)/2 b.
             let upper = m.panels_in_region(RegionKind::LiftingSurface).filter(|&p| {
-                m.surfaces[usize::from(m.panels[p].surface)].name.ends_with("upper")
+                m.surfaces[usize::from(m.panels[p].surface)]
+                    .name
+                    .ends_with("upper")
             });
-            let projected: f64 = upper.map(|p| -m.panels[p].normal.z * m.panels[p].area_m2).sum();
+            let projected: f64 = upper
+                .map(|p| -m.panels[p].normal.z * m.panels[p].area_m2)
+                .sum();
             assert_relative_eq!(projected, 0.5 * (cr + ct) * l.span_m, max_relative = 1e-10);
             assert_eq!(m.strips.len(), 2 * l.panels_spanwise);
         }
@@ -1198,13 +1245,19 @@ mod tests {
         // the nozzle), so the surface is attached to the side wall.
         let (g, l) = sample();
         let prof = Profile::new(&g).expect("profile");
-        let root = v.right_surface.surface_index("right-surface-root").expect("root");
+        let root = v
+            .right_surface
+            .surface_index("right-surface-root")
+            .expect("root");
         for p in v.right_surface.panels_in_surface(root) {
             for &i in v.right_surface.panels[p].vertex_indices() {
                 let q = v.right_surface.vertices[i];
                 let s = -q.x;
                 assert!(s > 0.0 && s < g.length_m);
-                assert!(q.z > prof.z_upper(s) && q.z < prof.z_lower(s), "root point {q}");
+                assert!(
+                    q.z > prof.z_upper(s) && q.z < prof.z_lower(s),
+                    "root point {q}"
+                );
                 assert_relative_eq!(q.y, l.root_y_m, epsilon = 1e-12);
             }
         }
@@ -1216,26 +1269,77 @@ mod tests {
     fn bad_geometry_is_an_error_naming_the_key() {
         let (g, l) = sample();
         let cases: Vec<(GeometryConfig, &str)> = vec![
-            (GeometryConfig { width_m: -1.0, ..g.clone() }, "width_m"),
-            (GeometryConfig { inlet_aft_of_nose_m: 40.0, ..g.clone() }, "inlet_aft_of_nose_m"),
-            (GeometryConfig { engine_length_m: 20.0, ..g.clone() }, "engine_length_m"),
-            (GeometryConfig { nozzle_angle_deg: 30.0, ..g.clone() }, "nozzle_angle_deg"),
-            (GeometryConfig { panels_along_x: 0, ..g.clone() }, "panels_along_x"),
-            (GeometryConfig { length_m: f64::NAN, ..g.clone() }, "length_m"),
             (
-                GeometryConfig { upper_forebody_angle_deg: -10.0, ..g.clone() },
+                GeometryConfig {
+                    width_m: -1.0,
+                    ..g.clone()
+                },
+                "width_m",
+            ),
+            (
+                GeometryConfig {
+                    inlet_aft_of_nose_m: 40.0,
+                    ..g.clone()
+                },
+                "inlet_aft_of_nose_m",
+            ),
+            (
+                GeometryConfig {
+                    engine_length_m: 20.0,
+                    ..g.clone()
+                },
+                "engine_length_m",
+            ),
+            (
+                GeometryConfig {
+                    nozzle_angle_deg: 30.0,
+                    ..g.clone()
+                },
+                "nozzle_angle_deg",
+            ),
+            (
+                GeometryConfig {
+                    panels_along_x: 0,
+                    ..g.clone()
+                },
+                "panels_along_x",
+            ),
+            (
+                GeometryConfig {
+                    length_m: f64::NAN,
+                    ..g.clone()
+                },
+                "length_m",
+            ),
+            (
+                GeometryConfig {
+                    upper_forebody_angle_deg: -10.0,
+                    ..g.clone()
+                },
                 "upper_forebody_angle_deg",
             ),
         ];
         for (bad, key) in cases {
-            let err = build_vehicle(&bad, &l).unwrap_err().to_string();
-            assert!(err.contains(key) && err.contains("[geometry]"), "{key}: {err}");
+            let err = err_of(build_vehicle(&bad, &l), key);
+            assert!(
+                err.contains(key) && err.contains("[geometry]"),
+                "{key}: {err}"
+            );
         }
-        let bad = LiftingSurfaceConfig { root_y_m: 1.0, ..l.clone() };
-        let err = build_vehicle(&g, &bad).unwrap_err().to_string();
-        assert!(err.contains("root_y_m") && err.contains("inside the body"), "{err}");
-        let bad = LiftingSurfaceConfig { panels_chordwise: 1, ..l };
-        let err = lifting_surface_mesh(&bad, Side::Left).unwrap_err().to_string();
+        let bad = LiftingSurfaceConfig {
+            root_y_m: 1.0,
+            ..l.clone()
+        };
+        let err = err_of(build_vehicle(&g, &bad), "root_y_m");
+        assert!(
+            err.contains("root_y_m") && err.contains("inside the body"),
+            "{err}"
+        );
+        let bad = LiftingSurfaceConfig {
+            panels_chordwise: 1,
+            ..l
+        };
+        let err = err_of(lifting_surface_mesh(&bad, Side::Left), "panels_chordwise");
         assert!(err.contains("panels_chordwise"), "{err}");
     }
 

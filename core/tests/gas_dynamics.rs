@@ -44,17 +44,42 @@ fn half_unit(decimals: i32) -> f64 {
 #[test]
 fn isentropic_ratios_mach_0_5_munson_table_a1() {
     // Munson Table A.1, M = 0.50: p/p0 = 0.8430, ρ/ρ0 = 0.8852, T/T0 = 0.9524, A/A* = 1.3398.
-    assert_close("p/p0", 1.0 / total_pressure_ratio(0.5, G), 0.8430, half_unit(4));
-    assert_close("rho/rho0", 1.0 / total_density_ratio(0.5, G), 0.8852, half_unit(4));
-    assert_close("T/T0", 1.0 / total_temperature_ratio(0.5, G), 0.9524, half_unit(4));
+    assert_close(
+        "p/p0",
+        1.0 / total_pressure_ratio(0.5, G),
+        0.8430,
+        half_unit(4),
+    );
+    assert_close(
+        "rho/rho0",
+        1.0 / total_density_ratio(0.5, G),
+        0.8852,
+        half_unit(4),
+    );
+    assert_close(
+        "T/T0",
+        1.0 / total_temperature_ratio(0.5, G),
+        0.9524,
+        half_unit(4),
+    );
     assert_close("A/A*", area_mach_ratio(0.5, G), 1.3398, half_unit(4));
 }
 
 #[test]
 fn isentropic_mach_2_naca_1135_table() {
     // NACA 1135 Table I, M = 2.00: p/p0 = 0.1278, T/T0 = 0.5556, A/A* = 1.6875.
-    assert_close("p/p0", 1.0 / total_pressure_ratio(2.0, G), 0.1278, half_unit(4));
-    assert_close("T/T0", 1.0 / total_temperature_ratio(2.0, G), 0.5556, half_unit(4));
+    assert_close(
+        "p/p0",
+        1.0 / total_pressure_ratio(2.0, G),
+        0.1278,
+        half_unit(4),
+    );
+    assert_close(
+        "T/T0",
+        1.0 / total_temperature_ratio(2.0, G),
+        0.5556,
+        half_unit(4),
+    );
     assert_close("A/A*", area_mach_ratio(2.0, G), 1.6875, half_unit(4));
 }
 
@@ -109,10 +134,7 @@ fn mach_from_total_pressure_ratio_naca_1135() {
 fn mach_angle_at_mach_2_is_30_degrees() {
     // NACA 1135 Table II, M = 2.00: μ = 30.000°.
     assert_close("mu(2)", mach_angle(2.0).unwrap().to_degrees(), 30.0, 1e-12);
-    assert!(matches!(
-        mach_angle(0.8),
-        Err(GasError::Subsonic { .. })
-    ));
+    assert!(matches!(mach_angle(0.8), Err(GasError::Subsonic { .. })));
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -159,7 +181,12 @@ fn normal_shock_mach_5_and_6_rational_forms_of_naca_1135() {
     assert_close("p2/p1 at M = 6", s6.pressure_ratio, p, 1e-12);
     assert_close("rho2/rho1 at M = 6", s6.density_ratio, rho, 1e-12);
     assert_close("T2/T1 at M = 6", s6.temperature_ratio, p / rho, 1e-12);
-    assert_close("M2 at M = 6", s6.mach_downstream, (41.0f64 / 251.0).sqrt(), 1e-14);
+    assert_close(
+        "M2 at M = 6",
+        s6.mach_downstream,
+        (41.0f64 / 251.0).sqrt(),
+        1e-14,
+    );
     assert_close(
         "p02/p01 at M = 6",
         s6.total_pressure_ratio,
@@ -167,7 +194,12 @@ fn normal_shock_mach_5_and_6_rational_forms_of_naca_1135() {
         1e-14,
     );
     // Printed check at 4 significant figures: p02/p01(6) = 0.02965 (NACA 1135 Table II).
-    assert_close("p02/p01 at M = 6 (table)", s6.total_pressure_ratio, 0.02965, half_unit(5));
+    assert_close(
+        "p02/p01 at M = 6 (table)",
+        s6.total_pressure_ratio,
+        0.02965,
+        half_unit(5),
+    );
 }
 
 #[test]
@@ -247,10 +279,30 @@ fn oblique_shock_mach_2_theta_10_cengel_cimbala() {
     // β_weak = 39.31° (brief value), to ±0.005°.
     let weak = oblique_shock(2.0, deg(10.0), G, ShockBranch::Weak).unwrap();
     let strong = oblique_shock(2.0, deg(10.0), G, ShockBranch::Strong).unwrap();
-    assert_close("beta weak (deg)", weak.wave_angle_rad.to_degrees(), 39.31, half_unit(2));
-    assert_close("beta strong (deg)", strong.wave_angle_rad.to_degrees(), 83.7, half_unit(1));
-    assert_close("P2 weak (kPa)", 75.0 * weak.pressure_ratio, 128.0, half_unit(0));
-    assert_close("P2 strong (kPa)", 75.0 * strong.pressure_ratio, 333.0, half_unit(0));
+    assert_close(
+        "beta weak (deg)",
+        weak.wave_angle_rad.to_degrees(),
+        39.31,
+        half_unit(2),
+    );
+    assert_close(
+        "beta strong (deg)",
+        strong.wave_angle_rad.to_degrees(),
+        83.7,
+        half_unit(1),
+    );
+    assert_close(
+        "P2 weak (kPa)",
+        75.0 * weak.pressure_ratio,
+        128.0,
+        half_unit(0),
+    );
+    assert_close(
+        "P2 strong (kPa)",
+        75.0 * strong.pressure_ratio,
+        333.0,
+        half_unit(0),
+    );
     assert_close("M2 weak", weak.mach_downstream, 1.64, half_unit(2));
     assert!(strong.mach_downstream < 1.0);
 }
@@ -279,7 +331,12 @@ fn oblique_shock_potto_examples() {
             beta_strong,
             half_unit(4),
         );
-        assert_close(&format!("M2 weak {at}"), weak.mach_downstream, m2_weak, half_unit(4));
+        assert_close(
+            &format!("M2 weak {at}"),
+            weak.mach_downstream,
+            m2_weak,
+            half_unit(4),
+        );
         assert_close(
             &format!("M2 strong {at}"),
             strong.mach_downstream,
@@ -300,12 +357,32 @@ fn max_deflection_naca_1135_and_fluidspad() {
     // NACA 1135 chart: θ_max(M = 2) = 22.97°, β = 64.67°. fluidspad.com detachment table (air):
     // M = 3: 34.1° at β = 65.2°; M = 5: 41.1° at β = 66.6°.
     let (theta, beta) = max_deflection(2.0, G).unwrap();
-    assert_close("theta_max(2) (deg)", theta.to_degrees(), 22.97, half_unit(2));
-    assert_close("beta at theta_max(2) (deg)", beta.to_degrees(), 64.67, half_unit(2));
+    assert_close(
+        "theta_max(2) (deg)",
+        theta.to_degrees(),
+        22.97,
+        half_unit(2),
+    );
+    assert_close(
+        "beta at theta_max(2) (deg)",
+        beta.to_degrees(),
+        64.67,
+        half_unit(2),
+    );
     for (mach, theta_table, beta_table) in [(3.0, 34.1, 65.2), (5.0, 41.1, 66.6)] {
         let (theta, beta) = max_deflection(mach, G).unwrap();
-        assert_close("theta_max (deg)", theta.to_degrees(), theta_table, half_unit(1));
-        assert_close("beta at theta_max (deg)", beta.to_degrees(), beta_table, half_unit(1));
+        assert_close(
+            "theta_max (deg)",
+            theta.to_degrees(),
+            theta_table,
+            half_unit(1),
+        );
+        assert_close(
+            "beta at theta_max (deg)",
+            beta.to_degrees(),
+            beta_table,
+            half_unit(1),
+        );
     }
 }
 
@@ -362,9 +439,24 @@ fn oblique_shock_from_wave_angle_reproduces_cengel_cimbala() {
 #[test]
 fn prandtl_meyer_naca_1135_table_ii() {
     // NACA 1135 Table II: ν(2.00) = 26.38°, ν(6.00) = 84.96°; ν_max = 130.45° for γ = 1.4.
-    assert_close("nu(2)", prandtl_meyer(2.0, G).unwrap().to_degrees(), 26.38, half_unit(2));
-    assert_close("nu(6)", prandtl_meyer(6.0, G).unwrap().to_degrees(), 84.96, half_unit(2));
-    assert_close("nu_max", max_prandtl_meyer(G).to_degrees(), 130.45, half_unit(2));
+    assert_close(
+        "nu(2)",
+        prandtl_meyer(2.0, G).unwrap().to_degrees(),
+        26.38,
+        half_unit(2),
+    );
+    assert_close(
+        "nu(6)",
+        prandtl_meyer(6.0, G).unwrap().to_degrees(),
+        84.96,
+        half_unit(2),
+    );
+    assert_close(
+        "nu_max",
+        max_prandtl_meyer(G).to_degrees(),
+        130.45,
+        half_unit(2),
+    );
     assert_eq!(prandtl_meyer(1.0, G).unwrap(), 0.0);
 }
 
@@ -449,8 +541,7 @@ fn rayleigh_flow_mach_2_and_3_anderson_table_a3() {
 fn rayleigh_mach_from_total_temperature_ratio_inverts_table_rows() {
     // Potto Table 10.1: T0/T0* = 0.69136 at M = 0.50 (subsonic); Anderson MCF Table A.3:
     // T0/T0* = 0.7934 at M = 2.0 (supersonic). Rounding of the ratio bounds the Mach error.
-    let sub =
-        rayleigh_mach_from_total_temperature_ratio(0.69136, G, FlowBranch::Subsonic).unwrap();
+    let sub = rayleigh_mach_from_total_temperature_ratio(0.69136, G, FlowBranch::Subsonic).unwrap();
     assert_close("M subsonic", sub, 0.5, 1e-5);
     let sup =
         rayleigh_mach_from_total_temperature_ratio(0.7934, G, FlowBranch::Supersonic).unwrap();
@@ -490,11 +581,14 @@ fn third_order_piston_theory_error_is_fourth_order() {
 
 #[test]
 fn piston_exact_cavitation_and_isentropic_check() {
-    // w/a = -2/(γ-1) = -5 is the escape speed of a simple wave: the pressure reaches zero.
+    // w/a = -2/(γ-1) = -5 is the escape speed of a simple wave: the pressure reaches zero there
+    // and the gas cannot follow a faster piston.
     assert!(matches!(
-        piston_pressure_ratio_exact(-5.0, G),
+        piston_pressure_ratio_exact(-5.5, G),
         Err(GasError::Cavitation { .. })
     ));
+    let near_vacuum = piston_pressure_ratio_exact(-4.99, G).unwrap();
+    assert!(near_vacuum > 0.0 && near_vacuum < 1e-15);
     assert!(piston_pressure_ratio_exact(f64::INFINITY, G).is_err());
     // The simple wave is isentropic: p/p∞ = (a/a∞)^(2γ/(γ-1)) with a/a∞ = 1 + (γ-1)/2 w/a.
     assert_close(
@@ -574,7 +668,8 @@ proptest! {
     fn weak_shock_tends_to_mach_wave(mach in 1.2f64..20.0, theta in 1e-9f64..1e-5) {
         let s = oblique_shock(mach, theta, G, ShockBranch::Weak).unwrap();
         let mu = mach_angle(mach).unwrap();
-        let beta_slope = (G + 1.0) * mach * mach / (4.0 * (mach * mach - 1.0)) * mu.tan();
+        // dβ/dθ at θ = 0 from the θ-β-M relation: (γ+1) M² / (4 (M² - 1)).
+        let beta_slope = (G + 1.0) * mach * mach / (4.0 * (mach * mach - 1.0));
         prop_assert!((s.wave_angle_rad - mu).abs() <= 2.0 * beta_slope * theta + 1e-12);
         let linear = G * mach * mach * theta / (mach * mach - 1.0).sqrt();
         prop_assert!((s.pressure_ratio - 1.0 - linear).abs() <= 0.05 * linear + 1e-12);
@@ -632,11 +727,12 @@ proptest! {
         prop_assert!((back / mach - 1.0).abs() <= 1e-8, "M {} back {}", mach, back);
     }
 
-    /// Third-order piston theory differs from the exact simple wave by at most C w⁴ for |w| <= 0.3.
+    /// Third-order piston theory differs from the exact simple wave by at most C w⁴ for |w| <= 0.3
+    /// (C = 0.1, above the leading coefficient γ(γ+1)(3-γ)/96 = 0.056).
     #[test]
     fn piston_third_order_within_fourth_order_bound(w in -0.3f64..0.3) {
         let exact = piston_pressure_ratio_exact(w, G).unwrap();
         let third = piston_pressure_ratio_third_order(w, G);
-        prop_assert!((exact - third).abs() <= 0.05 * w.powi(4) + 1e-15);
+        prop_assert!((exact - third).abs() <= 0.1 * w.powi(4) + 1e-15);
     }
 }

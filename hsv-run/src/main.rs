@@ -6,8 +6,8 @@ use std::process::ExitCode;
 use anyhow::{Context, Result, bail};
 use clap::{Args, Parser, Subcommand};
 use hsv_core::config::LoadedConfig;
+use hsv_core::config::SAMPLE_CONFIG_TOML;
 use hsv_core::registry::Registry;
-use hsv_core::vehicle::SAMPLE_CONFIG_TOML;
 use hsv_run::aero_job::{self, AeroMesh, AeroRequest};
 
 #[derive(Parser)]
@@ -21,6 +21,9 @@ use hsv_run::aero_job::{self, AeroMesh, AeroRequest};
                   embedded one to start from."
 )]
 struct Cli {
+    /// Load a dylib model plugin before anything else (repeatable); its models join the registry.
+    #[arg(long = "plugin", value_name = "PATH", global = true)]
+    plugins: Vec<PathBuf>,
     #[command(subcommand)]
     command: Command,
 }
@@ -75,10 +78,10 @@ struct AeroArgs {
     #[arg(long)]
     all: bool,
     /// Freestream Mach number (default: the config's, 6 for the sample).
-    #[arg(long)]
+    #[arg(long, allow_negative_numbers = true)]
     mach: Option<f64>,
     /// Geometric altitude, m, 0 to 86000 (default: the config's, 26000 for the sample).
-    #[arg(long = "altitude-m")]
+    #[arg(long = "altitude-m", allow_negative_numbers = true)]
     altitude_m: Option<f64>,
     /// Angle of attack, deg.
     #[arg(long = "alpha-deg", allow_negative_numbers = true)]
@@ -87,10 +90,10 @@ struct AeroArgs {
     #[arg(long = "beta-deg", allow_negative_numbers = true)]
     beta_deg: Option<f64>,
     /// Reference area, m² (default: config, or the planform area of an STL mesh).
-    #[arg(long = "sref-m2")]
+    #[arg(long = "sref-m2", allow_negative_numbers = true)]
     sref_m2: Option<f64>,
     /// Reference length for the pitching moment, m (default: config, or the STL mesh length).
-    #[arg(long = "lref-m")]
+    #[arg(long = "lref-m", allow_negative_numbers = true)]
     lref_m: Option<f64>,
     /// Also integrate the surfaces the engine model owns (inlet ramp, external nozzle) with the
     /// aero model, as an unpowered vehicle.
@@ -121,13 +124,32 @@ fn chain(error: &anyhow::Error) -> String {
 }
 
 fn run(cli: Cli) -> Result<()> {
-    let registry = hsv_run::registry()?;
+    let mut registry = hsv_run::registry()?;
+    for path in &cli.plugins {
+        registry.load_plugin(path)?;
+    }
     match cli.command {
         Command::Models(json) => models(&registry, json.json),
         Command::Describe { name, json } => describe(&registry, &name, json.json),
         Command::Config { config, json } => print_config(config.config, json.json),
-        Command::Aero(args) => aero(&registry, args),
+        Command::Aero(args) => aero(&mut registry, args),
     }
+}
+
+/// Loads the config at `path` (or the embedded sample) and the plugins it names, resolved
+/// relative to the config file.
+fn load_config(path: Option<&std::path::Path>, registry: &mut Registry) -> Result<LoadedConfig> {
+    let loaded = LoadedConfig::load(path)?;
+    let base = path
+        .and_then(|p| p.parent())
+        .map(std::path::Path::to_path_buf)
+        .unwrap_or_default();
+    for plugin in &loaded.config.plugins {
+        registry
+            .load_plugin(&base.join(plugin))
+            .with_context(|| format!("{}: key `plugins`", loaded.file))?;
+    }
+    Ok(loaded)
 }
 
 fn models(registry: &Registry, json: bool) -> Result<()> {
@@ -180,7 +202,13 @@ fn describe(registry: &Registry, name: &str, json: bool) -> Result<()> {
         println!("{}", serde_json::to_string_pretty(&value)?);
         return Ok(());
     }
-    println!("{}  ({} / {}, fidelity {})", e.name, e.role().family(), e.role(), e.fidelity);
+    println!(
+        "{}  ({} / {}, fidelity {})",
+        e.name,
+        e.role().family(),
+        e.role(),
+        e.fidelity
+    );
     println!("{}", e.summary);
     println!("origin: {}", e.origin);
     if e.settings_doc.trim().is_empty() {
@@ -206,8 +234,9 @@ fn print_config(path: Option<PathBuf>, json: bool) -> Result<()> {
     Ok(())
 }
 
-fn aero(registry: &Registry, args: AeroArgs) -> Result<()> {
-    let loaded = LoadedConfig::load(args.config.config.as_deref())?;
+fn aero(registry: &mut Registry, args: AeroArgs) -> Result<()> {
+    let loaded = load_config(args.config.config.as_deref(), registry)?;
+    let registry = &*registry;
     let flight = loaded.config.flight;
     let mesh = match &args.mesh {
         None => aero_job::vehicle_mesh(&loaded)?,
@@ -238,15 +267,9 @@ fn aero(registry: &Registry, args: AeroArgs) -> Result<()> {
     } else if !args.models.is_empty() {
         args.models.clone()
     } else {
-        vec![
-            loaded
-                .config
-                .regions
-                .main_body
-                .aero
-                .clone()
-                .context("the config names no main-body aero model (regions.main_body.aero); pass --model NAME")?,
-        ]
+        vec![loaded.config.regions.main_body.aero.clone().context(
+            "the config names no main-body aero model (regions.main_body.aero); pass --model NAME",
+        )?]
     };
     let request = AeroRequest {
         mach: args.mach.unwrap_or(flight.mach),
@@ -321,7 +344,17 @@ fn aero(registry: &Registry, args: AeroArgs) -> Result<()> {
     }
     println!(
         "{:<24} {:>12} {:>12} {:>12} {:>13} {:>13} {:>13} {:>9} {:>9} {:>9} {:>9}",
-        "model", "Fx [N]", "Fy [N]", "Fz [N]", "Mx [N m]", "My [N m]", "Mz [N m]", "CL", "CD", "Cm", "time"
+        "model",
+        "Fx [N]",
+        "Fy [N]",
+        "Fz [N]",
+        "Mx [N m]",
+        "My [N m]",
+        "Mz [N m]",
+        "CL",
+        "CD",
+        "Cm",
+        "time"
     );
     for r in &rows {
         let f = r.loads.force_n;
@@ -341,11 +374,20 @@ fn aero(registry: &Registry, args: AeroArgs) -> Result<()> {
             r.evaluation_time_s * 1e6
         );
         let d = r.diagnostics;
-        if d.detached_shocks + d.piston_theory_violations + d.vacuum_expansions > 0 {
-            println!(
-                "{:<24} note: {} detached shocks, {} panels beyond piston-theory validity (|w| >= a), {} vacuum expansions",
-                "", d.detached_shocks, d.piston_theory_violations, d.vacuum_expansions
-            );
+        let notes: Vec<String> = [
+            (d.detached_shocks, "detached shocks (pitot pressure)"),
+            (
+                d.piston_theory_violations,
+                "panels beyond piston-theory validity (|w| >= a)",
+            ),
+            (d.vacuum_expansions, "vacuum expansions (base, lee faces)"),
+        ]
+        .iter()
+        .filter(|(count, _)| *count > 0)
+        .map(|(count, what)| format!("{count} {what}"))
+        .collect();
+        if !notes.is_empty() {
+            println!("{:<24} note: {}", "", notes.join(", "));
         }
     }
     Ok(())

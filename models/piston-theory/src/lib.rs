@@ -10,14 +10,18 @@
 //! p / p∞ = 1 + γ (w/a∞) + γ(γ+1)/4 (w/a∞)² + γ(γ+1)/12 (w/a∞)³.
 //!
 //! Validity: the expansion needs |w|/a∞ < 1 (counted in
-//! `AeroDiagnostics::piston_theory_violations` otherwise), and the piston analogy itself needs
-//! hypersonic similarity — M∞ ≳ 2 and M∞ τ ≳ 1 only where the slopes τ stay small — because it
-//! neglects the flow's memory along the chord. The model rejects subsonic freestreams and reports,
-//! but does not refuse, the rest. A strong expansion that makes the cubic negative is clipped at
-//! zero pressure (counted in `vacuum_expansions`).
+//! `AeroDiagnostics::piston_theory_violations` otherwise). The piston analogy itself (each panel
+//! sees only its own one-dimensional wave, no memory of the flow upstream) is the hypersonic
+//! small-disturbance limit: classically M∞ ≳ 2 with thin surfaces, slopes τ ≪ 1, and M∞ τ up to
+//! about 1 for the third-order form (Ashley & Zartarian); at M∞ τ ≫ 1 Newtonian or
+//! shock-expansion methods apply instead. The model rejects subsonic freestreams (M∞ ≤ 1) and
+//! counts |w|/a∞ ≥ 1; the M∞ ≳ 2 and slope conditions are not checked (they are properties of the
+//! configuration, not of one panel). A strong expansion that makes the cubic negative is clipped
+//! at zero pressure (counted in `vacuum_expansions`).
 //!
 //! Edge state: isentropic simple wave from the freestream to the panel pressure, with the
-//! freestream total temperature conserved.
+//! freestream total temperature conserved. A vacuum-clipped panel gets the all-zero
+//! [`EdgeState::default`] (no gas: zero pressure, density, temperature and velocity).
 
 use hsv_core::aero::{AeroModel, AeroSolution, EdgeState, PanelMotion};
 use hsv_core::error::ModelError;

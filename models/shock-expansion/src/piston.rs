@@ -35,6 +35,7 @@ pub struct ShockExpansionPiston {
 }
 
 impl ShockExpansionPiston {
+    /// A model with empty scratch buffers (sized on the first evaluation).
     pub fn new() -> Self {
         Self {
             mean: ShockExpansion::named(NAME),
@@ -84,7 +85,11 @@ impl AeroModel for ShockExpansionPiston {
             let relative = motion.panel_velocity_m_s(flight, mesh, index) - mean_velocity;
             let w_over_a = relative.dot(&panel.normal) / sound_speed;
             if !w_over_a.is_finite() {
-                return Err(non_finite(NAME, "normal velocity over sound speed w/a", index));
+                return Err(non_finite(
+                    NAME,
+                    "normal velocity over sound speed w/a",
+                    index,
+                ));
             }
             if w_over_a == 0.0 {
                 continue;
@@ -95,7 +100,8 @@ impl AeroModel for ShockExpansionPiston {
             let ratio = gas::piston_pressure_ratio_third_order(w_over_a, gas.gamma);
             if ratio > 0.0 {
                 let pressure = edge.pressure_pa * ratio;
-                let temperature = edge.temperature_k * isentropic_temperature_ratio(ratio, gas.gamma);
+                let temperature =
+                    edge.temperature_k * isentropic_temperature_ratio(ratio, gas.gamma);
                 out.pressure_pa[index] = pressure;
                 out.edge[index].pressure_pa = pressure;
                 out.edge[index].temperature_k = temperature;

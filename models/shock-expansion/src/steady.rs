@@ -28,7 +28,7 @@ pub const NAME: &str = "shock-expansion";
 /// while Δθ > 0, and at the first expansion corner accelerates isentropically to sonic and then
 /// expands by the turn from M = 1 (the sonic-shoulder assumption of blunt-body flows).
 /// Expansions past ν_max give vacuum: p = ρ = 0 (see [`wave::VACUUM_EDGE_MACH`]); downstream
-/// panels of that strip stay at vacuum.
+/// panels of that strip stay at vacuum. A panel listed in several strips keeps the last one's state.
 ///
 /// Steady: body rates and elastic velocities are ignored (only the current geometry matters);
 /// use `shock-expansion-piston` for the unsteady pressures.
@@ -45,6 +45,7 @@ pub struct ShockExpansion {
 }
 
 impl ShockExpansion {
+    /// A model with empty scratch buffers (sized on the first evaluation).
     pub fn new() -> Self {
         Self::named(NAME)
     }

@@ -1,0 +1,193 @@
+//! The `hsv-run` binary: commands work on the embedded vehicle, and bad input gets one clear
+//! error line and a non-zero exit, never a panic.
+
+use std::path::PathBuf;
+use std::process::{Command, Output};
+
+fn hsv_run(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_hsv-run"))
+        .args(args)
+        .output()
+        .expect("hsv-run starts")
+}
+
+fn stdout(output: &Output) -> String {
+    String::from_utf8_lossy(&output.stdout).into_owned()
+}
+
+fn stderr(output: &Output) -> String {
+    String::from_utf8_lossy(&output.stderr).into_owned()
+}
+
+/// Runs and expects failure with one `error:` line containing every `needle`.
+fn expect_error(args: &[&str], needles: &[&str]) -> String {
+    let output = hsv_run(args);
+    let err = stderr(&output);
+    assert!(
+        !output.status.success(),
+        "{args:?} succeeded: {}",
+        stdout(&output)
+    );
+    assert!(!err.contains("panicked"), "{args:?} panicked: {err}");
+    assert!(err.starts_with("error:"), "{args:?}: {err}");
+    assert_eq!(
+        err.trim_end().lines().count(),
+        1,
+        "{args:?}: not one line: {err}"
+    );
+    for needle in needles {
+        assert!(err.contains(needle), "{args:?}: `{needle}` not in: {err}");
+    }
+    err
+}
+
+fn scratch_dir(name: &str) -> PathBuf {
+    let dir = std::env::temp_dir().join(format!("hsv-cli-{}-{name}", std::process::id()));
+    std::fs::create_dir_all(&dir).expect("temp dir");
+    dir
+}
+
+#[test]
+fn models_lists_every_model_with_family_role_and_fidelity() {
+    let output = hsv_run(&["models"]);
+    assert!(output.status.success(), "{}", stderr(&output));
+    let text = stdout(&output);
+    for name in [
+        "newtonian-scalar",
+        "newtonian-vector",
+        "piston-theory",
+        "shock-expansion",
+        "shock-expansion-piston",
+    ] {
+        let line = text
+            .lines()
+            .find(|l| l.split_whitespace().next() == Some(name))
+            .unwrap_or_else(|| panic!("{name} missing from:\n{text}"));
+        assert!(line.contains("aero"), "{line}");
+    }
+    let json: serde_json::Value =
+        serde_json::from_str(&stdout(&hsv_run(&["models", "--json"]))).expect("valid JSON");
+    assert!(
+        json.as_array()
+            .is_some_and(|a| a.iter().all(|m| m["fidelity"].is_u64()))
+    );
+}
+
+#[test]
+fn aero_all_prints_every_model_for_the_sample_vehicle() {
+    let output = hsv_run(&["aero", "--all", "--json"]);
+    assert!(output.status.success(), "{}", stderr(&output));
+    let json: serde_json::Value = serde_json::from_str(&stdout(&output)).expect("valid JSON");
+    assert_eq!(json["mach"], 6.0);
+    assert_eq!(json["altitude_m"], 26000.0);
+    let models = json["models"].as_array().expect("models array");
+    assert_eq!(models.len(), 5);
+    for model in models {
+        let force = model["force_body_n"].as_array().expect("force");
+        assert!(force.iter().all(|f| f.as_f64().is_some_and(f64::is_finite)));
+        // Symmetric vehicle at zero sideslip: no side force (to round-off of the summation).
+        let fx = force[0].as_f64().unwrap().abs();
+        assert!(
+            force[1].as_f64().unwrap().abs() <= 1e-9 * fx.max(1.0),
+            "{model}"
+        );
+    }
+}
+
+#[test]
+fn describe_and_config_work_and_config_round_trips() {
+    let output = hsv_run(&["describe", "shock-expansion"]);
+    assert!(output.status.success(), "{}", stderr(&output));
+    assert!(stdout(&output).contains("shock-expansion"));
+
+    let output = hsv_run(&["config"]);
+    assert!(output.status.success());
+    let dir = scratch_dir("config");
+    let path = dir.join("copy.toml");
+    std::fs::write(&path, stdout(&output)).unwrap();
+    let output = hsv_run(&["aero", "--config", path.to_str().unwrap()]);
+    assert!(output.status.success(), "{}", stderr(&output));
+}
+
+#[test]
+fn unknown_model_names_suggest_the_closest() {
+    expect_error(
+        &["aero", "--model", "shock-expanson"],
+        &["shock-expanson", "did you mean `shock-expansion`"],
+    );
+    expect_error(&["describe", "newtonian"], &["newtonian-scalar"]);
+}
+
+#[test]
+fn unknown_config_keys_name_file_and_key_path() {
+    let dir = scratch_dir("keys");
+    let sample = stdout(&hsv_run(&["config"]));
+    let path = dir.join("typo.toml");
+    std::fs::write(&path, sample.replacen("mach = 6.0", "mahc = 6.0", 1)).unwrap();
+    let shown = path.display().to_string();
+    expect_error(
+        &["aero", "--config", path.to_str().unwrap()],
+        &[&shown, "flight", "mahc", "mach"],
+    );
+    let path = dir.join("bad-model-setting.toml");
+    std::fs::write(
+        &path,
+        format!("{sample}\n[models.shock-expansion]\nfoo = 1\n"),
+    )
+    .unwrap();
+    expect_error(
+        &["aero", "--config", path.to_str().unwrap()],
+        &["models.shock-expansion", "foo"],
+    );
+}
+
+#[test]
+fn non_physical_flight_conditions_are_rejected() {
+    expect_error(&["aero", "--mach", "0.5"], &["Mach", "0.5"]);
+    expect_error(&["aero", "--altitude-m", "90000"], &["90000", "86000"]);
+    expect_error(&["aero", "--mach", "NaN"], &["--mach", "NaN"]);
+    expect_error(&["aero", "--sref-m2", "-1"], &["--sref-m2"]);
+}
+
+#[test]
+fn malformed_and_empty_stl_files_are_rejected() {
+    let dir = scratch_dir("stl");
+    let empty = dir.join("empty.stl");
+    std::fs::write(&empty, b"").unwrap();
+    expect_error(&["aero", "--mesh", empty.to_str().unwrap()], &["empty.stl"]);
+    let broken = dir.join("broken.stl");
+    std::fs::write(
+        &broken,
+        b"solid x\n facet normal 0 0 1\n  outer loop\n   vertex 0 0\n",
+    )
+    .unwrap();
+    expect_error(
+        &["aero", "--mesh", broken.to_str().unwrap()],
+        &["broken.stl"],
+    );
+    expect_error(
+        &["aero", "--mesh", "/nonexistent/mesh.stl"],
+        &["/nonexistent/mesh.stl"],
+    );
+}
+
+#[test]
+fn aero_runs_on_a_closed_stl_mesh() {
+    let fixtures = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../core/tests/data");
+    let stl = std::fs::read_dir(&fixtures)
+        .expect("STL fixtures")
+        .filter_map(Result::ok)
+        .map(|e| e.path())
+        .find(|p| p.extension().is_some_and(|e| e == "stl"))
+        .expect("an STL fixture");
+    let output = hsv_run(&[
+        "aero",
+        "--mesh",
+        stl.to_str().unwrap(),
+        "--all",
+        "--alpha-deg",
+        "5",
+    ]);
+    assert!(output.status.success(), "{}", stderr(&output));
+    assert!(stdout(&output).contains("newtonian-vector"));
+}

@@ -3,6 +3,8 @@
 //! The binary (`hsv-run`) is a thin CLI over this library so tests and benches drive the same code.
 
 pub mod aero_job;
+pub mod commands;
 pub mod linked;
+pub mod output;
 
 pub use linked::registry;

@@ -1,0 +1,210 @@
+//! `hsv-run aero`: forces, moments and coefficients of the vehicle or an STL mesh, per aero model.
+
+use std::path::PathBuf;
+
+use anyhow::{Context, Result, bail};
+use clap::Args;
+use hsv_core::registry::Registry;
+
+use super::{ConfigArg, JsonFlag, load_config};
+use crate::aero_job::{self, AeroMesh, AeroRequest};
+
+/// Arguments of `hsv-run aero`.
+#[derive(Args, Debug, Clone)]
+pub struct AeroArgs {
+    #[command(flatten)]
+    pub config: ConfigArg,
+    /// Evaluate this closed STL mesh (ASCII or binary) instead of the vehicle.
+    #[arg(long, value_name = "FILE.stl")]
+    pub mesh: Option<PathBuf>,
+    /// Aero model to evaluate (repeatable); default: the main body's model from the config.
+    #[arg(long = "model", value_name = "NAME", conflicts_with = "all")]
+    pub models: Vec<String>,
+    /// Evaluate every registered aero model.
+    #[arg(long)]
+    pub all: bool,
+    /// Freestream Mach number (default: the config's, 6 for the sample).
+    #[arg(long, allow_negative_numbers = true)]
+    pub mach: Option<f64>,
+    /// Geometric altitude, m, 0 to 86000 (default: the config's, 26000 for the sample).
+    #[arg(long = "altitude-m", allow_negative_numbers = true)]
+    pub altitude_m: Option<f64>,
+    /// Angle of attack, deg.
+    #[arg(long = "alpha-deg", allow_negative_numbers = true)]
+    pub alpha_deg: Option<f64>,
+    /// Sideslip angle, deg.
+    #[arg(long = "beta-deg", allow_negative_numbers = true)]
+    pub beta_deg: Option<f64>,
+    /// Reference area, m² (default: config, or the planform area of an STL mesh).
+    #[arg(long = "sref-m2", allow_negative_numbers = true)]
+    sref_m2: Option<f64>,
+    /// Reference length for the pitching moment, m (default: config, or the STL mesh length).
+    #[arg(long = "lref-m", allow_negative_numbers = true)]
+    pub lref_m: Option<f64>,
+    /// Also integrate the surfaces the engine model owns (inlet ramp, external nozzle) with the
+    /// aero model, as an unpowered vehicle.
+    #[arg(long)]
+    pub include_engine_surfaces: bool,
+    #[command(flatten)]
+    pub json: JsonFlag,
+}
+
+/// Evaluates the requested aero models and prints one row per model.
+pub fn run(args: AeroArgs, registry: &Registry) -> Result<()> {
+    let (loaded, registry) = load_config(args.config.config.as_deref(), registry)?;
+    let registry = &registry;
+    let flight = loaded.config.flight;
+    let mesh = match &args.mesh {
+        None => aero_job::vehicle_mesh(&loaded)?,
+        Some(path) => AeroMesh {
+            mesh: hsv_core::stl::read_stl(path)?,
+            source: path.display().to_string(),
+            has_engine_surfaces: false,
+        },
+    };
+    let mut reference = match &args.mesh {
+        None => loaded.config.reference,
+        Some(_) => aero_job::mesh_reference(&mesh.mesh),
+    };
+    if let Some(s) = args.sref_m2 {
+        if !(s.is_finite() && s > 0.0) {
+            bail!("--sref-m2 must be a positive number of square metres, got {s}");
+        }
+        reference.area_m2 = s;
+    }
+    if let Some(l) = args.lref_m {
+        if !(l.is_finite() && l > 0.0) {
+            bail!("--lref-m must be a positive length in metres, got {l}");
+        }
+        reference.chord_m = l;
+    }
+    let models = if args.all {
+        aero_job::all_aero_models(registry)
+    } else if !args.models.is_empty() {
+        args.models.clone()
+    } else {
+        vec![loaded.config.regions.main_body.aero.clone().context(
+            "the config names no main-body aero model (regions.main_body.aero); pass --model NAME",
+        )?]
+    };
+    let request = AeroRequest {
+        mach: args.mach.unwrap_or(flight.mach),
+        altitude_m: args.altitude_m.unwrap_or(flight.altitude_m),
+        alpha_deg: args.alpha_deg.unwrap_or(flight.alpha_deg),
+        beta_deg: args.beta_deg.unwrap_or(flight.beta_deg),
+        models,
+        reference,
+        include_engine_surfaces: args.include_engine_surfaces,
+    };
+    let rows = aero_job::run_aero(&loaded, registry, &mesh, &request)?;
+
+    if args.json.json {
+        let models: Vec<_> = rows
+            .iter()
+            .map(|r| {
+                serde_json::json!({
+                    "model": r.model,
+                    "force_body_n": [r.loads.force_n.x, r.loads.force_n.y, r.loads.force_n.z],
+                    "moment_body_nm": [r.loads.moment_nm.x, r.loads.moment_nm.y, r.loads.moment_nm.z],
+                    "cl": r.coefficients.cl,
+                    "cd": r.coefficients.cd,
+                    "cy": r.coefficients.cy,
+                    "cm": r.coefficients.cm,
+                    "croll": r.coefficients.croll,
+                    "cn": r.coefficients.cn,
+                    "diagnostics": r.diagnostics,
+                    "evaluation_time_s": r.evaluation_time_s,
+                })
+            })
+            .collect();
+        let summary = serde_json::json!({
+            "mesh": mesh.source,
+            "panels": mesh.mesh.panels.len(),
+            "mach": request.mach,
+            "altitude_m": request.altitude_m,
+            "alpha_deg": request.alpha_deg,
+            "beta_deg": request.beta_deg,
+            "sref_m2": request.reference.area_m2,
+            "lref_m": request.reference.chord_m,
+            "bref_m": request.reference.span_m,
+            "moment_point_m": request.reference.moment_point_m,
+            "engine_surfaces_included": request.include_engine_surfaces || !mesh.has_engine_surfaces,
+            "models": models,
+        });
+        println!("{}", serde_json::to_string_pretty(&summary)?);
+        return Ok(());
+    }
+
+    println!(
+        "{} ({} panels) at Mach {}, {} m, alpha {} deg, beta {} deg",
+        mesh.source,
+        mesh.mesh.panels.len(),
+        request.mach,
+        request.altitude_m,
+        request.alpha_deg,
+        request.beta_deg
+    );
+    println!(
+        "reference: S = {:.3} m^2, l = {:.3} m, b = {:.3} m, moments about ({:.3}, {:.3}, {:.3}) m (body axes: x fwd, y right, z down)",
+        reference.area_m2,
+        reference.chord_m,
+        reference.span_m,
+        reference.moment_point_m[0],
+        reference.moment_point_m[1],
+        reference.moment_point_m[2]
+    );
+    if mesh.has_engine_surfaces && !request.include_engine_surfaces {
+        println!(
+            "engine-owned surfaces (inlet ramp, external nozzle) excluded: the propulsion model owns them (--include-engine-surfaces to add)"
+        );
+    }
+    println!(
+        "{:<24} {:>12} {:>12} {:>12} {:>13} {:>13} {:>13} {:>9} {:>9} {:>9} {:>9}",
+        "model",
+        "Fx [N]",
+        "Fy [N]",
+        "Fz [N]",
+        "Mx [N m]",
+        "My [N m]",
+        "Mz [N m]",
+        "CL",
+        "CD",
+        "Cm",
+        "time"
+    );
+    for r in &rows {
+        let f = r.loads.force_n;
+        let m = r.loads.moment_nm;
+        println!(
+            "{:<24} {:>12.4e} {:>12.4e} {:>12.4e} {:>13.4e} {:>13.4e} {:>13.4e} {:>9.5} {:>9.5} {:>9.5} {:>7.0}us",
+            r.model,
+            f.x,
+            f.y,
+            f.z,
+            m.x,
+            m.y,
+            m.z,
+            r.coefficients.cl,
+            r.coefficients.cd,
+            r.coefficients.cm,
+            r.evaluation_time_s * 1e6
+        );
+        let d = r.diagnostics;
+        let notes: Vec<String> = [
+            (d.detached_shocks, "detached shocks (pitot pressure)"),
+            (
+                d.piston_theory_violations,
+                "panels beyond piston-theory validity (|w| >= a)",
+            ),
+            (d.vacuum_expansions, "vacuum expansions (base, lee faces)"),
+        ]
+        .iter()
+        .filter(|(count, _)| *count > 0)
+        .map(|(count, what)| format!("{count} {what}"))
+        .collect();
+        if !notes.is_empty() {
+            println!("{:<24} note: {}", "", notes.join(", "));
+        }
+    }
+    Ok(())
+}

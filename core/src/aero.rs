@@ -76,6 +76,64 @@ impl PanelMotion<'_> {
     }
 }
 
+/// Checks what every supersonic panel method needs before it starts: a finite flight condition, a
+/// physical freestream (p, T, ρ, R > 0, γ > 1), M ≥ 1, and one elastic velocity per panel.
+pub fn check_panel_method_inputs(
+    model: &str,
+    mesh: &PanelMesh,
+    flight: &FlightCondition,
+    motion: &PanelMotion<'_>,
+) -> Result<(), ModelError> {
+    flight.check_finite()?;
+    let f = &flight.freestream;
+    if f.mach < 1.0 {
+        return Err(ModelError::out_of_range(
+            model,
+            "Mach number",
+            f.mach,
+            ">= 1 (supersonic methods)",
+        ));
+    }
+    let positive = [
+        ("freestream pressure (Pa)", f.pressure_pa),
+        ("freestream temperature (K)", f.temperature_k),
+        ("freestream density (kg/m^3)", f.density_kg_m3),
+        ("freestream speed of sound (m/s)", f.speed_of_sound_m_s),
+        ("gas constant (J/(kg K))", f.gas.gas_constant_j_kg_k),
+    ];
+    for (quantity, value) in positive {
+        if !(value.is_finite() && value > 0.0) {
+            return Err(ModelError::out_of_range(
+                model,
+                quantity,
+                value,
+                "finite and > 0",
+            ));
+        }
+    }
+    if !(f.gas.gamma.is_finite() && f.gas.gamma > 1.0) {
+        return Err(ModelError::out_of_range(
+            model,
+            "ratio of specific heats",
+            f.gas.gamma,
+            "finite and > 1",
+        ));
+    }
+    if let Some(elastic) = motion.elastic_velocity_m_s
+        && elastic.len() != mesh.panels.len()
+    {
+        return Err(ModelError::inconsistent(
+            model,
+            format!(
+                "{} elastic panel velocities for a mesh of {} panels",
+                elastic.len(),
+                mesh.panels.len()
+            ),
+        ));
+    }
+    Ok(())
+}
+
 /// An aerodynamic model: pressures on every panel of a mesh at a flight condition.
 ///
 /// Implementations keep only scratch buffers; everything that changes in time comes in through

@@ -60,6 +60,15 @@ impl ModelError {
         }
     }
 
+    /// A quantity that became NaN or infinite on mesh panel `panel`.
+    pub fn non_finite_at_panel(model: &str, quantity: &str, panel: usize) -> Self {
+        Self::NonFinite {
+            model: model.to_owned(),
+            quantity: quantity.to_owned(),
+            location: format!(" at panel {panel}"),
+        }
+    }
+
     /// Shorthand for [`ModelError::Inconsistent`].
     pub fn inconsistent(model: &str, message: impl Into<String>) -> Self {
         Self::Inconsistent {

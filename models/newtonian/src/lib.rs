@@ -20,7 +20,7 @@
 //! conserved, p02 from the pitot formula) to the panel pressure; shadowed panels see the
 //! freestream.
 
-use hsv_core::aero::{AeroModel, AeroSolution, EdgeState, PanelMotion};
+use hsv_core::aero::{AeroModel, AeroSolution, EdgeState, PanelMotion, check_panel_method_inputs};
 use hsv_core::error::ModelError;
 use hsv_core::flow::{FlightCondition, Freestream};
 use hsv_core::gas::{
@@ -163,7 +163,7 @@ impl AeroModel for Newtonian {
         motion: &PanelMotion<'_>,
         out: &mut AeroSolution,
     ) -> Result<(), ModelError> {
-        self.check_inputs(mesh, flight, motion)?;
+        check_panel_method_inputs(self.name(), mesh, flight, motion)?;
         out.reset(mesh.panels.len());
         match self.form {
             Form::Scalar => self.evaluate_scalar(mesh, flight, out),
@@ -173,39 +173,6 @@ impl AeroModel for Newtonian {
 }
 
 impl Newtonian {
-    /// Rejects non-finite flight conditions, subsonic freestreams and mis-sized elastic
-    /// velocities.
-    fn check_inputs(
-        &self,
-        mesh: &PanelMesh,
-        flight: &FlightCondition,
-        motion: &PanelMotion<'_>,
-    ) -> Result<(), ModelError> {
-        flight.check_finite()?;
-        let mach = flight.freestream.mach;
-        if mach <= 1.0 {
-            return Err(ModelError::out_of_range(
-                self.name(),
-                "Mach number",
-                mach,
-                "> 1 (supersonic methods)",
-            ));
-        }
-        if let Some(elastic) = motion.elastic_velocity_m_s
-            && elastic.len() != mesh.panels.len()
-        {
-            return Err(ModelError::inconsistent(
-                self.name(),
-                format!(
-                    "{} elastic panel velocities for a mesh of {} panels",
-                    elastic.len(),
-                    mesh.panels.len()
-                ),
-            ));
-        }
-        Ok(())
-    }
-
     /// p = p∞ + q∞ C_p,max (n · V̂_body)² on windward panels.
     fn evaluate_scalar(
         &self,
@@ -220,7 +187,11 @@ impl Newtonian {
         for (i, panel) in mesh.panels.iter().enumerate() {
             let sin_theta = panel.normal.dot(&direction);
             if !sin_theta.is_finite() {
-                return Err(self.non_finite("panel inclination", i));
+                return Err(ModelError::non_finite_at_panel(
+                    self.name(),
+                    "panel inclination",
+                    i,
+                ));
             }
             if sin_theta <= 0.0 {
                 self.shadow(freestream, out, i);
@@ -269,14 +240,22 @@ impl Newtonian {
     ) -> Result<Option<(f64, f64)>, ModelError> {
         let speed = velocity.norm();
         if !speed.is_finite() {
-            return Err(self.non_finite("panel velocity", panel));
+            return Err(ModelError::non_finite_at_panel(
+                self.name(),
+                "panel velocity",
+                panel,
+            ));
         }
         if speed == 0.0 {
             return Ok(None);
         }
         let sin_theta = normal.dot(velocity) / speed;
         if !sin_theta.is_finite() {
-            return Err(self.non_finite("panel inclination", panel));
+            return Err(ModelError::non_finite_at_panel(
+                self.name(),
+                "panel inclination",
+                panel,
+            ));
         }
         Ok((sin_theta > 0.0).then_some((speed, sin_theta)))
     }
@@ -296,7 +275,7 @@ impl Newtonian {
         i: usize,
     ) -> Result<(), ModelError> {
         if !pressure_pa.is_finite() {
-            return Err(self.non_finite("pressure", i));
+            return Err(ModelError::non_finite_at_panel(self.name(), "pressure", i));
         }
         let edge = stagnation.expand_to(pressure_pa, gas)?;
         let values = [
@@ -306,19 +285,11 @@ impl Newtonian {
             ("edge velocity", edge.velocity_m_s),
         ];
         if let Some((quantity, _)) = values.iter().find(|(_, v)| !v.is_finite()) {
-            return Err(self.non_finite(quantity, i));
+            return Err(ModelError::non_finite_at_panel(self.name(), quantity, i));
         }
         out.pressure_pa[i] = pressure_pa;
         out.edge[i] = edge;
         Ok(())
-    }
-
-    fn non_finite(&self, quantity: &str, panel: usize) -> ModelError {
-        ModelError::NonFinite {
-            model: self.name().to_owned(),
-            quantity: quantity.to_owned(),
-            location: format!(" at panel {panel}"),
-        }
     }
 }
 

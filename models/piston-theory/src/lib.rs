@@ -23,7 +23,7 @@
 //! freestream total temperature conserved. A vacuum-clipped panel gets the all-zero
 //! [`EdgeState::default`] (no gas: zero pressure, density, temperature and velocity).
 
-use hsv_core::aero::{AeroModel, AeroSolution, EdgeState, PanelMotion};
+use hsv_core::aero::{AeroModel, AeroSolution, EdgeState, PanelMotion, check_panel_method_inputs};
 use hsv_core::error::ModelError;
 use hsv_core::flow::{FlightCondition, Freestream};
 use hsv_core::gas::piston_pressure_ratio_third_order;
@@ -83,7 +83,7 @@ impl AeroModel for PistonTheory {
         motion: &PanelMotion<'_>,
         out: &mut AeroSolution,
     ) -> Result<(), ModelError> {
-        check_inputs(mesh, flight, motion)?;
+        check_panel_method_inputs(NAME, mesh, flight, motion)?;
         let freestream = &flight.freestream;
         let total_temperature_k = freestream.total_temperature_k();
         out.reset(mesh.panels.len());
@@ -91,7 +91,11 @@ impl AeroModel for PistonTheory {
             let velocity = motion.panel_velocity_m_s(flight, mesh, i);
             let w_over_a = velocity.dot(&panel.normal) / freestream.speed_of_sound_m_s;
             if !w_over_a.is_finite() {
-                return Err(non_finite("panel normal velocity", i));
+                return Err(ModelError::non_finite_at_panel(
+                    NAME,
+                    "panel normal velocity",
+                    i,
+                ));
             }
             if w_over_a.abs() >= 1.0 {
                 out.diagnostics.piston_theory_violations += 1;
@@ -109,37 +113,6 @@ impl AeroModel for PistonTheory {
         }
         Ok(())
     }
-}
-
-/// Rejects non-finite flight conditions, subsonic freestreams and mis-sized elastic velocities.
-fn check_inputs(
-    mesh: &PanelMesh,
-    flight: &FlightCondition,
-    motion: &PanelMotion<'_>,
-) -> Result<(), ModelError> {
-    flight.check_finite()?;
-    let mach = flight.freestream.mach;
-    if mach <= 1.0 {
-        return Err(ModelError::out_of_range(
-            NAME,
-            "Mach number",
-            mach,
-            "> 1 (supersonic methods)",
-        ));
-    }
-    if let Some(elastic) = motion.elastic_velocity_m_s
-        && elastic.len() != mesh.panels.len()
-    {
-        return Err(ModelError::inconsistent(
-            NAME,
-            format!(
-                "{} elastic panel velocities for a mesh of {} panels",
-                elastic.len(),
-                mesh.panels.len()
-            ),
-        ));
-    }
-    Ok(())
 }
 
 /// Simple-wave edge state at p = p∞ · ratio: T = T∞ (p/p∞)^((γ-1)/γ), M² = 2/(γ-1) (T0/T - 1)
@@ -173,16 +146,8 @@ fn check_panel(out: &AeroSolution, i: usize) -> Result<(), ModelError> {
         ("edge velocity", edge.velocity_m_s),
     ];
     match values.iter().find(|(_, v)| !v.is_finite()) {
-        Some((quantity, _)) => Err(non_finite(quantity, i)),
+        Some((quantity, _)) => Err(ModelError::non_finite_at_panel(NAME, quantity, i)),
         None => Ok(()),
-    }
-}
-
-fn non_finite(quantity: &str, panel: usize) -> ModelError {
-    ModelError::NonFinite {
-        model: NAME.to_owned(),
-        quantity: quantity.to_owned(),
-        location: format!(" at panel {panel}"),
     }
 }
 

@@ -1,13 +1,13 @@
 //! The `shock-expansion-piston` model: shock-expansion mean flow plus local third-order piston
 //! theory for each panel's unsteady normal velocity.
 
-use hsv_core::aero::{AeroModel, AeroSolution, PanelMotion};
+use hsv_core::aero::{AeroModel, AeroSolution, PanelMotion, check_panel_method_inputs};
 use hsv_core::error::ModelError;
 use hsv_core::flow::FlightCondition;
 use hsv_core::gas;
 use hsv_core::mesh::PanelMesh;
 
-use crate::steady::{ShockExpansion, non_finite};
+use crate::steady::ShockExpansion;
 use crate::wave::{self, Regime};
 
 /// Registered name of the unsteady model.
@@ -61,18 +61,7 @@ impl AeroModel for ShockExpansionPiston {
         motion: &PanelMotion<'_>,
         out: &mut AeroSolution,
     ) -> Result<(), ModelError> {
-        let n = mesh.panels.len();
-        if let Some(elastic) = motion.elastic_velocity_m_s
-            && elastic.len() != n
-        {
-            return Err(ModelError::inconsistent(
-                NAME,
-                format!(
-                    "{} elastic panel velocities for a mesh of {n} panels",
-                    elastic.len()
-                ),
-            ));
-        }
+        check_panel_method_inputs(NAME, mesh, flight, motion)?;
         self.mean.evaluate_steady(mesh, flight, out)?;
         let gas = flight.freestream.gas;
         let mean_velocity = flight.velocity_body_m_s();
@@ -85,7 +74,7 @@ impl AeroModel for ShockExpansionPiston {
             let relative = motion.panel_velocity_m_s(flight, mesh, index) - mean_velocity;
             let w_over_a = relative.dot(&panel.normal) / sound_speed;
             if !w_over_a.is_finite() {
-                return Err(non_finite(
+                return Err(ModelError::non_finite_at_panel(
                     NAME,
                     "normal velocity over sound speed w/a",
                     index,

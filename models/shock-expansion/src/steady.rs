@@ -1,7 +1,9 @@
 //! The `shock-expansion` model: steady shock-expansion theory along streamwise strips, tangent
 //! wedge / Prandtl-Meyer panel by panel elsewhere.
 
-use hsv_core::aero::{AeroDiagnostics, AeroModel, AeroSolution, PanelMotion};
+use hsv_core::aero::{
+    AeroDiagnostics, AeroModel, AeroSolution, PanelMotion, check_panel_method_inputs,
+};
 use hsv_core::error::ModelError;
 use hsv_core::flow::FlightCondition;
 use hsv_core::mesh::PanelMesh;
@@ -67,7 +69,8 @@ impl ShockExpansion {
 
     /// Fills the scratch buffers with θ and the local flow of every panel.
     fn solve(&mut self, mesh: &PanelMesh, flight: &FlightCondition) -> Result<(), ModelError> {
-        let freestream = freestream_local(self.name, flight)?;
+        check_panel_method_inputs(self.name, mesh, flight, &PanelMotion::default())?;
+        let freestream = freestream_local(flight);
         let gamma = flight.freestream.gas.gamma;
         let direction = flight_direction(self.name, flight)?;
         let n = mesh.panels.len();
@@ -76,7 +79,11 @@ impl ShockExpansion {
         for (index, panel) in mesh.panels.iter().enumerate() {
             let theta = inclination(&panel.normal, &direction);
             if !theta.is_finite() {
-                return Err(non_finite(self.name, "panel inclination", index));
+                return Err(ModelError::non_finite_at_panel(
+                    self.name,
+                    "panel inclination",
+                    index,
+                ));
             }
             self.theta.push(theta);
         }
@@ -116,14 +123,20 @@ impl ShockExpansion {
         for (index, (local, &theta)) in self.local.iter().zip(&self.theta).enumerate() {
             let edge = local.flow.edge(gas);
             if !edge.pressure_pa.is_finite() {
-                return Err(non_finite(self.name, "pressure", index));
+                return Err(ModelError::non_finite_at_panel(
+                    self.name, "pressure", index,
+                ));
             }
             if !(edge.temperature_k.is_finite()
                 && edge.density_kg_m3.is_finite()
                 && edge.velocity_m_s.is_finite()
                 && edge.mach.is_finite())
             {
-                return Err(non_finite(self.name, "edge state", index));
+                return Err(ModelError::non_finite_at_panel(
+                    self.name,
+                    "edge state",
+                    index,
+                ));
             }
             out.pressure_pa[index] = edge.pressure_pa;
             out.edge[index] = edge;
@@ -190,43 +203,10 @@ fn flight_direction(model: &str, flight: &FlightCondition) -> Result<Vector3<f64
     Ok(velocity / speed)
 }
 
-/// Checks the flight condition and returns the freestream as the strips' starting state.
-fn freestream_local(model: &str, flight: &FlightCondition) -> Result<Local, ModelError> {
-    flight.check_finite()?;
+/// The freestream as the strips' starting state (inputs already checked).
+fn freestream_local(flight: &FlightCondition) -> Local {
     let f = &flight.freestream;
-    if f.mach < 1.0 {
-        return Err(ModelError::out_of_range(
-            model,
-            "Mach number",
-            f.mach,
-            ">= 1 (supersonic methods)",
-        ));
-    }
-    let positive = [
-        ("freestream pressure (Pa)", f.pressure_pa),
-        ("freestream temperature (K)", f.temperature_k),
-        ("freestream density (kg/m^3)", f.density_kg_m3),
-        ("gas constant (J/(kg K))", f.gas.gas_constant_j_kg_k),
-    ];
-    for (quantity, value) in positive {
-        if !(value.is_finite() && value > 0.0) {
-            return Err(ModelError::out_of_range(
-                model,
-                quantity,
-                value,
-                "finite and > 0",
-            ));
-        }
-    }
-    if !(f.gas.gamma.is_finite() && f.gas.gamma > 1.0) {
-        return Err(ModelError::out_of_range(
-            model,
-            "ratio of specific heats",
-            f.gas.gamma,
-            "finite and > 1",
-        ));
-    }
-    Ok(Local {
+    Local {
         flow: Flow {
             mach: f.mach,
             pressure_pa: f.pressure_pa,
@@ -234,14 +214,5 @@ fn freestream_local(model: &str, flight: &FlightCondition) -> Result<Local, Mode
             density_kg_m3: f.density_kg_m3,
         },
         regime: Regime::Freestream,
-    })
-}
-
-/// [`ModelError::NonFinite`] for `quantity` at panel `index`.
-pub(crate) fn non_finite(model: &str, quantity: &str, index: usize) -> ModelError {
-    ModelError::NonFinite {
-        model: model.to_owned(),
-        quantity: quantity.to_owned(),
-        location: format!(" at panel {index}"),
     }
 }

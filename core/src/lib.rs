@@ -8,8 +8,10 @@
 pub mod atmosphere;
 pub mod frames;
 pub mod gas;
+pub mod material;
 pub mod mesh;
 pub mod stl;
+pub mod surface_grid;
 pub mod vehicle;
 
 pub mod aero;

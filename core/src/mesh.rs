@@ -415,6 +415,61 @@ impl PanelMesh {
             .filter_map(move |(i, p)| (p.surface == surface).then_some(i))
     }
 
+    /// Running length of every panel from the leading edge of its strip, m: panel i of a strip
+    /// gets Σ_{j<i} L_j + L_i / 2, with L_j = A_j / w_j the panel's mean length along the strip
+    /// and w_j its width across it (flat-plate boundary-layer length for heating); panels in no
+    /// strip get `default_m`. `flow_direction` orients one-panel strips. `out` is resized.
+    pub fn strip_running_lengths_m(
+        &self,
+        flow_direction: &Vector3<f64>,
+        default_m: f64,
+        out: &mut Vec<f64>,
+    ) {
+        out.clear();
+        out.resize(self.panels.len(), default_m);
+        for strip in &self.strips {
+            let panels = &strip.panels;
+            let mut upstream = 0.0;
+            for (k, &p) in panels.iter().enumerate() {
+                let along = if panels.len() > 1 {
+                    let prev = panels[k.saturating_sub(1)];
+                    let next = panels[(k + 1).min(panels.len() - 1)];
+                    self.panels[next].centroid - self.panels[prev].centroid
+                } else {
+                    *flow_direction
+                };
+                let length = self.panel_length_along_m(p, &along);
+                out[p] = upstream + 0.5 * length;
+                upstream += length;
+            }
+        }
+    }
+
+    /// Mean length of panel `p` along `along`: L = A / w, w = the panel's extent across `along`
+    /// in its own plane; √A when `along` is normal to the panel.
+    pub fn panel_length_along_m(&self, p: usize, along: &Vector3<f64>) -> f64 {
+        let panel = &self.panels[p];
+        let across = panel.normal.cross(along);
+        let norm = across.norm();
+        if norm <= f64::EPSILON * along.norm().max(1.0) {
+            return panel.area_m2.sqrt();
+        }
+        let across = across / norm;
+        let (lo, hi) = panel
+            .vertex_indices()
+            .iter()
+            .map(|&v| self.vertices[v].coords.dot(&across))
+            .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), s| {
+                (lo.min(s), hi.max(s))
+            });
+        let width = hi - lo;
+        if width > 0.0 {
+            panel.area_m2 / width
+        } else {
+            panel.area_m2.sqrt()
+        }
+    }
+
     /// Axis-aligned bounding box (min, max) of the vertices, m; the origin twice when empty.
     pub fn bounding_box(&self) -> (Point3<f64>, Point3<f64>) {
         bounding_box_of(&self.vertices)

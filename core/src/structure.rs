@@ -41,6 +41,11 @@ pub trait StructureModel: Send {
     /// same component, in the same axes).
     fn mode_shapes_on(&self, mesh: &PanelMesh) -> Result<ModeShapes, ModelError>;
 
+    /// Number of structural node temperatures `set_temperatures` expects (0: no thermal coupling).
+    fn temperature_nodes(&self) -> usize {
+        0
+    }
+
     /// Updates stiffness from structural node temperatures (K): heat-degraded modulus and thermal
     /// stress. Structures without thermal coupling say so.
     fn set_temperatures(&mut self, node_temperatures_k: &[f64]) -> Result<(), ModelError> {

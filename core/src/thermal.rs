@@ -7,6 +7,9 @@ use crate::error::ModelError;
 use crate::flow::FlightCondition;
 use crate::mesh::PanelMesh;
 
+/// Stefan-Boltzmann constant σ, W/(m² K⁴) (CODATA 2018, exact), for re-radiation εσT⁴.
+pub const STEFAN_BOLTZMANN_W_M2_K4: f64 = 5.670_374_419e-8;
+
 /// Aeroheating: the net heat flux into the structure at every panel of a wetted mesh.
 pub trait HeatFluxModel: Send {
     /// The registered name (`eckert`, `kriging-stanton`, ...).

@@ -5,8 +5,14 @@
 
 use hsv_core::registry::{Registry, RegistryError};
 
+use hsv_model_conduction as _;
+use hsv_model_eckert as _;
+use hsv_model_free_free_beam as _;
+use hsv_model_kriging as _;
 use hsv_model_newtonian as _;
 use hsv_model_piston_theory as _;
+use hsv_model_ritz_plate as _;
+use hsv_model_scramjet as _;
 use hsv_model_shock_expansion as _;
 
 /// Every built-in model of this binary.

@@ -5,7 +5,9 @@ use std::process::ExitCode;
 
 use anyhow::Result;
 use clap::{Parser, Subcommand};
-use hsv_run::commands::{self, ConfigArg, JsonFlag, aero::AeroArgs};
+use hsv_run::commands::{
+    self, ConfigArg, JsonFlag, aero::AeroArgs, engine::EngineArgs, heat::HeatArgs, modes::ModesArgs,
+};
 
 #[derive(Parser)]
 #[command(
@@ -45,6 +47,12 @@ enum Command {
     },
     /// Forces, moments and coefficients of the vehicle (or an STL mesh), one row per aero model.
     Aero(AeroArgs),
+    /// Natural frequencies and mode shapes of the main body and the lifting surfaces.
+    Modes(ModesArgs),
+    /// Heat a lifting surface in the flow over time with each conduction model (temperature history).
+    Heat(HeatArgs),
+    /// Scramjet thrust, lift, moment, mass flow and station states, one row per propulsion model.
+    Engine(EngineArgs),
 }
 
 fn main() -> ExitCode {
@@ -81,5 +89,8 @@ fn run(cli: Cli) -> Result<()> {
             commands::config::print_config(config.config.as_deref(), json.json)
         }
         Command::Aero(args) => commands::aero::run(args, &registry),
+        Command::Modes(args) => commands::modes::run(args, &registry),
+        Command::Heat(args) => commands::heat::run(args, &registry),
+        Command::Engine(args) => commands::engine::run(args, &registry),
     }
 }

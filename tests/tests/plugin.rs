@@ -11,25 +11,22 @@ use hsv_core::mesh::{PanelMesh, PanelSpec, RegionKind, Surface};
 use hsv_core::registry::{ModelContext, Registry};
 use nalgebra::Point3;
 
-/// `target/<profile>/libhsv_plugin_ackeret.so`, next to the `deps/` folder of this test binary.
+/// The example plugin's cdylib: built as a dev-dependency of this crate, so it sits in
+/// `target/<profile>/deps/` next to this test binary (or one level up after `cargo build`).
 fn plugin_path() -> PathBuf {
     let exe = std::env::current_exe().expect("test binary path");
-    let profile_dir = exe
-        .parent()
-        .and_then(|deps| deps.parent())
-        .expect("target/<profile>/deps/<test>");
+    let deps_dir = exe.parent().expect("target/<profile>/deps/<test>");
     let file = format!(
         "{}hsv_plugin_ackeret{}",
         std::env::consts::DLL_PREFIX,
         std::env::consts::DLL_SUFFIX
     );
-    let path = profile_dir.join(file);
-    assert!(
-        path.exists(),
-        "{} not built; `cargo test --workspace` builds it",
-        path.display()
-    );
-    path
+    let candidates = [deps_dir.join(&file), deps_dir.join("..").join(&file)];
+    candidates
+        .iter()
+        .find(|path| path.exists())
+        .cloned()
+        .unwrap_or_else(|| panic!("{file} not found next to {}", deps_dir.display()))
 }
 
 /// A 1 m x 1 m flat plate of zero thickness in the x-y plane: upper face (normal -z) and lower

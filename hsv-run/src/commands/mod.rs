@@ -3,6 +3,9 @@
 pub mod aero;
 pub mod catalog;
 pub mod config;
+pub mod engine;
+pub mod heat;
+pub mod modes;
 
 use std::path::{Path, PathBuf};
 

@@ -1,0 +1,384 @@
+//! `hsv-run engine`: thrust, lift, pitching moment, captured mass flow, status and station
+//! states of the vehicle's engine per propulsion model, with thrust versus φ and α written to
+//! the run folder (CSV and PNG).
+
+use std::path::{Path, PathBuf};
+use std::time::Instant;
+
+use anyhow::{Context, Result, bail};
+use clap::Args;
+use hsv_core::config::LoadedConfig;
+use hsv_core::flow::{FlightCondition, Freestream};
+use hsv_core::mesh::PanelMesh;
+use hsv_core::propulsion::{EngineInputs, PropulsionModel, PropulsionSolution};
+use hsv_core::registry::{ModelContext, Registry, Role};
+use hsv_core::vehicle::build_vehicle;
+
+use super::{ConfigArg, JsonFlag, load_config};
+use crate::output::{self, LinePlot, Series};
+
+/// Paper Table 2: trimmed fuel equivalence ratio at Mach 6, 26 km (0.126 to 0.139).
+pub const DEFAULT_PHI: f64 = 0.13;
+
+/// φ values of the thrust-versus-φ sweep: 0 to 1 in steps of 0.025.
+fn phi_sweep() -> Vec<f64> {
+    (0..=40).map(|k| 0.025 * f64::from(k)).collect()
+}
+
+/// α values of the thrust-versus-α sweep, deg: -4 to 8 in steps of 0.25.
+fn alpha_sweep_deg() -> Vec<f64> {
+    (0..=48).map(|k| -4.0 + 0.25 * f64::from(k)).collect()
+}
+
+/// Arguments of `hsv-run engine`.
+#[derive(Args, Debug, Clone)]
+pub struct EngineArgs {
+    #[command(flatten)]
+    pub config: ConfigArg,
+    /// Propulsion model to evaluate (repeatable); default: every registered propulsion model.
+    #[arg(long = "model", value_name = "NAME")]
+    pub models: Vec<String>,
+    /// Freestream Mach number (default: the config's, 6 for the sample).
+    #[arg(long, allow_negative_numbers = true)]
+    pub mach: Option<f64>,
+    /// Geometric altitude, m, 0 to 86000 (default: the config's, 26000 for the sample).
+    #[arg(long = "altitude-m", allow_negative_numbers = true)]
+    pub altitude_m: Option<f64>,
+    /// Angle of attack, deg (default: the config's, 0 for the sample).
+    #[arg(long = "alpha-deg", allow_negative_numbers = true)]
+    pub alpha_deg: Option<f64>,
+    /// Fuel equivalence ratio φ >= 0 (paper Table 2: about 0.13 at trim).
+    #[arg(long, allow_negative_numbers = true, default_value_t = DEFAULT_PHI)]
+    pub phi: f64,
+    /// Run folder for the sweep CSVs, plot and summary (default: runs/engine-<UTC time>).
+    #[arg(long, value_name = "DIR")]
+    pub out: Option<PathBuf>,
+    #[command(flatten)]
+    pub json: JsonFlag,
+}
+
+/// One model's result at the requested condition.
+#[derive(Debug, Clone)]
+struct EngineRow {
+    model: String,
+    solution: PropulsionSolution,
+    evaluation_time_s: f64,
+}
+
+/// The engine problem: vehicle body, config and a flight condition builder.
+struct Setup<'a> {
+    loaded: &'a LoadedConfig,
+    body: PanelMesh,
+    mach: f64,
+    altitude_m: f64,
+}
+
+impl Setup<'_> {
+    fn flight(&self, alpha_deg: f64) -> Result<FlightCondition> {
+        let freestream = Freestream::standard(self.mach, self.altitude_m, self.loaded.config.gas)?;
+        let mut flight = FlightCondition::steady(freestream, alpha_deg.to_radians(), 0.0);
+        flight.rotation_center_m = self.loaded.config.reference.moment_point();
+        Ok(flight)
+    }
+
+    fn model(&self, registry: &Registry, name: &str) -> Result<Box<dyn PropulsionModel>> {
+        let key_path = format!("models.{name}");
+        let context = ModelContext {
+            settings: self.loaded.model_settings(name),
+            key_path: &key_path,
+            file: &self.loaded.file,
+            config: &self.loaded.raw,
+        };
+        Ok(registry.create_propulsion(name, &context)?)
+    }
+
+    fn evaluate(
+        &self,
+        model: &mut dyn PropulsionModel,
+        alpha_deg: f64,
+        phi: f64,
+        out: &mut PropulsionSolution,
+    ) -> Result<()> {
+        let flight = self.flight(alpha_deg)?;
+        model.evaluate(
+            &EngineInputs {
+                flight: &flight,
+                body: &self.body,
+                fuel_equivalence_ratio: phi,
+            },
+            out,
+        )?;
+        Ok(())
+    }
+
+    /// Thrust at each point of a sweep; NaN where the model reports an error (skipped in plots).
+    fn thrust_sweep(
+        &self,
+        model: &mut dyn PropulsionModel,
+        points: impl Iterator<Item = (f64, f64)>,
+    ) -> Vec<f64> {
+        let mut out = PropulsionSolution::default();
+        points
+            .map(
+                |(alpha_deg, phi)| match self.evaluate(model, alpha_deg, phi, &mut out) {
+                    Ok(()) => out.loads.force_n.x,
+                    Err(_) => f64::NAN,
+                },
+            )
+            .collect()
+    }
+}
+
+fn status_name(solution: &PropulsionSolution) -> String {
+    serde_json::to_value(solution.status)
+        .ok()
+        .and_then(|v| v.as_str().map(str::to_owned))
+        .unwrap_or_default()
+}
+
+/// Evaluates the requested propulsion models, prints one row per model and writes the sweeps.
+pub fn run(args: EngineArgs, registry: &Registry) -> Result<()> {
+    let (loaded, registry) = load_config(args.config.config.as_deref(), registry)?;
+    let registry = &registry;
+    let flight_config = loaded.config.flight;
+    let mach = args.mach.unwrap_or(flight_config.mach);
+    let altitude_m = args.altitude_m.unwrap_or(flight_config.altitude_m);
+    let alpha_deg = args.alpha_deg.unwrap_or(flight_config.alpha_deg);
+    for (name, value) in [
+        ("--mach", mach),
+        ("--altitude-m", altitude_m),
+        ("--alpha-deg", alpha_deg),
+    ] {
+        if !value.is_finite() {
+            bail!("{name} must be a finite number, got {value}");
+        }
+    }
+    if !(args.phi.is_finite() && args.phi >= 0.0) {
+        bail!(
+            "--phi must be a finite fuel equivalence ratio >= 0, got {}",
+            args.phi
+        );
+    }
+    let phi = args.phi;
+    let models: Vec<String> = if args.models.is_empty() {
+        registry
+            .names(Role::Propulsion)
+            .into_iter()
+            .map(str::to_owned)
+            .collect()
+    } else {
+        args.models.clone()
+    };
+    if models.is_empty() {
+        bail!("no propulsion model is registered; load a plugin or name one with --model");
+    }
+    let body = build_vehicle(&loaded.config.geometry, &loaded.config.lifting_surface)
+        .with_context(|| format!("{}: building the vehicle geometry", loaded.file))?
+        .body;
+    let setup = Setup {
+        loaded: &loaded,
+        body,
+        mach,
+        altitude_m,
+    };
+    setup.flight(alpha_deg)?;
+
+    let mut rows = Vec::with_capacity(models.len());
+    let mut built = Vec::with_capacity(models.len());
+    for name in &models {
+        let mut model = setup.model(registry, name)?;
+        let mut solution = PropulsionSolution::default();
+        let start = Instant::now();
+        setup
+            .evaluate(model.as_mut(), alpha_deg, phi, &mut solution)
+            .with_context(|| format!("propulsion model `{name}`"))?;
+        rows.push(EngineRow {
+            model: name.clone(),
+            solution,
+            evaluation_time_s: start.elapsed().as_secs_f64(),
+        });
+        built.push(model);
+    }
+
+    let folder = output::run_folder("engine", args.out.as_deref())?;
+    let plot = write_sweeps(&folder, &setup, &models, &mut built, alpha_deg, phi)?;
+    let reference = loaded.config.reference.moment_point_m;
+    let summary = serde_json::json!({
+        "vehicle": loaded.file,
+        "mach": mach,
+        "altitude_m": altitude_m,
+        "alpha_deg": alpha_deg,
+        "phi": phi,
+        "moment_point_m": reference,
+        "run_folder": folder.display().to_string(),
+        "plot": plot.display().to_string(),
+        "models": rows.iter().map(row_json).collect::<Vec<_>>(),
+    });
+    let summary_path = folder.join("summary.json");
+    std::fs::write(&summary_path, serde_json::to_string_pretty(&summary)?)
+        .with_context(|| format!("cannot write {}", summary_path.display()))?;
+
+    if args.json.json {
+        println!("{}", serde_json::to_string_pretty(&summary)?);
+        return Ok(());
+    }
+    print_table(&rows, mach, altitude_m, alpha_deg, phi, reference, &folder);
+    Ok(())
+}
+
+fn row_json(r: &EngineRow) -> serde_json::Value {
+    let s = &r.solution;
+    let f = s.loads.force_n;
+    let m = s.loads.moment_nm;
+    serde_json::json!({
+        "model": r.model,
+        "thrust_n": f.x,
+        "lift_n": -f.z,
+        "pitching_moment_nm": m.y,
+        "mass_flow_kg_s": s.mass_flow_kg_s,
+        "status": status_name(s),
+        "stations": s.stations,
+        "force_body_n": [f.x, f.y, f.z],
+        "moment_body_nm": [m.x, m.y, m.z],
+        "evaluation_time_s": r.evaluation_time_s,
+    })
+}
+
+/// Thrust versus φ (at the requested α) and versus α (at the requested φ), one line per model:
+/// CSVs and one PNG in `folder`; returns the PNG path.
+fn write_sweeps(
+    folder: &Path,
+    setup: &Setup<'_>,
+    models: &[String],
+    built: &mut [Box<dyn PropulsionModel>],
+    alpha_deg: f64,
+    phi: f64,
+) -> Result<PathBuf> {
+    let phis = phi_sweep();
+    let alphas = alpha_sweep_deg();
+    let mut by_phi = Vec::with_capacity(models.len());
+    let mut by_alpha = Vec::with_capacity(models.len());
+    for model in built.iter_mut() {
+        by_phi.push(setup.thrust_sweep(model.as_mut(), phis.iter().map(|&p| (alpha_deg, p))));
+        by_alpha.push(setup.thrust_sweep(model.as_mut(), alphas.iter().map(|&a| (a, phi))));
+    }
+    let headers: Vec<String> = models.iter().map(|m| format!("{m}_thrust_n")).collect();
+    let write = |file: &str, x_header: &str, x: &[f64], ys: &[Vec<f64>]| -> Result<()> {
+        let mut h: Vec<&str> = vec![x_header];
+        h.extend(headers.iter().map(String::as_str));
+        let mut columns: Vec<&[f64]> = vec![x];
+        columns.extend(ys.iter().map(Vec::as_slice));
+        output::write_csv(&folder.join(file), &h, &columns)
+    };
+    write("thrust_vs_phi.csv", "phi", &phis, &by_phi)?;
+    write("thrust_vs_alpha.csv", "alpha_deg", &alphas, &by_alpha)?;
+    let kn = |v: &[f64]| v.iter().map(|t| t / 1e3).collect::<Vec<_>>();
+    let series = |x: &[f64], ys: &[Vec<f64>]| -> Vec<Series> {
+        models
+            .iter()
+            .zip(ys)
+            .map(|(m, y)| Series {
+                label: m.clone(),
+                x: x.to_vec(),
+                y: kn(y),
+            })
+            .collect()
+    };
+    let plots = [
+        LinePlot {
+            title: format!(
+                "Thrust vs fuel equivalence ratio (Mach {}, {} m, alpha {alpha_deg} deg)",
+                setup.mach, setup.altitude_m
+            ),
+            x_label: "fuel equivalence ratio phi".to_owned(),
+            y_label: "thrust (body x) [kN]".to_owned(),
+            series: series(&phis, &by_phi),
+        },
+        LinePlot {
+            title: format!(
+                "Thrust vs angle of attack (Mach {}, {} m, phi {phi})",
+                setup.mach, setup.altitude_m
+            ),
+            x_label: "angle of attack [deg]".to_owned(),
+            y_label: "thrust (body x) [kN]".to_owned(),
+            series: series(&alphas, &by_alpha),
+        },
+    ];
+    let path = folder.join("thrust_vs_phi_alpha.png");
+    output::write_line_plots_png(&path, &plots, 2, (1400, 560))?;
+    Ok(path)
+}
+
+fn print_table(
+    rows: &[EngineRow],
+    mach: f64,
+    altitude_m: f64,
+    alpha_deg: f64,
+    phi: f64,
+    reference: [f64; 3],
+    folder: &Path,
+) {
+    println!("engine at Mach {mach}, {altitude_m} m, alpha {alpha_deg} deg, phi {phi}");
+    println!(
+        "loads on the vehicle: thrust = body Fx (forward), lift = -Fz (up), pitching moment My about ({:.3}, {:.3}, {:.3}) m (nose up +)",
+        reference[0], reference[1], reference[2]
+    );
+    println!(
+        "{:<16} {:>12} {:>12} {:>13} {:>12} {:>16} {:>9}",
+        "model", "thrust [N]", "lift [N]", "My [N m]", "mdot [kg/s]", "status", "time"
+    );
+    for r in rows {
+        let s = &r.solution;
+        println!(
+            "{:<16} {:>12.4e} {:>12.4e} {:>13.4e} {:>12.3} {:>16} {:>7.0}us",
+            r.model,
+            s.loads.force_n.x,
+            -s.loads.force_n.z,
+            s.loads.moment_nm.y,
+            s.mass_flow_kg_s,
+            status_name(s),
+            r.evaluation_time_s * 1e6
+        );
+    }
+    println!();
+    println!("station states (middle spanwise section):");
+    print!("{:<16}", "station");
+    for r in rows {
+        print!(" {:>36}", r.model);
+    }
+    println!();
+    print!("{:<16}", "");
+    for _ in rows {
+        print!(" {:>8} {:>13} {:>13}", "Mach", "p [Pa]", "T [K]");
+    }
+    println!();
+    let names: Vec<&str> = rows
+        .iter()
+        .max_by_key(|r| r.solution.stations.len())
+        .map(|r| {
+            r.solution
+                .stations
+                .iter()
+                .map(|s| s.station.as_str())
+                .collect()
+        })
+        .unwrap_or_default();
+    for name in names {
+        print!("{name:<16}");
+        for r in rows {
+            match r.solution.stations.iter().find(|s| s.station == name) {
+                Some(s) => print!(
+                    " {:>8.3} {:>13.4e} {:>13.1}",
+                    s.mach, s.pressure_pa, s.temperature_k
+                ),
+                None => print!(" {:>8} {:>13} {:>13}", "-", "-", "-"),
+            }
+        }
+        println!();
+    }
+    println!();
+    println!(
+        "thrust versus phi and alpha: {}",
+        folder.join("thrust_vs_phi_alpha.png").display()
+    );
+}

@@ -1,0 +1,562 @@
+//! The `full-order` conduction model: transient heat conduction in the extruded lifting-surface
+//! grid ([`crate::grid`]), backward Euler in time with Picard iteration on the
+//! temperature-dependent conductivity and heat capacity.
+//!
+//! Semi-discrete equations (Galerkin finite elements; Lewis, Nithiarasu & Seetharamu,
+//! Fundamentals of the Finite Element Method for Heat and Fluid Flow, 2004, ch. 7):
+//! C(T) dT/dt + K(T) T = F, with K = Σ_e k_e(T̄_e) G_e (k at the element's mean temperature),
+//! C = diag(Σ_materials ρ c_p(T) V) (lumped), F = Σ_panels w q A (the panel's heat flux times its
+//! area, spread over the 4 face nodes below its centroid with bilinear weights, so Σ F = Σ q A
+//! exactly). All other boundaries are adiabatic.
+//!
+//! Backward Euler with the capacity at the step's midpoint temperature,
+//! C(½(Tⁿ + Tⁿ⁺¹)) (Tⁿ⁺¹ − Tⁿ)/Δt + K(Tⁿ⁺¹) Tⁿ⁺¹ = F, conserves energy exactly for a c_p linear in
+//! T (Σ_i ∫ρ c_p dT = Δt Σ F, because K's rows sum to zero) and is unconditionally stable
+//! (L-stable; Hughes, The Finite Element Method, §8.2). Picard iteration: properties at the
+//! latest iterate, a banded Cholesky solve per iteration, until the largest change is below
+//! `picard_tolerance_k`. Materials whose properties do not depend on temperature are solved in
+//! one factorization per time step size.
+
+// Index loops mirror the matrix algebra they implement.
+#![allow(clippy::needless_range_loop)]
+
+use hsv_core::error::ModelError;
+use hsv_core::material::{Material, MaterialSetting};
+use hsv_core::mesh::{PanelMesh, RegionKind};
+use hsv_core::surface_grid::SurfaceGrid;
+use hsv_core::thermal::ConductionModel;
+use hsv_core::vehicle::Side;
+use nalgebra::DVector;
+
+use crate::banded::BandMatrix;
+use crate::grid::{Layer, ThermalGrid};
+
+/// Registered name.
+pub const NAME: &str = "full-order";
+
+/// An outer layer over the structure (a thermal-protection layer), on both faces.
+#[derive(Debug, Clone, PartialEq, serde::Deserialize, serde::Serialize)]
+#[serde(deny_unknown_fields)]
+pub struct LayerSetting {
+    /// Thickness, m.
+    pub thickness_m: f64,
+    /// A built-in material name or a full material table (core `material.rs`).
+    pub material: MaterialSetting,
+    /// Elements through the layer.
+    #[serde(default = "one")]
+    pub sublayers: usize,
+}
+
+fn one() -> usize {
+    1
+}
+
+/// Settings of `[models.full-order]` (the `pod` model builds on the same table).
+#[derive(Debug, Clone, PartialEq, serde::Deserialize, serde::Serialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct Settings {
+    /// Which lifting surface the grid covers.
+    pub side: Side,
+    /// Grid elements along the chord (≥ 2; the ridge is a node line).
+    pub elements_chordwise: usize,
+    /// Grid elements along the span.
+    pub elements_spanwise: usize,
+    /// Structural material.
+    pub structure_material: MaterialSetting,
+    /// Elements through the structure's thickness.
+    pub structure_sublayers: usize,
+    /// Smallest structural thickness, m (the double wedge is sharp at its edges).
+    pub minimum_thickness_m: f64,
+    /// Outer layers over the structure on both faces, outermost first.
+    pub layers: Vec<LayerSetting>,
+    /// Picard iterations stop when no temperature changes by more than this, K.
+    pub picard_tolerance_k: f64,
+    /// Picard iterations allowed per time step.
+    pub max_picard_iterations: usize,
+}
+
+impl Default for Settings {
+    fn default() -> Self {
+        Self {
+            side: Side::Right,
+            elements_chordwise: 16,
+            elements_spanwise: 8,
+            structure_material: MaterialSetting::default(),
+            structure_sublayers: 2,
+            // Our choice: 2 mm skins at the sharp leading and trailing edges.
+            minimum_thickness_m: 0.002,
+            layers: Vec::new(),
+            picard_tolerance_k: 1e-3,
+            max_picard_iterations: 30,
+        }
+    }
+}
+
+/// What `hsv-run describe full-order` prints.
+pub const SETTINGS_DOC: &str = "\
+side = \"right\"                 # lifting surface the grid covers: \"right\" or \"left\"
+elements_chordwise = 16        # grid elements along the chord (>= 2)
+elements_spanwise = 8          # grid elements along the span
+structure_material = \"ti-6al-4v\" # structural material (name or full table)
+structure_sublayers = 2        # elements through the structure's thickness
+minimum_thickness_m = 0.002    # smallest structural thickness (sharp edges), m
+layers = []                    # outer (TPS) layers on both faces, outermost first:
+                               #   [{ thickness_m = 0.005, material = {...table...}, sublayers = 1 }]
+picard_tolerance_k = 1e-3      # Picard convergence: largest change per iteration, K
+max_picard_iterations = 30     # Picard iterations allowed per step";
+
+impl Settings {
+    /// The first setting out of range: (key, value, allowed).
+    pub fn first_invalid(&self) -> Option<(String, f64, &'static str)> {
+        let counts = [
+            ("elements_chordwise", self.elements_chordwise, 2),
+            ("elements_spanwise", self.elements_spanwise, 1),
+            ("structure_sublayers", self.structure_sublayers, 1),
+            ("max_picard_iterations", self.max_picard_iterations, 1),
+        ];
+        for (key, n, min) in counts {
+            if !(min..=2000).contains(&n) {
+                return Some((
+                    key.to_owned(),
+                    n as f64,
+                    "an integer from the minimum to 2000",
+                ));
+            }
+        }
+        let positive = [
+            ("minimum_thickness_m", self.minimum_thickness_m),
+            ("picard_tolerance_k", self.picard_tolerance_k),
+        ];
+        for (key, v) in positive {
+            if !(v.is_finite() && v > 0.0) {
+                return Some((key.to_owned(), v, "finite and > 0"));
+            }
+        }
+        for (i, layer) in self.layers.iter().enumerate() {
+            if !(layer.thickness_m.is_finite() && layer.thickness_m > 0.0) {
+                return Some((
+                    format!("layers[{i}].thickness_m"),
+                    layer.thickness_m,
+                    "finite and > 0",
+                ));
+            }
+            if !(1..=100).contains(&layer.sublayers) {
+                return Some((
+                    format!("layers[{i}].sublayers"),
+                    layer.sublayers as f64,
+                    "1 to 100",
+                ));
+            }
+        }
+        None
+    }
+}
+
+/// Where each panel of the wetted mesh meets the grid: the 4 face dofs under its centroid with
+/// their bilinear weights, and the area through which its heat flux enters (0 for panels
+/// that are not wetted lifting-surface panels, e.g. the root cap against the body).
+#[derive(Debug, Clone, PartialEq)]
+pub struct PanelMap {
+    pub dofs: Vec<[usize; 4]>,
+    pub weights: Vec<[f64; 4]>,
+    pub loaded_area_m2: Vec<f64>,
+}
+
+/// Builds the panel map: upper face for panels facing the grid's upper side, lower otherwise.
+fn map_panels(
+    grid: &SurfaceGrid,
+    thermal: &ThermalGrid,
+    mesh: &PanelMesh,
+) -> Result<PanelMap, ModelError> {
+    let points = grid
+        .map_panels(mesh)
+        .map_err(|e| ModelError::inconsistent(NAME, e.to_string()))?;
+    let top = thermal.n_levels - 1;
+    let mut map = PanelMap {
+        dofs: Vec::with_capacity(points.len()),
+        weights: Vec::with_capacity(points.len()),
+        loaded_area_m2: Vec::with_capacity(points.len()),
+    };
+    for (panel, point) in mesh.panels.iter().zip(&points) {
+        let up: nalgebra::Vector3<f64> = point.nodes.iter().map(|&n| thermal.up[n]).sum();
+        let level = if panel.normal.dot(&up) > 0.0 { top } else { 0 };
+        map.dofs.push(point.nodes.map(|n| thermal.dof(n, level)));
+        map.weights.push(point.weights);
+        let wetted = mesh.surfaces[usize::from(panel.surface)].region == RegionKind::LiftingSurface;
+        map.loaded_area_m2
+            .push(if wetted { panel.area_m2 } else { 0.0 });
+    }
+    Ok(map)
+}
+
+/// A material whose table has the same k and c_p in every row.
+fn has_constant_thermal_properties(m: &Material) -> bool {
+    m.table.windows(2).all(|w| {
+        w[0].conductivity_w_m_k == w[1].conductivity_w_m_k
+            && w[0].specific_heat_j_kg_k == w[1].specific_heat_j_kg_k
+    })
+}
+
+fn material_error(e: hsv_core::material::MaterialError) -> ModelError {
+    e.into_model_error(NAME)
+}
+
+/// The full-order conduction model (module docs). Scratch only; the state is the temperature
+/// of every dof in grid order.
+#[derive(Debug, Clone)]
+pub struct FullOrder {
+    settings: Settings,
+    grid: ThermalGrid,
+    materials: Vec<Material>,
+    constant_properties: bool,
+    panels: PanelMap,
+    /// Plate node → weights over the structure's levels (thickness average).
+    node_average: Vec<(usize, f64)>,
+    // Scratch.
+    matrix: BandMatrix,
+    factored_dt_s: Option<f64>,
+    load: Vec<f64>,
+    capacity: Vec<f64>,
+    iterate: Vec<f64>,
+    solution: Vec<f64>,
+    picard_iterations: usize,
+}
+
+impl FullOrder {
+    /// The model over `grid` (the structural grid of the lifting surface) with the wetted panel
+    /// mesh `mesh` of the same surface.
+    pub fn new(
+        grid: &SurfaceGrid,
+        mesh: &PanelMesh,
+        settings: Settings,
+    ) -> Result<Self, ModelError> {
+        if let Some((key, value, allowed)) = settings.first_invalid() {
+            return Err(ModelError::out_of_range(NAME, &key, value, allowed));
+        }
+        let mut materials = vec![
+            settings
+                .structure_material
+                .resolve()
+                .map_err(material_error)?,
+        ];
+        let mut outer = Vec::new();
+        for layer in &settings.layers {
+            materials.push(layer.material.resolve().map_err(material_error)?);
+            outer.push(Layer {
+                thickness_m: Some(layer.thickness_m),
+                material: materials.len() - 1,
+                sublayers: layer.sublayers,
+            });
+        }
+        // Lower face first: outermost lower layer, ..., structure, ..., outermost upper layer.
+        let mut stack: Vec<Layer> = outer.clone();
+        stack.push(Layer {
+            thickness_m: None,
+            material: 0,
+            sublayers: settings.structure_sublayers,
+        });
+        stack.extend(outer.iter().rev());
+        let thermal = ThermalGrid::new(grid, &stack, materials.len(), settings.minimum_thickness_m)
+            .map_err(|e| ModelError::inconsistent(NAME, e.to_string()))?;
+        let panels = map_panels(grid, &thermal, mesh)?;
+        let node_average = thermal.structure_average_weights();
+        let n = thermal.n_dofs();
+        Ok(Self {
+            constant_properties: materials.iter().all(has_constant_thermal_properties),
+            matrix: BandMatrix::zeros(n, thermal.bandwidth),
+            factored_dt_s: None,
+            load: vec![0.0; n],
+            capacity: vec![0.0; n],
+            iterate: vec![0.0; n],
+            solution: vec![0.0; n],
+            picard_iterations: 0,
+            settings,
+            grid: thermal,
+            materials,
+            panels,
+            node_average,
+        })
+    }
+
+    pub fn settings(&self) -> &Settings {
+        &self.settings
+    }
+
+    /// The extruded grid.
+    pub fn thermal_grid(&self) -> &ThermalGrid {
+        &self.grid
+    }
+
+    /// Materials: the structure first, then the outer layers in settings order.
+    pub fn materials(&self) -> &[Material] {
+        &self.materials
+    }
+
+    /// Where each wetted panel meets the grid.
+    pub fn panel_map(&self) -> &PanelMap {
+        &self.panels
+    }
+
+    /// (level, weight) pairs that average a plate node's temperature over the structure.
+    pub fn node_average_weights(&self) -> &[(usize, f64)] {
+        &self.node_average
+    }
+
+    /// Picard iterations of the last step.
+    pub fn last_picard_iterations(&self) -> usize {
+        self.picard_iterations
+    }
+
+    /// Nodal heat loads F = Σ_panels w q A, W, into `load`.
+    pub fn panel_loads(&self, flux_w_m2: &[f64], load: &mut [f64]) {
+        load.fill(0.0);
+        let p = &self.panels;
+        for i in 0..p.dofs.len() {
+            let power = flux_w_m2[i] * p.loaded_area_m2[i];
+            for a in 0..4 {
+                load[p.dofs[i][a]] += p.weights[i][a] * power;
+            }
+        }
+    }
+
+    /// Heat stored above `reference` in `state`: Σ_i Σ_m ρ_m V_im ∫_{T_ref}^{T_i} c_p dT, J
+    /// (trapezoid rule in 1 K steps over the piecewise-linear c_p; exact for linear c_p).
+    pub fn stored_energy_j(
+        &self,
+        state: &DVector<f64>,
+        reference_k: f64,
+    ) -> Result<f64, ModelError> {
+        let nm = self.grid.n_materials;
+        let mut total = 0.0;
+        for (i, &t) in state.iter().enumerate() {
+            for (m, material) in self.materials.iter().enumerate() {
+                let v = self.grid.volume_m3[i * nm + m];
+                if v > 0.0 {
+                    total += material.density_kg_m3 * v * enthalpy_rise(material, reference_k, t)?;
+                }
+            }
+        }
+        Ok(total)
+    }
+
+    /// Diagonal heat capacity at the midpoint temperatures ½(Tⁿ + T), J/K.
+    fn fill_capacity(&mut self, previous: &[f64]) -> Result<(), ModelError> {
+        let nm = self.grid.n_materials;
+        for i in 0..self.capacity.len() {
+            let t = 0.5 * (previous[i] + self.iterate[i]);
+            let mut c = 0.0;
+            for (m, material) in self.materials.iter().enumerate() {
+                let v = self.grid.volume_m3[i * nm + m];
+                if v > 0.0 {
+                    let cp = material.specific_heat_j_kg_k(t).map_err(material_error)?;
+                    c += material.density_kg_m3 * cp * v;
+                }
+            }
+            self.capacity[i] = c;
+        }
+        Ok(())
+    }
+
+    /// A = C/Δt + K(T_iterate) in band order, factorized.
+    fn assemble_and_factorize(&mut self, dt_s: f64) -> Result<(), ModelError> {
+        self.matrix.clear();
+        let band = &self.grid.band_index;
+        for (i, &c) in self.capacity.iter().enumerate() {
+            self.matrix.add(band[i], band[i], c / dt_s);
+        }
+        for e in &self.grid.elements {
+            let mean = e.dofs.iter().map(|&d| self.iterate[d]).sum::<f64>() / 8.0;
+            let k = self.materials[e.material]
+                .conductivity_w_m_k(mean)
+                .map_err(material_error)?;
+            for a in 0..8 {
+                for b in 0..=a {
+                    self.matrix.add(
+                        band[e.dofs[a]],
+                        band[e.dofs[b]],
+                        k * e.conduction_m[a * 8 + b],
+                    );
+                }
+            }
+        }
+        self.matrix.factorize().map_err(|e| {
+            ModelError::inconsistent(
+                NAME,
+                format!(
+                    "conduction matrix is not positive definite (pivot {} at row {}); \
+                     a zero-volume part of the grid?",
+                    e.pivot, e.row
+                ),
+            )
+        })
+    }
+
+    fn check_inputs(
+        &self,
+        state: &DVector<f64>,
+        flux_w_m2: &[f64],
+        dt_s: f64,
+    ) -> Result<(), ModelError> {
+        if state.len() != self.grid.n_dofs() {
+            return Err(ModelError::inconsistent(
+                NAME,
+                format!(
+                    "state has {} temperatures, the grid has {} nodes",
+                    state.len(),
+                    self.grid.n_dofs()
+                ),
+            ));
+        }
+        if flux_w_m2.len() != self.panels.dofs.len() {
+            return Err(ModelError::inconsistent(
+                NAME,
+                format!(
+                    "{} heat fluxes for {} surface panels",
+                    flux_w_m2.len(),
+                    self.panels.dofs.len()
+                ),
+            ));
+        }
+        if !(dt_s.is_finite() && dt_s > 0.0) {
+            return Err(ModelError::out_of_range(
+                NAME,
+                "time step (s)",
+                dt_s,
+                "finite and > 0",
+            ));
+        }
+        if let Some(i) = flux_w_m2.iter().position(|q| !q.is_finite()) {
+            return Err(ModelError::out_of_range(
+                NAME,
+                &format!("heat flux (W/m^2) at panel {i}"),
+                flux_w_m2[i],
+                "finite",
+            ));
+        }
+        if let Some(i) = state.iter().position(|t| !(t.is_finite() && *t > 0.0)) {
+            return Err(ModelError::out_of_range(
+                NAME,
+                &format!("temperature (K) of node {i}"),
+                state[i],
+                "finite and > 0",
+            ));
+        }
+        Ok(())
+    }
+}
+
+/// ∫_{from}^{to} c_p dT of `m`, J/kg: trapezoid rule on at most 1 K sub-steps, exact for c_p
+/// linear between table rows.
+pub fn enthalpy_rise(m: &Material, from_k: f64, to_k: f64) -> Result<f64, ModelError> {
+    let steps = ((to_k - from_k).abs().ceil() as usize).max(1);
+    let h = (to_k - from_k) / steps as f64;
+    let mut sum = 0.0;
+    let mut previous = m.specific_heat_j_kg_k(from_k).map_err(material_error)?;
+    for k in 1..=steps {
+        let next = m
+            .specific_heat_j_kg_k(from_k + h * k as f64)
+            .map_err(material_error)?;
+        sum += 0.5 * (previous + next) * h;
+        previous = next;
+    }
+    Ok(sum)
+}
+
+impl ConductionModel for FullOrder {
+    fn name(&self) -> &str {
+        NAME
+    }
+
+    fn n_states(&self) -> usize {
+        self.grid.n_dofs()
+    }
+
+    fn n_nodes(&self) -> usize {
+        self.grid.n_plate_nodes
+    }
+
+    fn n_surface_panels(&self) -> usize {
+        self.panels.dofs.len()
+    }
+
+    fn uniform_state(&self, temperature_k: f64) -> Result<DVector<f64>, ModelError> {
+        for m in &self.materials {
+            m.at(temperature_k).map_err(material_error)?;
+        }
+        Ok(DVector::from_element(self.grid.n_dofs(), temperature_k))
+    }
+
+    fn step(
+        &mut self,
+        state: &mut DVector<f64>,
+        surface_heat_flux_w_m2: &[f64],
+        dt_s: f64,
+    ) -> Result<(), ModelError> {
+        self.check_inputs(state, surface_heat_flux_w_m2, dt_s)?;
+        let mut load = std::mem::take(&mut self.load);
+        self.panel_loads(surface_heat_flux_w_m2, &mut load);
+        self.load = load;
+        self.iterate.copy_from_slice(state.as_slice());
+        let max_iterations = if self.constant_properties {
+            1
+        } else {
+            self.settings.max_picard_iterations
+        };
+        for iteration in 1..=max_iterations {
+            if !(self.constant_properties && self.factored_dt_s == Some(dt_s)) {
+                self.fill_capacity(state.as_slice())?;
+                self.assemble_and_factorize(dt_s)?;
+                self.factored_dt_s = self.constant_properties.then_some(dt_s);
+            }
+            let band = &self.grid.band_index;
+            for i in 0..state.len() {
+                self.solution[band[i]] = self.capacity[i] / dt_s * state[i] + self.load[i];
+            }
+            self.matrix.solve_in_place(&mut self.solution);
+            let mut change: f64 = 0.0;
+            for i in 0..state.len() {
+                let t = self.solution[band[i]];
+                change = change.max((t - self.iterate[i]).abs());
+                self.iterate[i] = t;
+            }
+            if !change.is_finite() {
+                return Err(ModelError::NonFinite {
+                    model: NAME.to_owned(),
+                    quantity: "temperature".to_owned(),
+                    location: format!(" in Picard iteration {iteration}"),
+                });
+            }
+            if self.constant_properties || change < self.settings.picard_tolerance_k {
+                self.picard_iterations = iteration;
+                state.as_mut_slice().copy_from_slice(&self.iterate);
+                return Ok(());
+            }
+        }
+        Err(ModelError::inconsistent(
+            NAME,
+            format!(
+                "Picard iteration did not converge to {} K in {} iterations (time step {dt_s} s); \
+                 reduce the time step or raise max_picard_iterations",
+                self.settings.picard_tolerance_k, self.settings.max_picard_iterations
+            ),
+        ))
+    }
+
+    fn surface_temperatures(&self, state: &DVector<f64>, out_k: &mut [f64]) {
+        let p = &self.panels;
+        for (i, out) in out_k.iter_mut().enumerate().take(p.dofs.len()) {
+            *out = (0..4).map(|a| p.weights[i][a] * state[p.dofs[i][a]]).sum();
+        }
+    }
+
+    fn node_temperatures(&self, state: &DVector<f64>, out_k: &mut [f64]) {
+        let levels = self.grid.n_levels;
+        for (node, out) in out_k.iter_mut().enumerate().take(self.grid.n_plate_nodes) {
+            *out = self
+                .node_average
+                .iter()
+                .map(|&(level, w)| w * state[node * levels + level])
+                .sum();
+        }
+    }
+}

@@ -1,0 +1,643 @@
+//! The `pod` conduction model: proper orthogonal decomposition of full-order temperature
+//! snapshots and Galerkin projection of the full-order equations onto the modes.
+//!
+//! **Basis** (method of snapshots, Sirovich, Q. Appl. Math. 45(3), 1987; Holmes, Lumley &
+//! Berkooz, Turbulence, Coherent Structures, Dynamical Systems and Symmetry, ch. 3): mode 0 is
+//! the uniform field 1/√n, so any uniform temperature (the initial state) is exact; the other
+//! modes are the leading left singular vectors of the snapshots with their uniform part
+//! removed, from the eigenvectors of the snapshot correlation matrix XᵀX. The energy captured,
+//! Σ_{k<r−1} σ_k² / Σ σ_k², is reported (paper: 32 modes, Falkiewicz & Cesnik).
+//!
+//! **Galerkin projection.** T ≈ Φ a with Φ orthonormal (n × r). The full-order step
+//! C(½(Tⁿ+Tⁿ⁺¹)) (Tⁿ⁺¹ − Tⁿ)/Δt + K(Tⁿ⁺¹) Tⁿ⁺¹ = F projected with Φᵀ gives
+//! C_r(½(aⁿ+aⁿ⁺¹)) (aⁿ⁺¹ − aⁿ)/Δt + K_r(aⁿ⁺¹) aⁿ⁺¹ = L q.
+//!
+//! **Nonlinearity.** Each material's k(T) and c_p(T) are replaced by their least-squares lines
+//! k ≈ k₀ + k₁ T, c_p ≈ c₀ + c₁ T over the snapshots' temperature range (Ti-6Al-4V: c_p is
+//! linear in the core table; k is within ±0.3 W/(m K) of its line over 293-923 K). Then
+//! K_r(a) = K₀ + Σ_j a_j K₁ⱼ and C_r(a) = C₀ + Σ_j a_j C₁ⱼ exactly, with K₀ = Σ_e k₀ Φ_eᵀ G_e Φ_e,
+//! K₁ⱼ = Σ_e k₁ φ̄_ej Φ_eᵀ G_e Φ_e (φ̄_ej: mode j's mean over element e, as the full order takes
+//! k at the element's mean temperature), C₀ = Φᵀ diag(c₀) Φ, C₁ⱼ = Φᵀ diag(c₁ ∘ φ_j) Φ. The
+//! online step (Picard iteration, each an r × r assembly of O(r³) and a Cholesky solve) costs
+//! nothing that grows with the grid; only the panel flux input and the outputs scale with the
+//! panel and node counts. Beyond the snapshot range the lines extrapolate.
+
+// Index loops mirror the matrix algebra they implement.
+#![allow(clippy::needless_range_loop)]
+
+use std::path::Path;
+
+use hsv_core::error::ModelError;
+use hsv_core::material::Material;
+use hsv_core::thermal::ConductionModel;
+use nalgebra::{DMatrix, DVector, SymmetricEigen};
+
+use crate::banded::BandMatrix;
+use crate::full_order::{FullOrder, Settings as FullOrderSettings};
+
+/// Registered name.
+pub const NAME: &str = "pod";
+
+/// Tag of the basis file format.
+pub const BASIS_FORMAT: &str = "hsv-pod-basis-1";
+
+/// A POD basis with what it was built from; saved and reloaded as JSON.
+#[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
+pub struct PodBasis {
+    /// [`BASIS_FORMAT`].
+    pub format: String,
+    /// Full-order settings of the grid the snapshots came from.
+    pub full_order: FullOrderSettings,
+    /// Orthonormal modes (n_dofs × n_modes), mode 0 uniform.
+    pub modes: DMatrix<f64>,
+    /// Singular values of the snapshots less their uniform part, largest first.
+    pub singular_values: Vec<f64>,
+    /// Σ σ_k² of the retained non-uniform modes over Σ σ_k² of all.
+    pub energy_fraction: f64,
+    pub n_snapshots: usize,
+    /// Lowest and highest snapshot temperature, K (the range of the property fits).
+    pub temperature_range_k: (f64, f64),
+}
+
+impl PodBasis {
+    /// `n_modes` modes (mode 0 uniform) from full-order snapshots (method of snapshots).
+    pub fn from_snapshots(
+        snapshots: &[DVector<f64>],
+        n_modes: usize,
+        full_order: FullOrderSettings,
+    ) -> Result<Self, ModelError> {
+        if n_modes < 1 {
+            return Err(ModelError::out_of_range(NAME, "modes", 0.0, ">= 1"));
+        }
+        if snapshots.len() < n_modes {
+            return Err(ModelError::inconsistent(
+                NAME,
+                format!(
+                    "the snapshot set has {} snapshots, fewer than the {n_modes} modes requested; \
+                     collect more snapshots or ask for at most {} modes",
+                    snapshots.len(),
+                    snapshots.len()
+                ),
+            ));
+        }
+        let n = snapshots[0].len();
+        if let Some(bad) = snapshots.iter().position(|s| s.len() != n) {
+            return Err(ModelError::inconsistent(
+                NAME,
+                format!(
+                    "snapshot {bad} has {} temperatures, snapshot 0 has {n}",
+                    snapshots[bad].len()
+                ),
+            ));
+        }
+        let mut lo = f64::INFINITY;
+        let mut hi = f64::NEG_INFINITY;
+        for s in snapshots {
+            for &t in s.iter() {
+                if !t.is_finite() {
+                    return Err(ModelError::NonFinite {
+                        model: NAME.to_owned(),
+                        quantity: "snapshot temperature".to_owned(),
+                        location: String::new(),
+                    });
+                }
+                lo = lo.min(t);
+                hi = hi.max(t);
+            }
+        }
+        let m = snapshots.len();
+        let uniform = DVector::from_element(n, 1.0 / (n as f64).sqrt());
+        let mut x = DMatrix::zeros(n, m);
+        for (j, s) in snapshots.iter().enumerate() {
+            let fluctuation = s - &uniform * uniform.dot(s);
+            x.set_column(j, &fluctuation);
+        }
+        let correlation = x.transpose() * &x;
+        let eigen = SymmetricEigen::new(correlation);
+        let mut order: Vec<usize> = (0..m).collect();
+        order.sort_by(|&a, &b| eigen.eigenvalues[b].total_cmp(&eigen.eigenvalues[a]));
+        let singular_values: Vec<f64> = order
+            .iter()
+            .map(|&k| eigen.eigenvalues[k].max(0.0).sqrt())
+            .collect();
+        let total: f64 = singular_values.iter().map(|s| s * s).sum();
+        let mut modes = DMatrix::zeros(n, n_modes);
+        modes.set_column(0, &uniform);
+        let largest = singular_values.first().copied().unwrap_or(0.0);
+        for k in 1..n_modes {
+            let sigma = singular_values[k - 1];
+            if !(sigma > 1e-10 * largest && sigma > 0.0) {
+                return Err(ModelError::inconsistent(
+                    NAME,
+                    format!(
+                        "the snapshots span only {} independent non-uniform directions; ask for \
+                         at most {} modes",
+                        k - 1,
+                        k
+                    ),
+                ));
+            }
+            let v = eigen.eigenvectors.column(order[k - 1]);
+            let phi = (&x * v) / sigma;
+            modes.set_column(k, &phi);
+        }
+        orthonormalize(&mut modes)?;
+        let retained: f64 = singular_values[..n_modes - 1].iter().map(|s| s * s).sum();
+        Ok(Self {
+            format: BASIS_FORMAT.to_owned(),
+            full_order,
+            modes,
+            singular_values,
+            energy_fraction: if total > 0.0 { retained / total } else { 1.0 },
+            n_snapshots: m,
+            temperature_range_k: (lo, hi),
+        })
+    }
+
+    pub fn n_modes(&self) -> usize {
+        self.modes.ncols()
+    }
+
+    /// Writes the basis as JSON to `path`.
+    pub fn save(&self, path: &Path) -> Result<(), ModelError> {
+        let text = serde_json::to_string(self).map_err(|e| {
+            ModelError::inconsistent(NAME, format!("cannot encode the POD basis: {e}"))
+        })?;
+        std::fs::write(path, text).map_err(|e| {
+            ModelError::inconsistent(
+                NAME,
+                format!("cannot write POD basis file {}: {e}", path.display()),
+            )
+        })
+    }
+
+    /// Reads a basis written by [`Self::save`].
+    pub fn load(path: &Path) -> Result<Self, ModelError> {
+        let text = std::fs::read_to_string(path).map_err(|e| {
+            ModelError::inconsistent(
+                NAME,
+                format!("cannot read POD basis file {}: {e}", path.display()),
+            )
+        })?;
+        let basis: Self = serde_json::from_str(&text).map_err(|e| {
+            ModelError::inconsistent(
+                NAME,
+                format!("POD basis file {} is not a basis: {e}", path.display()),
+            )
+        })?;
+        if basis.format != BASIS_FORMAT {
+            return Err(ModelError::inconsistent(
+                NAME,
+                format!(
+                    "POD basis file {} has format `{}`, expected `{BASIS_FORMAT}`",
+                    path.display(),
+                    basis.format
+                ),
+            ));
+        }
+        Ok(basis)
+    }
+}
+
+/// dst += a src (same shapes), without allocating.
+fn add_scaled(dst: &mut DMatrix<f64>, a: f64, src: &DMatrix<f64>) {
+    for (d, s) in dst.as_mut_slice().iter_mut().zip(src.as_slice()) {
+        *d += a * s;
+    }
+}
+
+/// Modified Gram-Schmidt on the columns, in place.
+fn orthonormalize(modes: &mut DMatrix<f64>) -> Result<(), ModelError> {
+    for k in 0..modes.ncols() {
+        for j in 0..k {
+            let dot = modes.column(j).dot(&modes.column(k));
+            let prev = modes.column(j).clone_owned();
+            let mut col = modes.column_mut(k);
+            col.axpy(-dot, &prev, 1.0);
+        }
+        let norm = modes.column(k).norm();
+        if norm.is_nan() || norm <= 1e-12 {
+            return Err(ModelError::inconsistent(
+                NAME,
+                format!("POD mode {k} is linearly dependent on the earlier modes"),
+            ));
+        }
+        modes.column_mut(k).scale_mut(1.0 / norm);
+    }
+    Ok(())
+}
+
+/// Runs `model` from a uniform `initial_k` for `steps` steps of `dt_s`, with the heat flux of
+/// each step from `flux(surface temperatures, out)`, and returns the state after every
+/// `every`-th step (the snapshots of one flight condition).
+pub fn collect_snapshots(
+    model: &mut FullOrder,
+    initial_k: f64,
+    dt_s: f64,
+    steps: usize,
+    every: usize,
+    mut flux: impl FnMut(&[f64], &mut [f64]) -> Result<(), ModelError>,
+) -> Result<Vec<DVector<f64>>, ModelError> {
+    let every = every.max(1);
+    let mut state = model.uniform_state(initial_k)?;
+    let mut surface = vec![0.0; model.n_surface_panels()];
+    let mut q = vec![0.0; model.n_surface_panels()];
+    let mut out = Vec::with_capacity(steps / every + 1);
+    for k in 1..=steps {
+        model.surface_temperatures(&state, &mut surface);
+        flux(&surface, &mut q)?;
+        model.step(&mut state, &q, dt_s)?;
+        if k % every == 0 {
+            out.push(state.clone());
+        }
+    }
+    Ok(out)
+}
+
+/// Least-squares line a + b T through `f` over [lo, hi] sampled every ≤ 1 K.
+fn linear_fit(
+    f: impl Fn(f64) -> Result<f64, ModelError>,
+    lo: f64,
+    hi: f64,
+) -> Result<(f64, f64), ModelError> {
+    if hi - lo < 1e-9 {
+        return Ok((f(lo)?, 0.0));
+    }
+    let n = ((hi - lo).ceil() as usize).max(2) + 1;
+    let (mut st, mut sy, mut stt, mut sty) = (0.0, 0.0, 0.0, 0.0);
+    for k in 0..n {
+        let t = lo + (hi - lo) * k as f64 / (n - 1) as f64;
+        let y = f(t)?;
+        st += t;
+        sy += y;
+        stt += t * t;
+        sty += t * y;
+    }
+    let nf = n as f64;
+    let b = (nf * sty - st * sy) / (nf * stt - st * st);
+    Ok(((sy - b * st) / nf, b))
+}
+
+/// Lines (k₀, k₁, c₀, c₁) of a material's conductivity and specific heat over [lo, hi].
+fn property_lines(m: &Material, lo: f64, hi: f64) -> Result<[f64; 4], ModelError> {
+    let err = |e: hsv_core::material::MaterialError| e.into_model_error(NAME);
+    let (k0, k1) = linear_fit(|t| m.conductivity_w_m_k(t).map_err(err), lo, hi)?;
+    let (c0, c1) = linear_fit(|t| m.specific_heat_j_kg_k(t).map_err(err), lo, hi)?;
+    Ok([k0, k1, c0, c1])
+}
+
+/// Settings of `[models.pod]`; the grid and materials come from `[models.full-order]`.
+#[derive(Debug, Clone, PartialEq, serde::Deserialize, serde::Serialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct Settings {
+    /// JSON basis file (written by `PodBasis::save`), relative to the working directory.
+    pub basis_file: String,
+    /// Modes to use, at most the basis's (paper: 32).
+    pub modes: usize,
+    /// Picard iterations stop when the coefficient change (an upper bound of the largest
+    /// temperature change) is below this, K.
+    pub picard_tolerance_k: f64,
+    pub max_picard_iterations: usize,
+}
+
+impl Default for Settings {
+    fn default() -> Self {
+        Self {
+            basis_file: "pod-basis.json".to_owned(),
+            modes: 32,
+            picard_tolerance_k: 1e-3,
+            max_picard_iterations: 30,
+        }
+    }
+}
+
+/// What `hsv-run describe pod` prints.
+pub const SETTINGS_DOC: &str = "\
+basis_file = \"pod-basis.json\"  # POD basis (JSON); grid and materials from [models.full-order]
+modes = 32                     # modes used (paper: 32), at most the basis's
+picard_tolerance_k = 1e-3      # Picard convergence on the mode coefficients, K
+max_picard_iterations = 30     # Picard iterations allowed per step";
+
+/// The POD Galerkin conduction model (module docs). State: the r mode coefficients.
+#[derive(Debug, Clone)]
+pub struct Pod {
+    settings: Settings,
+    basis: PodBasis,
+    r: usize,
+    k0: DMatrix<f64>,
+    k1: Vec<DMatrix<f64>>,
+    c0: DMatrix<f64>,
+    c1: Vec<DMatrix<f64>>,
+    /// Reduced load per unit panel flux: column p = Σ_a w_a A_p Φ(dof_a, :)ᵀ.
+    load_map: DMatrix<f64>,
+    /// Column p: panel p's wall temperature per coefficient.
+    surface_map: DMatrix<f64>,
+    /// Column i: structural node i's temperature per coefficient.
+    node_map: DMatrix<f64>,
+    /// Φᵀ 1: the coefficients of a uniform unit field.
+    uniform: DVector<f64>,
+    // Scratch.
+    matrix: BandMatrix,
+    capacity: DMatrix<f64>,
+    conduction: DMatrix<f64>,
+    load: DVector<f64>,
+    midpoint: DVector<f64>,
+    iterate: DVector<f64>,
+    rhs: DVector<f64>,
+    picard_iterations: usize,
+}
+
+impl Pod {
+    /// Projects `full` onto the first `settings.modes` modes of `basis`.
+    pub fn new(full: &FullOrder, basis: PodBasis, settings: Settings) -> Result<Self, ModelError> {
+        let grid = full.thermal_grid();
+        if basis.modes.nrows() != grid.n_dofs() {
+            return Err(ModelError::inconsistent(
+                NAME,
+                format!(
+                    "the POD basis has {} temperatures per mode, the full-order grid {}",
+                    basis.modes.nrows(),
+                    grid.n_dofs()
+                ),
+            ));
+        }
+        if basis.full_order != *full.settings() {
+            return Err(ModelError::inconsistent(
+                NAME,
+                "the POD basis was built for other [models.full-order] settings; rebuild it",
+            ));
+        }
+        let r = settings.modes;
+        if !(1..=basis.n_modes()).contains(&r) {
+            return Err(ModelError::out_of_range(
+                NAME,
+                "modes",
+                r as f64,
+                format!("1 to {}, the modes in the basis", basis.n_modes()),
+            ));
+        }
+        if !(settings.picard_tolerance_k.is_finite() && settings.picard_tolerance_k > 0.0) {
+            return Err(ModelError::out_of_range(
+                NAME,
+                "picard_tolerance_k",
+                settings.picard_tolerance_k,
+                "finite and > 0",
+            ));
+        }
+        if settings.max_picard_iterations < 1 {
+            return Err(ModelError::out_of_range(
+                NAME,
+                "max_picard_iterations",
+                0.0,
+                ">= 1",
+            ));
+        }
+        let phi = basis.modes.columns(0, r).clone_owned();
+        let (lo, hi) = basis.temperature_range_k;
+        let lines: Vec<[f64; 4]> = full
+            .materials()
+            .iter()
+            .map(|m| property_lines(m, lo, hi))
+            .collect::<Result<_, _>>()?;
+        // Conduction: per element, A_e = Φ_eᵀ G_e Φ_e.
+        let mut k0 = DMatrix::zeros(r, r);
+        let mut k1 = vec![DMatrix::zeros(r, r); r];
+        for e in &grid.elements {
+            let phi_e = DMatrix::from_fn(8, r, |a, j| phi[(e.dofs[a], j)]);
+            let g = DMatrix::from_row_slice(8, 8, &e.conduction_m);
+            let a_e = phi_e.transpose() * g * &phi_e;
+            let [ka, kb, _, _] = lines[e.material];
+            add_scaled(&mut k0, ka, &a_e);
+            for j in 0..r {
+                let mean = phi_e.column(j).sum() / 8.0;
+                add_scaled(&mut k1[j], kb * mean, &a_e);
+            }
+        }
+        // Capacity: c_i(T) = c0_i + c1_i T_i.
+        let nm = grid.n_materials;
+        let n = grid.n_dofs();
+        let mut c0_diag = DVector::zeros(n);
+        let mut c1_diag = DVector::zeros(n);
+        for i in 0..n {
+            for (m, material) in full.materials().iter().enumerate() {
+                let v = grid.volume_m3[i * nm + m] * material.density_kg_m3;
+                c0_diag[i] += v * lines[m][2];
+                c1_diag[i] += v * lines[m][3];
+            }
+        }
+        let weighted = |w: &DVector<f64>| {
+            let scaled = DMatrix::from_fn(n, r, |i, j| w[i] * phi[(i, j)]);
+            phi.transpose() * scaled
+        };
+        let c0 = weighted(&c0_diag);
+        let c1: Vec<DMatrix<f64>> = (0..r)
+            .map(|j| weighted(&c1_diag.component_mul(&phi.column(j))))
+            .collect();
+        // Inputs and outputs.
+        let map = full.panel_map();
+        let n_panels = map.dofs.len();
+        let mut load_map = DMatrix::zeros(r, n_panels);
+        let mut surface_map = DMatrix::zeros(r, n_panels);
+        for p in 0..n_panels {
+            for a in 0..4 {
+                let w = map.weights[p][a];
+                for j in 0..r {
+                    let v = phi[(map.dofs[p][a], j)];
+                    load_map[(j, p)] += w * map.loaded_area_m2[p] * v;
+                    surface_map[(j, p)] += w * v;
+                }
+            }
+        }
+        let mut node_map = DMatrix::zeros(r, grid.n_plate_nodes);
+        for node in 0..grid.n_plate_nodes {
+            for &(level, w) in full.node_average_weights() {
+                for j in 0..r {
+                    node_map[(j, node)] += w * phi[(grid.dof(node, level), j)];
+                }
+            }
+        }
+        let uniform = phi.transpose() * DVector::from_element(n, 1.0);
+        Ok(Self {
+            matrix: BandMatrix::zeros(r, r.saturating_sub(1)),
+            capacity: DMatrix::zeros(r, r),
+            conduction: DMatrix::zeros(r, r),
+            load: DVector::zeros(r),
+            midpoint: DVector::zeros(r),
+            iterate: DVector::zeros(r),
+            rhs: DVector::zeros(r),
+            picard_iterations: 0,
+            settings,
+            basis,
+            r,
+            k0,
+            k1,
+            c0,
+            c1,
+            load_map,
+            surface_map,
+            node_map,
+            uniform,
+        })
+    }
+
+    pub fn basis(&self) -> &PodBasis {
+        &self.basis
+    }
+
+    /// Picard iterations of the last step.
+    pub fn last_picard_iterations(&self) -> usize {
+        self.picard_iterations
+    }
+
+    /// The full-order temperature field of coefficients `state`, Φ a.
+    pub fn reconstruct(&self, state: &DVector<f64>) -> DVector<f64> {
+        self.basis.modes.columns(0, self.r) * state
+    }
+
+    /// Coefficients of the full-order field `temperatures`, Φᵀ T.
+    pub fn project(&self, temperatures: &DVector<f64>) -> DVector<f64> {
+        self.basis.modes.columns(0, self.r).transpose() * temperatures
+    }
+}
+
+impl ConductionModel for Pod {
+    fn name(&self) -> &str {
+        NAME
+    }
+
+    fn n_states(&self) -> usize {
+        self.r
+    }
+
+    fn n_nodes(&self) -> usize {
+        self.node_map.ncols()
+    }
+
+    fn n_surface_panels(&self) -> usize {
+        self.surface_map.ncols()
+    }
+
+    fn uniform_state(&self, temperature_k: f64) -> Result<DVector<f64>, ModelError> {
+        if !(temperature_k.is_finite() && temperature_k > 0.0) {
+            return Err(ModelError::out_of_range(
+                NAME,
+                "temperature (K)",
+                temperature_k,
+                "finite and > 0",
+            ));
+        }
+        Ok(&self.uniform * temperature_k)
+    }
+
+    fn step(
+        &mut self,
+        state: &mut DVector<f64>,
+        surface_heat_flux_w_m2: &[f64],
+        dt_s: f64,
+    ) -> Result<(), ModelError> {
+        if state.len() != self.r || surface_heat_flux_w_m2.len() != self.load_map.ncols() {
+            return Err(ModelError::inconsistent(
+                NAME,
+                format!(
+                    "{} coefficients and {} heat fluxes for a model of {} modes and {} panels",
+                    state.len(),
+                    surface_heat_flux_w_m2.len(),
+                    self.r,
+                    self.load_map.ncols()
+                ),
+            ));
+        }
+        if !(dt_s.is_finite() && dt_s > 0.0) {
+            return Err(ModelError::out_of_range(
+                NAME,
+                "time step (s)",
+                dt_s,
+                "finite and > 0",
+            ));
+        }
+        if let Some(i) = surface_heat_flux_w_m2.iter().position(|q| !q.is_finite()) {
+            return Err(ModelError::out_of_range(
+                NAME,
+                &format!("heat flux (W/m^2) at panel {i}"),
+                surface_heat_flux_w_m2[i],
+                "finite",
+            ));
+        }
+        let r = self.r;
+        for j in 0..r {
+            self.load[j] = 0.0;
+        }
+        for (p, &q) in surface_heat_flux_w_m2.iter().enumerate() {
+            self.load.axpy(q, &self.load_map.column(p), 1.0);
+        }
+        self.iterate.copy_from(state);
+        for iteration in 1..=self.settings.max_picard_iterations {
+            self.midpoint.copy_from(state);
+            self.midpoint += &self.iterate;
+            self.midpoint *= 0.5;
+            self.capacity.copy_from(&self.c0);
+            self.conduction.copy_from(&self.k0);
+            for j in 0..r {
+                add_scaled(&mut self.capacity, self.midpoint[j], &self.c1[j]);
+                add_scaled(&mut self.conduction, self.iterate[j], &self.k1[j]);
+            }
+            self.matrix.clear();
+            for a in 0..r {
+                for b in 0..=a {
+                    let v = self.capacity[(a, b)] / dt_s + self.conduction[(a, b)];
+                    self.matrix.add(a, b, v);
+                }
+            }
+            self.matrix.factorize().map_err(|e| {
+                ModelError::inconsistent(
+                    NAME,
+                    format!(
+                        "reduced conduction matrix is not positive definite (pivot {} at mode \
+                         {}); the state left the range the basis represents",
+                        e.pivot, e.row
+                    ),
+                )
+            })?;
+            self.rhs.gemv(1.0 / dt_s, &self.capacity, state, 0.0);
+            self.rhs += &self.load;
+            self.matrix.solve_in_place(self.rhs.as_mut_slice());
+            let mut change = 0.0;
+            for j in 0..r {
+                change += (self.rhs[j] - self.iterate[j]).powi(2);
+            }
+            let change = change.sqrt();
+            self.iterate.copy_from(&self.rhs);
+            if !change.is_finite() {
+                return Err(ModelError::NonFinite {
+                    model: NAME.to_owned(),
+                    quantity: "mode coefficient".to_owned(),
+                    location: format!(" in Picard iteration {iteration}"),
+                });
+            }
+            if change < self.settings.picard_tolerance_k {
+                self.picard_iterations = iteration;
+                state.copy_from(&self.iterate);
+                return Ok(());
+            }
+        }
+        Err(ModelError::inconsistent(
+            NAME,
+            format!(
+                "Picard iteration did not converge to {} K in {} iterations (time step {dt_s} s)",
+                self.settings.picard_tolerance_k, self.settings.max_picard_iterations
+            ),
+        ))
+    }
+
+    fn surface_temperatures(&self, state: &DVector<f64>, out_k: &mut [f64]) {
+        for (p, out) in out_k.iter_mut().enumerate().take(self.surface_map.ncols()) {
+            *out = self.surface_map.column(p).dot(state);
+        }
+    }
+
+    fn node_temperatures(&self, state: &DVector<f64>, out_k: &mut [f64]) {
+        for (i, out) in out_k.iter_mut().enumerate().take(self.node_map.ncols()) {
+            *out = self.node_map.column(i).dot(state);
+        }
+    }
+}

@@ -1,0 +1,258 @@
+//! The `pod` model against the `full-order` model it reduces, on the sample lifting surface.
+//!
+//! Heating: a convective boundary condition q = h(x) (T_aw − T_w) − ε σ T_w⁴ with the
+//! flat-plate laminar decay h = h_ref (1 m / x)^(1/2) along the running length x from the
+//! leading edge (Anderson, Hypersonic and High-Temperature Gas Dynamics §6.9: St ∝ Re_x^(−1/2)),
+//! so each "flight condition" is a pair (T_aw, h_ref). Snapshots come from three conditions; the
+//! check is a fourth condition between them, not in the snapshots. T_aw stays below 923 K,
+//! the top of the Ti-6Al-4V property table.
+
+use std::sync::OnceLock;
+
+use hsv_core::config::LoadedConfig;
+use hsv_core::mesh::PanelMesh;
+use hsv_core::registry::{ModelContext, Registry};
+use hsv_core::surface_grid::SurfaceGrid;
+use hsv_core::thermal::ConductionModel;
+use hsv_core::vehicle::{LiftingSurfaceConfig, Side, lifting_surface_mesh};
+use hsv_model_conduction::{
+    FullOrder, FullOrderSettings, Pod, PodBasis, PodSettings, collect_snapshots,
+};
+use nalgebra::DVector;
+
+const SIGMA: f64 = 5.670_374_419e-8;
+const DT: f64 = 0.5;
+const STEPS: usize = 120;
+
+fn lifting() -> LiftingSurfaceConfig {
+    LoadedConfig::sample().unwrap().config.lifting_surface
+}
+
+fn full_order() -> FullOrder {
+    let cfg = lifting();
+    let settings = FullOrderSettings::default();
+    let grid = SurfaceGrid::lifting_surface(
+        &cfg,
+        Side::Right,
+        settings.elements_chordwise,
+        settings.elements_spanwise,
+    )
+    .unwrap();
+    let mesh = lifting_surface_mesh(&cfg, Side::Right).unwrap();
+    FullOrder::new(&grid, &mesh, settings).unwrap()
+}
+
+/// Running length of each panel centroid from the leading edge, m (at least 1 cm).
+fn running_lengths(mesh: &PanelMesh, cfg: &LiftingSurfaceConfig) -> Vec<f64> {
+    let tan = cfg.leading_edge_sweep_deg.to_radians().tan();
+    let root_le = cfg.pivot_aft_of_nose_m - cfg.pivot_root_chord_fraction * cfg.root_chord_m;
+    mesh.panels
+        .iter()
+        .map(|p| {
+            let eta = ((p.centroid.y - cfg.root_y_m) / cfg.span_m).clamp(0.0, 1.0);
+            (-p.centroid.x - (root_le + eta * cfg.span_m * tan)).max(0.01)
+        })
+        .collect()
+}
+
+/// q = h(x)(T_aw − T_w) − 0.8 σ T_w⁴ per panel.
+fn convective(x: &[f64], t_aw: f64, h_ref: f64) -> impl FnMut(&[f64], &mut [f64]) + '_ {
+    move |wall: &[f64], q: &mut [f64]| {
+        for i in 0..q.len() {
+            let h = h_ref / x[i].sqrt();
+            q[i] = h * (t_aw - wall[i]) - 0.8 * SIGMA * wall[i].powi(4);
+        }
+    }
+}
+
+/// Snapshots of three conditions, every step of 0.5 s for 60 s (360 snapshots).
+fn snapshots() -> &'static Vec<DVector<f64>> {
+    static SNAPSHOTS: OnceLock<Vec<DVector<f64>>> = OnceLock::new();
+    SNAPSHOTS.get_or_init(|| {
+        let cfg = lifting();
+        let x = running_lengths(&lifting_surface_mesh(&cfg, Side::Right).unwrap(), &cfg);
+        let mut model = full_order();
+        let mut all = Vec::new();
+        for (t_aw, h_ref) in [(900.0, 50.0), (700.0, 120.0), (800.0, 80.0)] {
+            let mut flux = convective(&x, t_aw, h_ref);
+            all.extend(
+                collect_snapshots(&mut model, 293.0, DT, STEPS, 1, |w, q| {
+                    flux(w, q);
+                    Ok(())
+                })
+                .unwrap(),
+            );
+        }
+        all
+    })
+}
+
+fn basis(modes: usize) -> PodBasis {
+    PodBasis::from_snapshots(snapshots(), modes, FullOrderSettings::default()).unwrap()
+}
+
+/// The paper's 32 modes capture all but ~1e-6 of the snapshot energy.
+#[test]
+fn thirty_two_modes_capture_the_snapshot_energy() {
+    let b = basis(32);
+    println!(
+        "energy fraction {:.9}, sigma_1 {:.3e}, sigma_31 {:.3e}",
+        b.energy_fraction, b.singular_values[0], b.singular_values[30]
+    );
+    assert!(b.energy_fraction > 0.99999, "{}", b.energy_fraction);
+    assert!(b.energy_fraction <= 1.0);
+    // Orthonormal, mode 0 uniform.
+    let gram = b.modes.transpose() * &b.modes;
+    for i in 0..32 {
+        for j in 0..32 {
+            let expected = if i == j { 1.0 } else { 0.0 };
+            assert!((gram[(i, j)] - expected).abs() < 1e-10);
+        }
+    }
+    let n = b.modes.nrows() as f64;
+    assert!(
+        b.modes
+            .column(0)
+            .iter()
+            .all(|v| (v - 1.0 / n.sqrt()).abs() < 1e-12)
+    );
+    // More modes capture more.
+    assert!(basis(8).energy_fraction < b.energy_fraction);
+}
+
+/// POD (32 modes) against the full-order model at a condition not in the snapshots
+/// (T_aw = 850 K, h_ref = 65 W/(m² K)), 60 s: the largest temperature difference anywhere in
+/// the structure stays below 1 % of the largest temperature rise.
+#[test]
+fn pod_reproduces_the_full_order_model_off_the_snapshots() {
+    let cfg = lifting();
+    let mesh = lifting_surface_mesh(&cfg, Side::Right).unwrap();
+    let x = running_lengths(&mesh, &cfg);
+    let mut full = full_order();
+    let mut pod = Pod::new(&full, basis(32), PodSettings::default()).unwrap();
+    let mut t_full = full.uniform_state(293.0).unwrap();
+    let mut a = pod.uniform_state(293.0).unwrap();
+    let n = mesh.panels.len();
+    let (mut wall_full, mut wall_pod) = (vec![0.0; n], vec![0.0; n]);
+    let (mut q_full, mut q_pod) = (vec![0.0; n], vec![0.0; n]);
+    let mut flux = convective(&x, 850.0, 65.0);
+    let mut worst: f64 = 0.0;
+    let mut rise: f64 = 0.0;
+    for _ in 0..STEPS {
+        full.surface_temperatures(&t_full, &mut wall_full);
+        pod.surface_temperatures(&a, &mut wall_pod);
+        flux(&wall_full, &mut q_full);
+        flux(&wall_pod, &mut q_pod);
+        full.step(&mut t_full, &q_full, DT).unwrap();
+        pod.step(&mut a, &q_pod, DT).unwrap();
+        let reconstructed = pod.reconstruct(&a);
+        worst = worst.max((reconstructed - &t_full).amax());
+        rise = rise.max(t_full.max() - 293.0);
+    }
+    println!("largest |T_pod - T_full| = {worst:.4} K, largest rise {rise:.1} K");
+    assert!(rise > 100.0);
+    assert!(worst < 0.01 * rise, "{worst} K vs rise {rise} K");
+    // Node and surface outputs agree too.
+    let mut nodes_full = vec![0.0; full.n_nodes()];
+    let mut nodes_pod = vec![0.0; pod.n_nodes()];
+    full.node_temperatures(&t_full, &mut nodes_full);
+    pod.node_temperatures(&a, &mut nodes_pod);
+    for (f, p) in nodes_full.iter().zip(&nodes_pod) {
+        assert!((f - p).abs() < 0.01 * rise);
+    }
+}
+
+#[test]
+fn a_snapshot_set_smaller_than_the_mode_count_is_an_error() {
+    let few: Vec<DVector<f64>> = snapshots()[..10].to_vec();
+    let err = PodBasis::from_snapshots(&few, 32, FullOrderSettings::default())
+        .unwrap_err()
+        .to_string();
+    assert!(
+        err.contains("10 snapshots") && err.contains("32 modes"),
+        "{err}"
+    );
+}
+
+/// The basis survives a JSON round trip, and the registered `pod` loads it by its settings;
+/// a basis built for other full-order settings or a missing file are clear errors.
+#[test]
+fn basis_is_saved_and_reloaded_by_the_registered_model() {
+    let b = basis(12);
+    let dir = std::env::temp_dir().join(format!("hsv-pod-test-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let path = dir.join("basis.json");
+    b.save(&path).unwrap();
+    let back = PodBasis::load(&path).unwrap();
+    assert_eq!(back.modes.shape(), b.modes.shape());
+    assert!((back.modes.clone() - &b.modes).amax() < 1e-15);
+    assert_eq!(back.singular_values.len(), b.singular_values.len());
+
+    let loaded = LoadedConfig::sample().unwrap();
+    let config = loaded.raw.clone();
+    let mut settings = toml::Table::new();
+    settings.insert(
+        "basis_file".into(),
+        toml::Value::String(path.display().to_string()),
+    );
+    settings.insert("modes".into(), toml::Value::Integer(12));
+    let registry = Registry::builtin().unwrap();
+    let model = registry
+        .create_conduction("pod", &context(&settings, &config))
+        .unwrap();
+    assert_eq!(model.n_states(), 12);
+    let state = model.uniform_state(293.0).unwrap();
+    let mut nodes = vec![0.0; model.n_nodes()];
+    model.node_temperatures(&state, &mut nodes);
+    assert!(nodes.iter().all(|t| (t - 293.0).abs() < 1e-9));
+
+    // Too many modes for the basis.
+    settings.insert("modes".into(), toml::Value::Integer(40));
+    let err = registry
+        .create_conduction("pod", &context(&settings, &config))
+        .err()
+        .unwrap()
+        .to_string();
+    assert!(err.contains("modes") && err.contains("12"), "{err}");
+    settings.insert("modes".into(), toml::Value::Integer(12));
+
+    // A basis for another grid.
+    let mut other = config.clone();
+    let models = other
+        .entry("models")
+        .or_insert(toml::Value::Table(toml::Table::new()));
+    let mut fo = toml::Table::new();
+    fo.insert("elements_spanwise".into(), toml::Value::Integer(6));
+    models
+        .as_table_mut()
+        .unwrap()
+        .insert("full-order".into(), toml::Value::Table(fo));
+    let err = registry
+        .create_conduction("pod", &context(&settings, &other))
+        .err()
+        .unwrap()
+        .to_string();
+    assert!(err.contains("basis"), "{err}");
+
+    // No basis file.
+    std::fs::remove_file(&path).unwrap();
+    let err = registry
+        .create_conduction("pod", &context(&settings, &config))
+        .err()
+        .unwrap()
+        .to_string();
+    assert!(
+        err.contains("models.pod.basis_file") && err.contains("does not exist"),
+        "{err}"
+    );
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+fn context<'a>(settings: &'a toml::Table, config: &'a toml::Table) -> ModelContext<'a> {
+    ModelContext {
+        settings,
+        key_path: "models.pod",
+        file: "sample-hsv.toml",
+        config,
+    }
+}

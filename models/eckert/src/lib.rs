@@ -1,0 +1,524 @@
+//! The `eckert` heat-flux model: flat-plate convection at a reference temperature along each
+//! streamwise strip, minus re-radiation from the hot wall.
+//!
+//! For every panel, from the aero model's edge state (T_e, p_e, u_e, M_e), the running length x
+//! from the leading edge and the wall temperature T_w:
+//! 1. recovery factor r = Pr^(1/2) laminar, Pr^(1/3) turbulent, and recovery (adiabatic-wall)
+//!    temperature T_aw = T_e (1 + r (γ−1)/2 M_e²) (Anderson, Hypersonic and High-Temperature Gas
+//!    Dynamics, 2nd ed., §6.7);
+//! 2. reference temperature T*: Eckert, T* = T_e + 0.5 (T_w − T_e) + 0.22 (T_aw − T_e) (Eckert,
+//!    J. Aero. Sci. 22(8), 1955; Anderson §6.9), or Meador & Smart,
+//!    T*/T_e = 0.45 + 0.55 T_w/T_e + 0.16 r (γ−1)/2 M_e² laminar and
+//!    T*/T_e = 0.5 + 0.5 T_w/T_e + 0.16 r (γ−1)/2 M_e² turbulent
+//!    (Meador & Smart, "Reference enthalpy method developed from solutions of the boundary-layer
+//!    equations", AIAA J. 43(1), 2005; for a calorically perfect gas h* = c_p T*);
+//! 3. properties at T*: ρ* = p_e / (R T*), μ* from Sutherland's law (USSA-1976 eq. 51), constant
+//!    Prandtl number, Re_x* = ρ* u_e x / μ*;
+//! 4. skin friction C_f* = 0.664 / √Re_x* laminar (Blasius) or C_f* = 0.0592 / Re_x*^0.2
+//!    turbulent (1/7-power law; Schlichting, Boundary-Layer Theory, 7th ed., ch. XXI, 5e5 < Re_x < 1e7);
+//! 5. Reynolds analogy (Colburn) St* = C_f*/2 · Pr^(−2/3);
+//! 6. q_conv = ρ* u_e c_p St* (T_aw − T_w) and q_net = q_conv − ε σ T_w⁴.
+//!
+//! The regime is a setting: all laminar, all turbulent, or transitional (turbulent where the
+//! edge Reynolds number ρ_e u_e x / μ_e reaches `transition_reynolds`).
+//!
+//! **Running length.** Along a strip (panels ordered leading edge to trailing edge) the running
+//! length of panel i is Σ_{j<i} L_j + L_i / 2, with L_j = A_j / w_j the panel's mean length
+//! along the strip and w_j its width across it. Panels in no strip (caps, unstructured meshes)
+//! take `default_running_length_m`.
+//!
+//! **No boundary layer.** A vacuum panel (p_e = 0 or ρ_e = 0: expanded past the maximum
+//! Prandtl-Meyer angle) and a stagnant panel (u_e = 0: the stagnation state behind a detached
+//! shock) get no convection, only re-radiation: flat-plate relations do not hold there, and
+//! stagnation-point heating is outside this model. [`HeatFluxDiagnostics`] counts both.
+
+use hsv_core::aero::{AeroSolution, EdgeState};
+use hsv_core::atmosphere::sutherland_viscosity;
+use hsv_core::error::ModelError;
+use hsv_core::flow::FlightCondition;
+use hsv_core::gas::PerfectGas;
+use hsv_core::material::Material;
+use hsv_core::mesh::PanelMesh;
+use hsv_core::registry::{Constructor, ModelContext, ModelDescriptor};
+use hsv_core::thermal::HeatFluxModel;
+
+/// Registered name.
+pub const NAME: &str = "eckert";
+
+pub use hsv_core::thermal::STEFAN_BOLTZMANN_W_M2_K4;
+
+/// Which reference-temperature correlation sets T*.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Deserialize, serde::Serialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum Reference {
+    /// Eckert (1955): T* = T_e + 0.5 (T_w − T_e) + 0.22 (T_aw − T_e).
+    Eckert,
+    /// Meador & Smart (2005): separate laminar and turbulent fits to boundary-layer solutions.
+    MeadorSmart,
+}
+
+/// Which boundary-layer state the skin-friction law assumes.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Deserialize, serde::Serialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum Regime {
+    Laminar,
+    Turbulent,
+    /// Laminar below `transition_reynolds` (edge Reynolds number on the running length),
+    /// turbulent from there on.
+    Transitional,
+}
+
+/// Settings of `[models.eckert]`.
+#[derive(Debug, Clone, Copy, PartialEq, serde::Deserialize, serde::Serialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct Settings {
+    /// Reference-temperature correlation.
+    pub reference: Reference,
+    /// Laminar, turbulent or transitional.
+    pub regime: Regime,
+    /// Edge Reynolds number ρ_e u_e x / μ_e where a transitional boundary layer turns turbulent.
+    pub transition_reynolds: f64,
+    /// Prandtl number of air, constant (0.71 near 300-1000 K; Anderson, Hypersonic §6.7).
+    pub prandtl_number: f64,
+    /// Total hemispherical emissivity of the wall, 0 to 1.
+    pub emissivity: f64,
+    /// Wall temperature above which the structure has melted, K.
+    pub melting_point_k: f64,
+    /// Running length of panels that lie in no strip, m.
+    pub default_running_length_m: f64,
+}
+
+impl Default for Settings {
+    fn default() -> Self {
+        Self {
+            reference: Reference::Eckert,
+            regime: Regime::Transitional,
+            // Our choice: the classical flat-plate value (Schlichting ch. 15); hypersonic
+            // transition is often later, so the default errs on the hot (turbulent) side.
+            transition_reynolds: 5.0e5,
+            prandtl_number: 0.71,
+            // Our choice: oxidized titanium / high-emissivity coating, ε ≈ 0.8.
+            emissivity: 0.8,
+            // Ti-6Al-4V solidus, from the core material table (1877 K).
+            melting_point_k: Material::ti_6al_4v().melting_point_k,
+            default_running_length_m: 1.0,
+        }
+    }
+}
+
+/// What `hsv-run describe eckert` prints.
+pub const SETTINGS_DOC: &str = "\
+reference = \"eckert\"            # \"eckert\" (Eckert 1955 T*) or \"meador-smart\" (Meador & Smart 2005)
+regime = \"transitional\"         # \"laminar\", \"turbulent\" or \"transitional\"
+transition_reynolds = 5e5       # edge Reynolds number on the running length where transition happens
+prandtl_number = 0.71           # constant Prandtl number of air
+emissivity = 0.8                # wall emissivity for re-radiation, 0 to 1
+melting_point_k = 1877.0        # wall temperature limit (Ti-6Al-4V solidus), K
+default_running_length_m = 1.0  # running length of panels in no strip, m";
+
+impl Settings {
+    /// The first setting outside its range: (key, value, allowed range).
+    fn first_invalid(&self) -> Option<(&'static str, f64, &'static str)> {
+        let checks: [(&'static str, f64, bool, &'static str); 5] = [
+            (
+                "transition_reynolds",
+                self.transition_reynolds,
+                self.transition_reynolds > 0.0,
+                "finite and > 0",
+            ),
+            (
+                "prandtl_number",
+                self.prandtl_number,
+                self.prandtl_number > 0.0 && self.prandtl_number <= 10.0,
+                "0 < Pr <= 10",
+            ),
+            (
+                "emissivity",
+                self.emissivity,
+                (0.0..=1.0).contains(&self.emissivity),
+                "0 to 1",
+            ),
+            (
+                "melting_point_k",
+                self.melting_point_k,
+                self.melting_point_k > 0.0,
+                "finite and > 0 K",
+            ),
+            (
+                "default_running_length_m",
+                self.default_running_length_m,
+                self.default_running_length_m > 0.0,
+                "finite and > 0 m",
+            ),
+        ];
+        checks
+            .into_iter()
+            .find(|(_, value, ok, _)| !(value.is_finite() && *ok))
+            .map(|(key, value, _, allowed)| (key, value, allowed))
+    }
+}
+
+/// Counts from the last [`HeatFluxModel::heat_flux`] call.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, serde::Serialize)]
+pub struct HeatFluxDiagnostics {
+    /// Panels whose boundary layer was taken as turbulent.
+    pub turbulent_panels: usize,
+    /// Vacuum panels (p_e = 0 or ρ_e = 0): no convection.
+    pub vacuum_panels: usize,
+    /// Stagnant panels (u_e = 0, behind a detached shock): no convection.
+    pub stagnant_panels: usize,
+}
+
+/// Convective heating of one flat-plate station, with the intermediate quantities.
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
+pub struct ConvectiveHeating {
+    pub turbulent: bool,
+    pub recovery_factor: f64,
+    /// Recovery (adiabatic-wall) temperature T_aw, K.
+    pub recovery_temperature_k: f64,
+    /// Reference temperature T*, K.
+    pub reference_temperature_k: f64,
+    /// ρ* = p_e / (R T*), kg/m³.
+    pub reference_density_kg_m3: f64,
+    /// μ* = μ(T*), Pa s.
+    pub reference_viscosity_pa_s: f64,
+    /// Edge Reynolds number ρ_e u_e x / μ_e on the running length.
+    pub edge_reynolds: f64,
+    /// Re_x* = ρ* u_e x / μ*.
+    pub reference_reynolds: f64,
+    /// C_f* (based on ρ*).
+    pub skin_friction: f64,
+    /// St* (based on ρ*).
+    pub stanton_number: f64,
+    /// Wall shear stress τ_w = ½ ρ* u_e² C_f*, Pa.
+    pub wall_shear_pa: f64,
+    /// q_conv = ρ* u_e c_p St* (T_aw − T_w), W/m², positive into the wall.
+    pub heat_flux_w_m2: f64,
+}
+
+/// r = Pr^(1/2) laminar, Pr^(1/3) turbulent (Anderson, Hypersonic §6.7 and §6.10).
+pub fn recovery_factor(prandtl_number: f64, turbulent: bool) -> f64 {
+    if turbulent {
+        prandtl_number.cbrt()
+    } else {
+        prandtl_number.sqrt()
+    }
+}
+
+/// T_aw = T_e (1 + r (γ−1)/2 M_e²), K (Anderson, Hypersonic §6.7).
+pub fn recovery_temperature_k(edge_temperature_k: f64, mach: f64, gamma: f64, r: f64) -> f64 {
+    edge_temperature_k * (1.0 + r * 0.5 * (gamma - 1.0) * mach * mach)
+}
+
+/// T* = T_e + 0.5 (T_w − T_e) + 0.22 (T_aw − T_e), K (Eckert 1955; Anderson, Hypersonic §6.9).
+pub fn eckert_reference_temperature_k(
+    edge_temperature_k: f64,
+    wall_temperature_k: f64,
+    recovery_temperature_k: f64,
+) -> f64 {
+    edge_temperature_k
+        + 0.5 * (wall_temperature_k - edge_temperature_k)
+        + 0.22 * (recovery_temperature_k - edge_temperature_k)
+}
+
+/// T*/T_e = 0.45 + 0.55 T_w/T_e + 0.16 r (γ−1)/2 M_e² laminar, 0.5 + 0.5 T_w/T_e + 0.16 r (γ−1)/2
+/// M_e² turbulent, K (Meador & Smart, AIAA J. 43(1), 2005).
+pub fn meador_smart_reference_temperature_k(
+    edge_temperature_k: f64,
+    wall_temperature_k: f64,
+    mach: f64,
+    gamma: f64,
+    r: f64,
+    turbulent: bool,
+) -> f64 {
+    let (a, b) = if turbulent { (0.5, 0.5) } else { (0.45, 0.55) };
+    let dissipation = 0.16 * r * 0.5 * (gamma - 1.0) * mach * mach;
+    edge_temperature_k * (a + b * wall_temperature_k / edge_temperature_k + dissipation)
+}
+
+/// C_f = 0.664 / √Re_x (Blasius; Anderson, Hypersonic §6.9 at reference conditions).
+pub fn laminar_skin_friction(reynolds: f64) -> f64 {
+    0.664 / reynolds.sqrt()
+}
+
+/// C_f = 0.0592 / Re_x^0.2 (1/7-power law; Schlichting, Boundary-Layer Theory, 7th ed., ch. XXI).
+pub fn turbulent_skin_friction(reynolds: f64) -> f64 {
+    0.0592 / reynolds.powf(0.2)
+}
+
+/// St = C_f / 2 · Pr^(−2/3) (Colburn's Reynolds analogy; Anderson, Hypersonic §6.9).
+pub fn stanton_number(skin_friction: f64, prandtl_number: f64) -> f64 {
+    0.5 * skin_friction * prandtl_number.powf(-2.0 / 3.0)
+}
+
+/// The `eckert` heat-flux model. Scratch: running lengths of the last mesh.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Eckert {
+    settings: Settings,
+    running_length_m: Vec<f64>,
+    diagnostics: HeatFluxDiagnostics,
+}
+
+impl Eckert {
+    /// The model with `settings`; a setting out of range is an error naming it.
+    pub fn new(settings: Settings) -> Result<Self, ModelError> {
+        if let Some((key, value, allowed)) = settings.first_invalid() {
+            return Err(ModelError::out_of_range(NAME, key, value, allowed));
+        }
+        Ok(Self {
+            settings,
+            running_length_m: Vec::new(),
+            diagnostics: HeatFluxDiagnostics::default(),
+        })
+    }
+
+    pub fn settings(&self) -> &Settings {
+        &self.settings
+    }
+
+    /// Counts from the last heat-flux evaluation.
+    pub fn diagnostics(&self) -> HeatFluxDiagnostics {
+        self.diagnostics
+    }
+
+    /// Running length of each panel of the last evaluated mesh, m.
+    pub fn running_lengths_m(&self) -> &[f64] {
+        &self.running_length_m
+    }
+
+    /// Convective heat flux at one flat-plate station (module docs), or `None` where there is no
+    /// boundary layer (vacuum or stagnant edge). Errors name the bad input.
+    pub fn convective_heating(
+        &self,
+        edge: &EdgeState,
+        gas: &PerfectGas,
+        running_length_m: f64,
+        wall_temperature_k: f64,
+    ) -> Result<Option<ConvectiveHeating>, ModelError> {
+        check_wall_temperature(wall_temperature_k, self.settings.melting_point_k, None)?;
+        check_edge(edge, None)?;
+        if !(running_length_m.is_finite() && running_length_m > 0.0) {
+            return Err(ModelError::out_of_range(
+                NAME,
+                "running length (m)",
+                running_length_m,
+                "finite and > 0",
+            ));
+        }
+        if edge.pressure_pa == 0.0 || edge.density_kg_m3 == 0.0 || edge.velocity_m_s == 0.0 {
+            return Ok(None);
+        }
+        Ok(Some(self.heating(
+            edge,
+            gas,
+            running_length_m,
+            wall_temperature_k,
+        )))
+    }
+
+    /// Steps 1-6 of the module docs for a checked, convecting edge state.
+    fn heating(
+        &self,
+        edge: &EdgeState,
+        gas: &PerfectGas,
+        x_m: f64,
+        wall_temperature_k: f64,
+    ) -> ConvectiveHeating {
+        let s = &self.settings;
+        let te = edge.temperature_k;
+        let u = edge.velocity_m_s;
+        let edge_reynolds = edge.density_kg_m3 * u * x_m / sutherland_viscosity(te);
+        let turbulent = match s.regime {
+            Regime::Laminar => false,
+            Regime::Turbulent => true,
+            Regime::Transitional => edge_reynolds >= s.transition_reynolds,
+        };
+        let r = recovery_factor(s.prandtl_number, turbulent);
+        let taw = recovery_temperature_k(te, edge.mach, gas.gamma, r);
+        let t_ref = match s.reference {
+            Reference::Eckert => eckert_reference_temperature_k(te, wall_temperature_k, taw),
+            Reference::MeadorSmart => meador_smart_reference_temperature_k(
+                te,
+                wall_temperature_k,
+                edge.mach,
+                gas.gamma,
+                r,
+                turbulent,
+            ),
+        };
+        let rho = edge.pressure_pa / (gas.gas_constant_j_kg_k * t_ref);
+        let mu = sutherland_viscosity(t_ref);
+        let reynolds = rho * u * x_m / mu;
+        let cf = if turbulent {
+            turbulent_skin_friction(reynolds)
+        } else {
+            laminar_skin_friction(reynolds)
+        };
+        let st = stanton_number(cf, s.prandtl_number);
+        ConvectiveHeating {
+            turbulent,
+            recovery_factor: r,
+            recovery_temperature_k: taw,
+            reference_temperature_k: t_ref,
+            reference_density_kg_m3: rho,
+            reference_viscosity_pa_s: mu,
+            edge_reynolds,
+            reference_reynolds: reynolds,
+            skin_friction: cf,
+            stanton_number: st,
+            wall_shear_pa: 0.5 * rho * u * u * cf,
+            heat_flux_w_m2: rho * u * gas.cp() * st * (taw - wall_temperature_k),
+        }
+    }
+
+    /// Re-radiation ε σ T_w⁴ from the wall to cold surroundings, W/m².
+    pub fn radiated_flux_w_m2(&self, wall_temperature_k: f64) -> f64 {
+        self.settings.emissivity * STEFAN_BOLTZMANN_W_M2_K4 * wall_temperature_k.powi(4)
+    }
+}
+
+/// Checks 0 < T_w ≤ melting point, naming the panel if given.
+fn check_wall_temperature(
+    wall_temperature_k: f64,
+    melting_point_k: f64,
+    panel: Option<usize>,
+) -> Result<(), ModelError> {
+    if wall_temperature_k.is_finite() && wall_temperature_k > 0.0 {
+        if wall_temperature_k > melting_point_k {
+            return Err(ModelError::out_of_range(
+                NAME,
+                &format!(
+                    "wall temperature (K){}: the structure has melted",
+                    at_panel(panel)
+                ),
+                wall_temperature_k,
+                format!("<= melting point {melting_point_k} K"),
+            ));
+        }
+        return Ok(());
+    }
+    Err(ModelError::out_of_range(
+        NAME,
+        &format!("wall temperature (K){}", at_panel(panel)),
+        wall_temperature_k,
+        "finite and > 0",
+    ))
+}
+
+fn at_panel(panel: Option<usize>) -> String {
+    panel.map_or_else(String::new, |p| format!(" at panel {p}"))
+}
+
+/// Checks an edge state is finite and non-negative with T_e > 0.
+fn check_edge(edge: &EdgeState, panel: Option<usize>) -> Result<(), ModelError> {
+    let named = [
+        ("edge Mach number", edge.mach),
+        ("edge pressure (Pa)", edge.pressure_pa),
+        ("edge density (kg/m^3)", edge.density_kg_m3),
+        ("edge velocity (m/s)", edge.velocity_m_s),
+    ];
+    for (quantity, value) in named {
+        if !(value.is_finite() && value >= 0.0) {
+            return Err(ModelError::out_of_range(
+                NAME,
+                &format!("{quantity}{}", at_panel(panel)),
+                value,
+                "finite and >= 0",
+            ));
+        }
+    }
+    if !(edge.temperature_k.is_finite() && edge.temperature_k > 0.0) {
+        return Err(ModelError::out_of_range(
+            NAME,
+            &format!("edge temperature (K){}", at_panel(panel)),
+            edge.temperature_k,
+            "finite and > 0",
+        ));
+    }
+    Ok(())
+}
+
+impl HeatFluxModel for Eckert {
+    fn name(&self) -> &str {
+        NAME
+    }
+
+    fn heat_flux(
+        &mut self,
+        mesh: &PanelMesh,
+        flight: &FlightCondition,
+        aero: &AeroSolution,
+        wall_temperature_k: &[f64],
+        out_w_m2: &mut [f64],
+    ) -> Result<(), ModelError> {
+        let n = mesh.panels.len();
+        for (what, len) in [
+            ("edge states", aero.edge.len()),
+            ("wall temperatures", wall_temperature_k.len()),
+            ("heat-flux outputs", out_w_m2.len()),
+        ] {
+            if len != n {
+                return Err(ModelError::inconsistent(
+                    NAME,
+                    format!("{len} {what} for a mesh of {n} panels"),
+                ));
+            }
+        }
+        flight.check_finite()?;
+        let gas = flight.freestream.gas;
+        let mut running = std::mem::take(&mut self.running_length_m);
+        mesh.strip_running_lengths_m(
+            &flight.velocity_body_m_s(),
+            self.settings.default_running_length_m,
+            &mut running,
+        );
+        self.running_length_m = running;
+        let mut diagnostics = HeatFluxDiagnostics::default();
+        for i in 0..n {
+            let tw = wall_temperature_k[i];
+            let edge = &aero.edge[i];
+            check_wall_temperature(tw, self.settings.melting_point_k, Some(i))?;
+            check_edge(edge, Some(i))?;
+            let convection = if edge.pressure_pa == 0.0 || edge.density_kg_m3 == 0.0 {
+                diagnostics.vacuum_panels += 1;
+                0.0
+            } else if edge.velocity_m_s == 0.0 {
+                diagnostics.stagnant_panels += 1;
+                0.0
+            } else {
+                let h = self.heating(edge, &gas, self.running_length_m[i], tw);
+                diagnostics.turbulent_panels += usize::from(h.turbulent);
+                h.heat_flux_w_m2
+            };
+            let net = convection - self.radiated_flux_w_m2(tw);
+            if !net.is_finite() {
+                return Err(ModelError::non_finite_at_panel(NAME, "net heat flux", i));
+            }
+            out_w_m2[i] = net;
+        }
+        self.diagnostics = diagnostics;
+        Ok(())
+    }
+}
+
+fn construct(ctx: &ModelContext<'_>) -> Result<Box<dyn HeatFluxModel>, ModelError> {
+    let settings: Settings = ctx.parse_settings()?;
+    if let Some((key, value, allowed)) = settings.first_invalid() {
+        return Err(ModelError::Settings {
+            file: ctx.file.to_owned(),
+            key_path: format!("{}.{key}", ctx.key_path),
+            message: format!("{value} is outside the allowed range ({allowed})"),
+        });
+    }
+    Ok(Box::new(Eckert::new(settings)?))
+}
+
+hsv_core::register_model!(ModelDescriptor {
+    name: NAME,
+    origin: env!("CARGO_PKG_NAME"),
+    fidelity: 1,
+    summary: "flat-plate aeroheating at the Eckert reference temperature (or Meador-Smart \
+              reference enthalpy), laminar/turbulent, Reynolds analogy, wall re-radiation",
+    settings_doc: SETTINGS_DOC,
+    constructor: Constructor::HeatFlux(construct),
+});

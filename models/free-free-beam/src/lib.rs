@@ -1,0 +1,596 @@
+//! The `free-free-beam` main-body structure: a non-uniform Euler-Bernoulli beam along the body x
+//! axis, free-free, reduced to its lowest lateral-bending, vertical-bending and torsion modes.
+//!
+//! Paper (Klock & Cesnik, §III.A and Table 1, after Frendreis & Cesnik): the main body is a
+//! free-free Euler-Bernoulli beam with three modes (lateral bending, longitudinal = vertical
+//! bending, torsion); forebody and aftbody 15.2 m each with 838 and 1250 kg/m, I_x = 3.28e3
+//! kg m²/m, EI_zz = 5.06e10, EI_yy = 6.32e9, GJ = 4.74e9 N m². The beam runs from the nose
+//! (x = 0) to the tail (x = −30.4 m) at height `axis_z_m`.
+//!
+//! Method: finite elements ([`fe`]: Hermite cubic bending in two planes, linear torsion and
+//! axial, consistent mass), free-free modes by a shifted Cholesky eigen-solve ([`eigen`]), the
+//! six rigid-body modes identified by frequency and checked against the analytic rigid motions,
+//! elastic modes classified by their kinetic energy per DOF group and the requested number of
+//! each kind kept, mass-normalized: generalized mass I, stiffness diag(ω²), damping diag(2ζω).
+//! The main body's structure is temperature independent (paper §II.A: thermally protected).
+//!
+//! Mode shapes on a mesh: each vertex r moves with the cross-section at its station,
+//! u = w(x) + θ(x) × (r − r_axis(x)), w and θ interpolated with the element shape functions;
+//! vertices beyond the beam ends move rigidly with the end section.
+
+pub mod eigen;
+pub mod fe;
+
+use hsv_core::error::ModelError;
+use hsv_core::mesh::{ModeShapes, PanelMesh};
+use hsv_core::registry::{Constructor, ModelContext, ModelDescriptor};
+use hsv_core::structure::{ModalModel, StructureModel};
+use hsv_core::vehicle::{BodyProfile, GeometryConfig, body_profile};
+use nalgebra::{DMatrix, DVector, Vector3};
+
+pub use eigen::{ElasticModes, RIGID_BODY_MODES};
+pub use fe::{BeamMesh, ModeKind, Section, SectionMotion};
+
+/// Registered name.
+pub const NAME: &str = "free-free-beam";
+
+/// Most elements accepted: the eigen-solve is dense, O((6 n)³).
+pub const MAX_ELEMENTS: usize = 240;
+
+/// Most modes kept per kind.
+pub const MAX_MODES_PER_KIND: usize = 20;
+
+/// Elements needed per half-wave of the highest kept mode, so its frequency is converged
+/// (Hermite bending: < 1e-4 relative; linear torsion: (π/8)²/12 ≈ 1 % at worst, far less at
+/// the default element count).
+pub const ELEMENTS_PER_HALF_WAVE: usize = 4;
+
+/// Settings of `[models.free-free-beam]`; defaults are the paper's Table 1 and our choices.
+#[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct Settings {
+    /// L_f, nose to the fore/aft junction, m (paper Table 1: 15.2).
+    pub forebody_length_m: f64,
+    /// L_a, junction to tail, m (paper Table 1: 15.2).
+    pub aftbody_length_m: f64,
+    /// μ_f, kg/m (paper Table 1: 838).
+    pub forebody_mass_per_length_kg_m: f64,
+    /// μ_a, kg/m (paper Table 1: 1250).
+    pub aftbody_mass_per_length_kg_m: f64,
+    /// I_x, rotary inertia about the beam axis per unit length, kg m²/m (paper Table 1: 3.28e3).
+    pub torsional_inertia_kg_m: f64,
+    /// EI_zz, bending in the x-y plane, N m² (paper Table 1: 5.06e10).
+    pub lateral_bending_stiffness_n_m2: f64,
+    /// EI_yy, bending in the x-z plane, N m² (paper Table 1: 6.32e9).
+    pub vertical_bending_stiffness_n_m2: f64,
+    /// GJ, N m² (paper Table 1: 4.74e9).
+    pub torsional_stiffness_n_m2: f64,
+    /// EA, N (our choice: the paper gives none and keeps no axial mode).
+    pub axial_stiffness_n: f64,
+    /// Finite elements along the beam (split over fore- and aftbody by length).
+    pub elements: usize,
+    /// Modal damping ratio ζ of every kept mode (our choice; the paper gives none).
+    pub damping_ratio: f64,
+    /// Lateral bending modes kept (paper: 1).
+    pub lateral_bending_modes: usize,
+    /// Vertical (longitudinal) bending modes kept (paper: 1).
+    pub vertical_bending_modes: usize,
+    /// Torsion modes kept (paper: 1).
+    pub torsion_modes: usize,
+    /// Axial modes kept (paper: 0).
+    pub axial_modes: usize,
+    /// Beam axis height below the nose line, m; default: the centroid of the `[geometry]` side
+    /// profile.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub axis_z_m: Option<f64>,
+}
+
+impl Default for Settings {
+    fn default() -> Self {
+        Self {
+            forebody_length_m: 15.2,
+            aftbody_length_m: 15.2,
+            forebody_mass_per_length_kg_m: 838.0,
+            aftbody_mass_per_length_kg_m: 1250.0,
+            torsional_inertia_kg_m: 3.28e3,
+            lateral_bending_stiffness_n_m2: 5.06e10,
+            vertical_bending_stiffness_n_m2: 6.32e9,
+            torsional_stiffness_n_m2: 4.74e9,
+            axial_stiffness_n: 6.32e9,
+            elements: 60,
+            damping_ratio: 0.02,
+            lateral_bending_modes: 1,
+            vertical_bending_modes: 1,
+            torsion_modes: 1,
+            axial_modes: 0,
+            axis_z_m: None,
+        }
+    }
+}
+
+const SETTINGS_DOC: &str = "\
+forebody_length_m = 15.2                   # L_f, m (paper Table 1); must match [geometry] forebody_length_m
+aftbody_length_m = 15.2                    # L_a, m (paper Table 1); L_f + L_a must match [geometry] length_m
+forebody_mass_per_length_kg_m = 838.0      # mu_f, kg/m (paper Table 1)
+aftbody_mass_per_length_kg_m = 1250.0      # mu_a, kg/m (paper Table 1)
+torsional_inertia_kg_m = 3280.0            # I_x per unit length, kg m^2/m (paper Table 1)
+lateral_bending_stiffness_n_m2 = 5.06e10   # EI_zz, x-y plane, N m^2 (paper Table 1)
+vertical_bending_stiffness_n_m2 = 6.32e9   # EI_yy, x-z plane, N m^2 (paper Table 1)
+torsional_stiffness_n_m2 = 4.74e9          # GJ, N m^2 (paper Table 1)
+axial_stiffness_n = 6.32e9                 # EA, N (our choice; no axial mode is kept by default)
+elements = 60                              # finite elements along the beam (2..240)
+damping_ratio = 0.02                       # modal damping ratio zeta of every kept mode (our choice)
+lateral_bending_modes = 1                  # modes kept per kind (paper: 1, 1, 1, 0)
+vertical_bending_modes = 1
+torsion_modes = 1
+axial_modes = 0
+# axis_z_m = 0.4                           # beam axis below the nose line, m (default: centroid of the [geometry] side profile)";
+
+/// A setting outside its range: key, value, allowed values.
+struct Invalid {
+    key: &'static str,
+    value: f64,
+    allowed: String,
+}
+
+impl Settings {
+    /// Checks every value; the first bad one is returned with its key.
+    fn check(&self) -> Result<(), Invalid> {
+        let positive = [
+            ("forebody_length_m", self.forebody_length_m),
+            ("aftbody_length_m", self.aftbody_length_m),
+            (
+                "forebody_mass_per_length_kg_m",
+                self.forebody_mass_per_length_kg_m,
+            ),
+            (
+                "aftbody_mass_per_length_kg_m",
+                self.aftbody_mass_per_length_kg_m,
+            ),
+            ("torsional_inertia_kg_m", self.torsional_inertia_kg_m),
+            (
+                "lateral_bending_stiffness_n_m2",
+                self.lateral_bending_stiffness_n_m2,
+            ),
+            (
+                "vertical_bending_stiffness_n_m2",
+                self.vertical_bending_stiffness_n_m2,
+            ),
+            ("torsional_stiffness_n_m2", self.torsional_stiffness_n_m2),
+            ("axial_stiffness_n", self.axial_stiffness_n),
+        ];
+        for (key, value) in positive {
+            if !(value.is_finite() && value > 0.0) {
+                return Err(Invalid {
+                    key,
+                    value,
+                    allowed: "finite and > 0".to_owned(),
+                });
+            }
+        }
+        if !(self.damping_ratio.is_finite() && (0.0..1.0).contains(&self.damping_ratio)) {
+            return Err(Invalid {
+                key: "damping_ratio",
+                value: self.damping_ratio,
+                allowed: "0 <= zeta < 1".to_owned(),
+            });
+        }
+        if let Some(z) = self.axis_z_m
+            && !z.is_finite()
+        {
+            return Err(Invalid {
+                key: "axis_z_m",
+                value: z,
+                allowed: "finite".to_owned(),
+            });
+        }
+        for kind in ModeKind::ALL {
+            let n = self.modes_of(kind);
+            if n > MAX_MODES_PER_KIND {
+                return Err(Invalid {
+                    key: match kind {
+                        ModeKind::LateralBending => "lateral_bending_modes",
+                        ModeKind::VerticalBending => "vertical_bending_modes",
+                        ModeKind::Torsion => "torsion_modes",
+                        ModeKind::Axial => "axial_modes",
+                    },
+                    value: n as f64,
+                    allowed: format!("0..={MAX_MODES_PER_KIND}"),
+                });
+            }
+        }
+        if self.kept_mode_count() == 0 {
+            return Err(Invalid {
+                key: "vertical_bending_modes",
+                value: 0.0,
+                allowed: "at least one mode of some kind (lateral_bending_modes, \
+                          vertical_bending_modes, torsion_modes, axial_modes)"
+                    .to_owned(),
+            });
+        }
+        let needed = self.min_elements();
+        if self.elements < needed || self.elements > MAX_ELEMENTS {
+            return Err(Invalid {
+                key: "elements",
+                value: self.elements as f64,
+                allowed: format!(
+                    "{needed}..={MAX_ELEMENTS}: the requested modes need {ELEMENTS_PER_HALF_WAVE} \
+                     elements per half-wave of the highest one"
+                ),
+            });
+        }
+        Ok(())
+    }
+
+    /// Modes kept, all kinds.
+    pub fn kept_mode_count(&self) -> usize {
+        self.lateral_bending_modes
+            + self.vertical_bending_modes
+            + self.torsion_modes
+            + self.axial_modes
+    }
+
+    /// Modes kept of `kind`.
+    pub fn modes_of(&self, kind: ModeKind) -> usize {
+        match kind {
+            ModeKind::LateralBending => self.lateral_bending_modes,
+            ModeKind::VerticalBending => self.vertical_bending_modes,
+            ModeKind::Torsion => self.torsion_modes,
+            ModeKind::Axial => self.axial_modes,
+        }
+    }
+
+    /// Fewest elements for the requested modes: the n-th free-free bending mode has about n + 1
+    /// half-waves, the n-th torsion or axial mode n; at least one element per segment.
+    pub fn min_elements(&self) -> usize {
+        let half_waves = [
+            self.lateral_bending_modes.saturating_add(1)
+                * usize::from(self.lateral_bending_modes > 0),
+            self.vertical_bending_modes.saturating_add(1)
+                * usize::from(self.vertical_bending_modes > 0),
+            self.torsion_modes,
+            self.axial_modes,
+        ]
+        .into_iter()
+        .max()
+        .unwrap_or(0);
+        half_waves.saturating_mul(ELEMENTS_PER_HALF_WAVE).max(2)
+    }
+
+    /// Total beam length, m.
+    pub fn length_m(&self) -> f64 {
+        self.forebody_length_m + self.aftbody_length_m
+    }
+
+    /// The finite-element mesh: fore- and aftbody segments, elements split by length.
+    pub fn beam_mesh(&self) -> BeamMesh {
+        let section = |mu: f64| Section {
+            mass_per_length_kg_m: mu,
+            torsional_inertia_kg_m: self.torsional_inertia_kg_m,
+            lateral_bending_stiffness_n_m2: self.lateral_bending_stiffness_n_m2,
+            vertical_bending_stiffness_n_m2: self.vertical_bending_stiffness_n_m2,
+            torsional_stiffness_n_m2: self.torsional_stiffness_n_m2,
+            axial_stiffness_n: self.axial_stiffness_n,
+        };
+        let fore = ((self.elements as f64 * self.forebody_length_m / self.length_m()).round()
+            as usize)
+            .clamp(1, self.elements.saturating_sub(1).max(1));
+        let aft = self.elements.saturating_sub(fore).max(1);
+        BeamMesh::from_segments(&[
+            (
+                self.forebody_length_m,
+                section(self.forebody_mass_per_length_kg_m),
+                fore,
+            ),
+            (
+                self.aftbody_length_m,
+                section(self.aftbody_mass_per_length_kg_m),
+                aft,
+            ),
+        ])
+    }
+}
+
+/// Height of the area centroid of the closed side profile, m below the nose line:
+/// z̄ = Σ (z_i + z_{i+1})(x_i z_{i+1} − x_{i+1} z_i) / (6 A_signed) (polygon centroid).
+pub fn profile_centroid_z_m(profile: &BodyProfile) -> f64 {
+    let o = profile.outline_m();
+    let (mut twice_area, mut moment) = (0.0, 0.0);
+    for i in 0..o.len() {
+        let (a, b) = (o[i], o[(i + 1) % o.len()]);
+        let cross = a.x * b.y - b.x * a.y;
+        twice_area += cross;
+        moment += (a.y + b.y) * cross;
+    }
+    moment / (3.0 * twice_area)
+}
+
+/// The free-free beam with its kept modes.
+#[derive(Debug, Clone)]
+pub struct FreeFreeBeam {
+    settings: Settings,
+    axis_z_m: f64,
+    mesh: BeamMesh,
+    mass: DMatrix<f64>,
+    stiffness: DMatrix<f64>,
+    elastic: ElasticModes,
+    /// Kept modes: indices into `elastic`, ascending in frequency.
+    kept: Vec<usize>,
+    /// Kept shapes, one column per kept mode (mass-normalized nodal vectors).
+    kept_shapes: DMatrix<f64>,
+    modal: ModalModel,
+}
+
+impl FreeFreeBeam {
+    /// Builds the beam from `settings` with its axis at height `axis_z_m` (m below the nose
+    /// line), solves its free-free modes and keeps the requested ones.
+    pub fn new(settings: Settings, axis_z_m: f64) -> Result<Self, ModelError> {
+        settings
+            .check()
+            .map_err(|bad| ModelError::out_of_range(NAME, bad.key, bad.value, bad.allowed))?;
+        if !axis_z_m.is_finite() {
+            return Err(ModelError::out_of_range(
+                NAME, "axis_z_m", axis_z_m, "finite",
+            ));
+        }
+        Self::build(settings, axis_z_m)
+    }
+
+    /// Builds from a config: settings from `[models.free-free-beam]`, checked against
+    /// `[geometry]` (lengths) when present; the axis height from the settings or the profile.
+    pub fn from_context(ctx: &ModelContext<'_>) -> Result<Self, ModelError> {
+        let settings: Settings = ctx.parse_settings()?;
+        let key = |k: &str| format!("{}.{k}", ctx.key_path);
+        settings.check().map_err(|bad| ModelError::Settings {
+            file: ctx.file.to_owned(),
+            key_path: key(bad.key),
+            message: format!(
+                "{} = {} is outside the allowed range ({})",
+                bad.key, bad.value, bad.allowed
+            ),
+        })?;
+        let geometry: Option<GeometryConfig> = if ctx.config.contains_key("geometry") {
+            Some(ctx.parse_config_table("geometry")?)
+        } else {
+            None
+        };
+        if let Some(g) = &geometry {
+            for (ours, theirs, their_key) in [
+                (
+                    settings.forebody_length_m,
+                    g.forebody_length_m,
+                    "geometry.forebody_length_m",
+                ),
+                (settings.length_m(), g.length_m, "geometry.length_m"),
+            ] {
+                if (ours - theirs).abs() > 1e-6 * theirs.abs().max(1.0) {
+                    return Err(ModelError::Settings {
+                        file: ctx.file.to_owned(),
+                        key_path: key(if their_key.ends_with("forebody_length_m") {
+                            "forebody_length_m"
+                        } else {
+                            "aftbody_length_m"
+                        }),
+                        message: format!(
+                            "the beam ({ours} m) must match `{their_key}` = {theirs} m: the \
+                             beam spans the body from nose to tail, joining at the forebody end"
+                        ),
+                    });
+                }
+            }
+        }
+        let axis_z_m = match (settings.axis_z_m, &geometry) {
+            (Some(z), _) => z,
+            (None, Some(g)) => {
+                let profile = body_profile(g).map_err(|e| ModelError::Settings {
+                    file: ctx.file.to_owned(),
+                    key_path: "geometry".to_owned(),
+                    message: e.to_string(),
+                })?;
+                profile_centroid_z_m(&profile)
+            }
+            (None, None) => {
+                return Err(ModelError::Settings {
+                    file: ctx.file.to_owned(),
+                    key_path: key("axis_z_m"),
+                    message: "no [geometry] table to place the beam axis at the profile \
+                              centroid: set axis_z_m"
+                        .to_owned(),
+                });
+            }
+        };
+        Self::build(settings, axis_z_m)
+    }
+
+    fn build(settings: Settings, axis_z_m: f64) -> Result<Self, ModelError> {
+        let mesh = settings.beam_mesh();
+        let (mass, stiffness) = mesh.assemble();
+        let elastic = eigen::free_free_modes(
+            NAME,
+            &mass,
+            &stiffness,
+            &mesh.rigid_body_modes(),
+            &mesh.dof_kinds(),
+            ModeKind::ALL.map(|kind| settings.modes_of(kind)),
+        )?;
+        let mut kept = Vec::new();
+        let mut names = Vec::new();
+        let mut count = [0usize; 4];
+        for (i, kind) in elastic.kinds.iter().enumerate() {
+            let c = &mut count[kind.index()];
+            if *c < settings.modes_of(*kind) {
+                *c += 1;
+                kept.push(i);
+                names.push(format!("{} {}", kind.label(), *c));
+            }
+        }
+        for kind in ModeKind::ALL {
+            let found = count[kind.index()];
+            if found < settings.modes_of(kind) {
+                return Err(ModelError::out_of_range(
+                    NAME,
+                    &format!("{} modes", kind.label()),
+                    settings.modes_of(kind) as f64,
+                    format!(
+                        "at most {found} with elements = {} (add elements)",
+                        settings.elements
+                    ),
+                ));
+            }
+        }
+        let omega: Vec<f64> = kept.iter().map(|&i| elastic.omega2[i].sqrt()).collect();
+        if let Some(k) = omega.iter().position(|w| !(w.is_finite() && *w > 0.0)) {
+            return Err(ModelError::NonFinite {
+                model: NAME.to_owned(),
+                quantity: "natural frequency".to_owned(),
+                location: format!(" of mode `{}`", names[k]),
+            });
+        }
+        let n = kept.len();
+        let zeta = settings.damping_ratio;
+        let modal = ModalModel {
+            names,
+            mass: DMatrix::identity(n, n),
+            damping: DMatrix::from_diagonal(&DVector::from_iterator(
+                n,
+                omega.iter().map(|w| 2.0 * zeta * w),
+            )),
+            stiffness: DMatrix::from_diagonal(&DVector::from_iterator(
+                n,
+                kept.iter().map(|&i| elastic.omega2[i]),
+            )),
+        };
+        let kept_shapes = DMatrix::from_fn(mesh.n_dof(), n, |r, c| elastic.shapes[(r, kept[c])]);
+        Ok(Self {
+            settings,
+            axis_z_m,
+            mesh,
+            mass,
+            stiffness,
+            elastic,
+            kept,
+            kept_shapes,
+            modal,
+        })
+    }
+
+    /// The settings it was built with.
+    pub fn settings(&self) -> &Settings {
+        &self.settings
+    }
+
+    /// Beam axis height below the nose line, m.
+    pub fn axis_z_m(&self) -> f64 {
+        self.axis_z_m
+    }
+
+    /// The finite-element mesh.
+    pub fn beam_mesh(&self) -> &BeamMesh {
+        &self.mesh
+    }
+
+    /// Assembled consistent mass matrix, kg (kg m² on rotations).
+    pub fn mass_matrix(&self) -> &DMatrix<f64> {
+        &self.mass
+    }
+
+    /// Assembled stiffness matrix, N/m (N m/rad on rotations).
+    pub fn stiffness_matrix(&self) -> &DMatrix<f64> {
+        &self.stiffness
+    }
+
+    /// Every elastic mode of the mesh (rigid-body modes removed), ascending.
+    pub fn elastic_modes(&self) -> &ElasticModes {
+        &self.elastic
+    }
+
+    /// Kind of each kept mode, in [`ModalModel::names`] order.
+    pub fn kept_kinds(&self) -> Vec<ModeKind> {
+        self.kept.iter().map(|&i| self.elastic.kinds[i]).collect()
+    }
+
+    /// Mass-normalized nodal shapes of the kept modes (columns).
+    pub fn kept_shapes(&self) -> &DMatrix<f64> {
+        &self.kept_shapes
+    }
+
+    /// Cross-section motion of kept mode `mode` at body station `x_m` (clamped to the beam).
+    pub fn section_motion(&self, mode: usize, x_m: f64) -> SectionMotion {
+        let col = self.kept_shapes.column(mode);
+        self.mesh.section_motion_of(|i| col[i], -x_m)
+    }
+
+    /// Displacement of body point `r` (m) in kept mode `mode`: w(x) + θ(x) × (r − r_axis(x)),
+    /// the section taken at x clamped to the beam.
+    pub fn point_displacement(&self, mode: usize, r: &nalgebra::Point3<f64>) -> Vector3<f64> {
+        let x_c = r.x.clamp(-self.mesh.length_m(), 0.0);
+        let motion = self.section_motion(mode, r.x);
+        let arm = Vector3::new(r.x - x_c, r.y, r.z - self.axis_z_m);
+        motion.displacement + motion.rotation.cross(&arm)
+    }
+}
+
+impl StructureModel for FreeFreeBeam {
+    fn name(&self) -> &str {
+        NAME
+    }
+
+    fn modal_model(&self) -> &ModalModel {
+        &self.modal
+    }
+
+    fn natural_frequencies_hz(&self) -> Result<Vec<f64>, ModelError> {
+        (0..self.modal.n_modes())
+            .map(|i| {
+                let k = self.modal.stiffness[(i, i)];
+                if k.is_finite() && k > 0.0 {
+                    Ok(k.sqrt() / std::f64::consts::TAU)
+                } else {
+                    Err(ModelError::out_of_range(
+                        NAME,
+                        &format!("generalized stiffness of `{}`", self.modal.names[i]),
+                        k,
+                        "finite and > 0",
+                    ))
+                }
+            })
+            .collect()
+    }
+
+    fn mode_shapes_on(&self, mesh: &PanelMesh) -> Result<ModeShapes, ModelError> {
+        let n_modes = self.modal.n_modes();
+        let mut displacement = DMatrix::zeros(3 * mesh.vertices.len(), n_modes);
+        for (v, r) in mesh.vertices.iter().enumerate() {
+            for k in 0..n_modes {
+                let u = self.point_displacement(k, r);
+                if !(u.x.is_finite() && u.y.is_finite() && u.z.is_finite()) {
+                    return Err(ModelError::NonFinite {
+                        model: NAME.to_owned(),
+                        quantity: format!("mode shape `{}`", self.modal.names[k]),
+                        location: format!(" at vertex {v}"),
+                    });
+                }
+                displacement[(3 * v, k)] = u.x;
+                displacement[(3 * v + 1, k)] = u.y;
+                displacement[(3 * v + 2, k)] = u.z;
+            }
+        }
+        Ok(ModeShapes {
+            vertex_displacement: displacement,
+        })
+    }
+}
+
+fn construct(ctx: &ModelContext<'_>) -> Result<Box<dyn StructureModel>, ModelError> {
+    Ok(Box::new(FreeFreeBeam::from_context(ctx)?))
+}
+
+hsv_core::register_model!(ModelDescriptor {
+    name: NAME,
+    origin: env!("CARGO_PKG_NAME"),
+    fidelity: 1,
+    summary: "main body as a free-free non-uniform Euler-Bernoulli beam (finite elements): \
+              lateral bending, vertical bending and torsion modes mapped to the OML",
+    settings_doc: SETTINGS_DOC,
+    constructor: Constructor::Structure(construct),
+});

@@ -1,0 +1,957 @@
+//! The `ritz-plate` lifting-surface structure: a finite-element plate on the surface's structural
+//! grid reduced to a Ritz basis of free-vibration modes and static load shapes, with
+//! heat-degraded modulus and thermal-stress geometric stiffness updated cheaply from a node
+//! temperature field.
+//!
+//! **Full-order model** ([`plate::PlateModel`]): MITC4 Mindlin-Reissner bending elements
+//! (Bathe & Dvorkin 1985) with the double-wedge thickness varying over the grid, consistent
+//! mass, Q4 membrane elements for the thermal in-plane problem, and the membrane-prestress
+//! geometric stiffness K_G on the transverse displacement. The section is symmetric about the
+//! mid-plane, so membrane and bending decouple; the dynamic model is the bending block
+//! (w, βx, βy), the membrane block only carries thermal stress.
+//!
+//! **Torque tube.** The root nodes are clamped to the tube; the Ritz coordinates are elastic
+//! motion relative to it. The tube's rigid motion (root x and z translation from the main
+//! body, pitch about the pivot axis, paper §III.C) is the coordinator's input: its inertial
+//! coupling with the Ritz coordinates is [`RitzPlate::rigid_body_coupling`] (generalized force
+//! −C a_root) and the surface's rigid mass [`RitzPlate::rigid_body_mass`].
+//! [`StructureModel::root_loads`] returns the load the elastic surface exerts on the tube,
+//! from the root-row reactions of the full model, r = K_cf Φ q + M_cf Φ q̈ (damping forces
+//! excluded), as force and moment about the pivot point.
+//!
+//! **Ritz basis** (paper §III.C: 10 free-vibration modes + 5 static load shapes; after
+//! Falkiewicz & Cesnik): the first N clamped-root modes at 293 K plus the deflections under
+//! uniform pressure, a tip force, a tip twisting couple, a chordwise-linear and a
+//! spanwise-linear pressure, M-orthogonalized against the modes and diagonalized, so at 293 K
+//! M_r = I and K_r = diag(ω²) with the N modes reproduced exactly (Rayleigh-Ritz on a subspace
+//! that contains them).
+//!
+//! **Temperature update** ([`StructureModel::set_temperatures`]): each element takes the mean
+//! temperature of its nodes; s_e = E(T_e)/E(293 K), ε_e = α_sec(T_e)(T_e − 293 K). A membrane
+//! solve (root held in-plane) gives element resultants N_e; then
+//! K_r = Σ_e s_e K_r,e + Σ_e Σ_c N_e,c G_r,e,c from reduced element matrices precomputed once,
+//! without reassembling or re-solving the bending model. Compressive N lowers the frequencies;
+//! when K_r loses positive definiteness [`StructureModel::natural_frequencies_hz`] reports the
+//! surface as buckled. Damping: modal, ζ on every current eigenmode.
+//!
+//! **Side.** The model is built for the right surface (y > 0); [`RitzPlate::with_side`] selects
+//! the left. Mode shapes map onto a mesh of either side (the left as the mirror image).
+
+pub mod banded;
+pub mod eigen;
+pub mod fe;
+pub mod plate;
+
+use hsv_core::aero::Loads;
+use hsv_core::error::ModelError;
+use hsv_core::material::{Material, MaterialSetting};
+use hsv_core::mesh::{ModeShapes, PanelMesh};
+use hsv_core::registry::{Constructor, ModelContext, ModelDescriptor};
+use hsv_core::structure::{ModalModel, StructureModel};
+use hsv_core::surface_grid::{GridEdge, GridPoint, SurfaceGrid};
+use hsv_core::vehicle::{LiftingSurfaceConfig, Side};
+use nalgebra::{DMatrix, DVector, Matrix3, Point3, Vector3};
+
+use crate::banded::BandedMatrix;
+use crate::eigen::{jacobi_eigen, small_generalized};
+use crate::plate::{ElementState, PlateError, PlateModel, Supports};
+
+/// Registered name.
+pub const NAME: &str = "ritz-plate";
+
+/// Names of the static load shapes, in the order they are added.
+pub const STATIC_SHAPES: [&str; 5] = [
+    "uniform pressure",
+    "tip force",
+    "tip twisting couple",
+    "chordwise-linear pressure",
+    "spanwise-linear pressure",
+];
+
+fn default_modes() -> usize {
+    10
+}
+fn default_static() -> usize {
+    5
+}
+fn default_chordwise() -> usize {
+    24
+}
+fn default_spanwise() -> usize {
+    18
+}
+fn default_damping() -> f64 {
+    0.02
+}
+
+/// Which planform the plate covers.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, serde::Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum PlanformChoice {
+    /// The `[lifting_surface]` trapezoid with its double-wedge thickness.
+    #[default]
+    Vehicle,
+    /// A uniform rectangular plate (`[models.ritz-plate.rectangular]`), for plate-theory checks.
+    Rectangular,
+}
+
+/// How the root edge is held.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, serde::Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum RootChoice {
+    /// Every root node clamped to the (rigid) torque tube.
+    #[default]
+    Clamped,
+}
+
+/// Dimensions of the rectangular plate: chord along −x from the leading edge, span along +y
+/// from the clamped root edge.
+#[derive(Debug, Clone, Copy, PartialEq, serde::Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RectangularSettings {
+    pub chord_m: f64,
+    pub span_m: f64,
+    pub thickness_m: f64,
+}
+
+/// `[models.ritz-plate]`.
+#[derive(Debug, Clone, PartialEq, serde::Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Settings {
+    /// Free-vibration modes in the basis (paper: 10).
+    #[serde(default = "default_modes")]
+    pub free_vibration_modes: usize,
+    /// Static load shapes in the basis, 0-5 in the order of [`STATIC_SHAPES`] (paper: 5).
+    #[serde(default = "default_static")]
+    pub static_shapes: usize,
+    /// Structural grid elements along the chord (≥ 2).
+    #[serde(default = "default_chordwise")]
+    pub elements_chordwise: usize,
+    /// Structural grid elements along the span.
+    #[serde(default = "default_spanwise")]
+    pub elements_spanwise: usize,
+    /// A built-in material name or a full table.
+    #[serde(default)]
+    pub material: MaterialSetting,
+    /// Modal damping ratio of every mode, in [0, 1).
+    #[serde(default = "default_damping")]
+    pub damping_ratio: f64,
+    /// `vehicle` (default) or `rectangular`.
+    #[serde(default)]
+    pub planform: PlanformChoice,
+    /// Required with `planform = "rectangular"`.
+    #[serde(default)]
+    pub rectangular: Option<RectangularSettings>,
+    /// Root condition (only `clamped`).
+    #[serde(default)]
+    pub root: RootChoice,
+}
+
+impl Default for Settings {
+    fn default() -> Self {
+        Self {
+            free_vibration_modes: default_modes(),
+            static_shapes: default_static(),
+            elements_chordwise: default_chordwise(),
+            elements_spanwise: default_spanwise(),
+            material: MaterialSetting::default(),
+            damping_ratio: default_damping(),
+            planform: PlanformChoice::Vehicle,
+            rectangular: None,
+            root: RootChoice::Clamped,
+        }
+    }
+}
+
+fn settings_error(ctx: &ModelContext<'_>, key: &str, message: String) -> ModelError {
+    ModelError::Settings {
+        file: ctx.file.to_owned(),
+        key_path: format!("{}.{key}", ctx.key_path),
+        message,
+    }
+}
+
+fn construct(ctx: &ModelContext<'_>) -> Result<Box<dyn StructureModel>, ModelError> {
+    let settings: Settings = ctx.parse_settings()?;
+    let material = settings
+        .material
+        .resolve()
+        .map_err(|e| settings_error(ctx, "material", e.to_string()))?;
+    let grid = match settings.planform {
+        PlanformChoice::Vehicle => {
+            let surface: LiftingSurfaceConfig = ctx.parse_config_table("lifting_surface")?;
+            SurfaceGrid::lifting_surface(
+                &surface,
+                Side::Right,
+                settings.elements_chordwise,
+                settings.elements_spanwise,
+            )
+        }
+        PlanformChoice::Rectangular => {
+            let r = settings.rectangular.ok_or_else(|| {
+                settings_error(
+                    ctx,
+                    "rectangular",
+                    "planform = \"rectangular\" needs a [rectangular] table with chord_m, span_m, \
+                     thickness_m"
+                        .to_owned(),
+                )
+            })?;
+            SurfaceGrid::rectangular(
+                r.chord_m,
+                r.span_m,
+                r.thickness_m,
+                settings.elements_chordwise,
+                settings.elements_spanwise,
+            )
+        }
+    }
+    .map_err(|e| settings_error(ctx, "planform", e.to_string()))?;
+    let model = RitzPlate::new(grid, material, &settings)?;
+    Ok(Box::new(model))
+}
+
+hsv_core::register_model!(ModelDescriptor {
+    name: NAME,
+    origin: env!("CARGO_PKG_NAME"),
+    fidelity: 1,
+    summary: "lifting-surface MITC4 plate reduced to free-vibration modes + static load shapes \
+              (Ritz); E(T) and thermal-stress geometric stiffness from a temperature field",
+    settings_doc: "free_vibration_modes = 10   # clamped-root modes in the Ritz basis (paper: 10)\n\
+                   static_shapes = 5           # 0-5: uniform pressure, tip force, tip twist, chordwise- and spanwise-linear pressure\n\
+                   elements_chordwise = 24     # structural grid (>= 2; the ridge is a node line)\n\
+                   elements_spanwise = 18\n\
+                   material = \"ti-6al-4v\"      # or a table: name, density_kg_m3, poisson_ratio, melting_point_k, table = [{temperature_k, youngs_modulus_pa, thermal_expansion_per_k, conductivity_w_m_k, specific_heat_j_kg_k}, ...]\n\
+                   damping_ratio = 0.02        # modal damping ratio of every mode\n\
+                   planform = \"vehicle\"        # or \"rectangular\" with [models.ritz-plate.rectangular] chord_m, span_m, thickness_m\n\
+                   root = \"clamped\"            # root nodes clamped to the torque tube",
+    constructor: Constructor::Structure(construct),
+});
+
+fn model_error(e: PlateError) -> ModelError {
+    match e {
+        PlateError::Material(m) => m.into_model_error(NAME),
+        other => ModelError::inconsistent(NAME, other.to_string()),
+    }
+}
+
+/// A Ritz basis with its Ritz values and the names of the added static-shape vectors.
+type AugmentedBasis = (DMatrix<f64>, Vec<f64>, Vec<String>);
+
+/// Reduced element contributions, stored flat for a fast update.
+#[derive(Debug, Clone)]
+struct Reduced {
+    /// r.
+    size: usize,
+    /// K_r,e at E_ref: element e at `[e r² ..]`, column-major r × r.
+    stiffness: Vec<f64>,
+    /// G_r,e,c: element e, component c at `[(3e + c) r² ..]`.
+    geometric: Vec<f64>,
+}
+
+/// Root-load matrices of one element touching the root: load on the tube (F, M) per Ritz
+/// coordinate (6 × r) from its stiffness at E_ref and from each unit resultant.
+#[derive(Debug, Clone)]
+struct RootElement {
+    element: usize,
+    stiffness: DMatrix<f64>,
+    geometric: [DMatrix<f64>; 3],
+}
+
+/// The `ritz-plate` model (module docs).
+#[derive(Debug, Clone)]
+pub struct RitzPlate {
+    plate: PlateModel,
+    side: Side,
+    damping_ratio: f64,
+    /// Ritz vectors over the free bending equations, M-orthonormal (n_eq × r).
+    basis: DMatrix<f64>,
+    /// Ritz values ω² at 293 K.
+    reference_eigenvalues: Vec<f64>,
+    reduced: Reduced,
+    root_elements: Vec<RootElement>,
+    /// Load on the tube per unit q̈ (6 × r): mass rows (temperature-independent).
+    root_mass: DMatrix<f64>,
+    /// Current load on the tube per unit q (6 × r).
+    root_stiffness: DMatrix<f64>,
+    rigid_coupling: DMatrix<f64>,
+    rigid_mass: Matrix3<f64>,
+    modal: ModalModel,
+    /// Current eigenvalues of K_r (ascending) and eigenvectors.
+    eigenvalues: Vec<f64>,
+    eigenvectors: DMatrix<f64>,
+    // Workspaces of set_temperatures.
+    states: Vec<ElementState>,
+    resultants: Vec<[f64; 3]>,
+    membrane_k: BandedMatrix,
+    membrane_rhs: Vec<f64>,
+    jacobi: DMatrix<f64>,
+}
+
+/// Converts a 12-row element block of generalized forces at held root dofs into the load on
+/// the tube (force, moment about `pivot`): w rows give −f ẑ at the node, βx rows −f about y,
+/// βy rows +f about x (βy = −θx).
+fn root_load_rows(
+    plate: &PlateModel,
+    e: usize,
+    forces: &DMatrix<f64>,
+    pivot: &Point3<f64>,
+) -> DMatrix<f64> {
+    let mut out = DMatrix::<f64>::zeros(6, forces.ncols());
+    let nodes = plate.grid.elements[e];
+    for (k, &n) in nodes.iter().enumerate() {
+        let held = plate.supports.bending[n];
+        let r = plate.grid.positions_m[n] - pivot;
+        for c in 0..forces.ncols() {
+            if held[0] {
+                let f = Vector3::new(0.0, 0.0, -forces[(3 * k, c)]);
+                let m = r.cross(&f);
+                out[(2, c)] += f.z;
+                out[(3, c)] += m.x;
+                out[(4, c)] += m.y;
+                out[(5, c)] += m.z;
+            }
+            if held[1] {
+                out[(4, c)] -= forces[(3 * k + 1, c)];
+            }
+            if held[2] {
+                out[(3, c)] += forces[(3 * k + 2, c)];
+            }
+        }
+    }
+    out
+}
+
+/// Names free-vibration mode shapes by their dominant content along the span: mean deflection
+/// (bending), linear chordwise slope (torsion) or the remainder (chordwise bending), numbered
+/// by order of appearance of each kind.
+fn classify_modes(plate: &PlateModel, modes: &DMatrix<f64>) -> Vec<String> {
+    let g = &plate.grid;
+    let (nc, ns) = (g.nodes_chordwise(), g.nodes_spanwise());
+    let mut counts = [0usize; 3];
+    let kinds = ["bending", "torsion", "chordwise bending"];
+    (0..modes.ncols())
+        .map(|c| {
+            let v: Vec<f64> = modes.column(c).iter().copied().collect();
+            let mut energy = [0.0; 3];
+            for j in 0..ns {
+                let pts: Vec<(f64, f64)> = (0..nc)
+                    .map(|i| {
+                        let n = g.node_index(i, j);
+                        (g.positions_m[n].x, plate.nodal_value(&v, n)[0])
+                    })
+                    .collect();
+                let k = pts.len() as f64;
+                let mx = pts.iter().map(|p| p.0).sum::<f64>() / k;
+                let mw = pts.iter().map(|p| p.1).sum::<f64>() / k;
+                let sxx: f64 = pts.iter().map(|p| (p.0 - mx).powi(2)).sum();
+                let sxw: f64 = pts.iter().map(|p| (p.0 - mx) * (p.1 - mw)).sum();
+                let slope = if sxx > 0.0 { sxw / sxx } else { 0.0 };
+                energy[0] += k * mw * mw;
+                energy[1] += slope * slope * sxx;
+                energy[2] += pts
+                    .iter()
+                    .map(|p| (p.1 - mw - slope * (p.0 - mx)).powi(2))
+                    .sum::<f64>();
+            }
+            let kind = (0..3)
+                .max_by(|&a, &b| energy[a].total_cmp(&energy[b]))
+                .unwrap_or(0);
+            counts[kind] += 1;
+            format!("{} {}", kinds[kind], counts[kind])
+        })
+        .collect()
+}
+
+impl RitzPlate {
+    /// Builds the full-order plate on `grid` (root nodes clamped), its Ritz basis at 293 K and
+    /// the reduced element contributions.
+    pub fn new(
+        grid: SurfaceGrid,
+        material: Material,
+        settings: &Settings,
+    ) -> Result<Self, ModelError> {
+        let supports = Supports::free(grid.n_nodes()).clamp(&grid.root_nodes);
+        Self::with_supports(grid, material, supports, settings)
+    }
+
+    /// [`RitzPlate::new`] with any supports (plate-theory checks: simply supported edges,
+    /// statically determinate in-plane supports for free thermal expansion, ...). Root loads
+    /// are then the reactions at every held bending dof.
+    pub fn with_supports(
+        grid: SurfaceGrid,
+        material: Material,
+        supports: Supports,
+        settings: &Settings,
+    ) -> Result<Self, ModelError> {
+        let n_modes = settings.free_vibration_modes;
+        if !(1..=50).contains(&n_modes) {
+            return Err(ModelError::out_of_range(
+                NAME,
+                "free_vibration_modes",
+                n_modes as f64,
+                "1 to 50",
+            ));
+        }
+        if settings.static_shapes > STATIC_SHAPES.len() {
+            return Err(ModelError::out_of_range(
+                NAME,
+                "static_shapes",
+                settings.static_shapes as f64,
+                "0 to 5",
+            ));
+        }
+        let zeta = settings.damping_ratio;
+        if !(zeta.is_finite() && (0.0..1.0).contains(&zeta)) {
+            return Err(ModelError::out_of_range(
+                NAME,
+                "damping_ratio",
+                zeta,
+                "[0, 1)",
+            ));
+        }
+        let plate = PlateModel::new(grid, material, supports).map_err(model_error)?;
+        let requested = n_modes + settings.static_shapes;
+        if requested > plate.bending_map.n_equations / 4 {
+            return Err(model_error(PlateError::TooFewDofs {
+                requested,
+                available: plate.bending_map.n_equations,
+            }));
+        }
+        let (_, modes) = plate.modes(None, n_modes).map_err(model_error)?;
+        let mut names = classify_modes(&plate, &modes);
+        let (basis, eigenvalues, static_names) =
+            Self::augment(&plate, modes, settings.static_shapes)?;
+        names.extend(static_names);
+        let mut model = Self::from_basis(plate, basis, eigenvalues, names, zeta);
+        model.reset_reference();
+        Ok(model)
+    }
+
+    /// Adds the static load shapes: K⁻¹ f, M-orthogonalized (twice, modified Gram-Schmidt)
+    /// against the modes and each other, then rotated so the static block of K_r is diagonal.
+    fn augment(
+        plate: &PlateModel,
+        modes: DMatrix<f64>,
+        n_static: usize,
+    ) -> Result<AugmentedBasis, ModelError> {
+        if n_static == 0 {
+            let (b, eigenvalues) = Self::rayleigh_ritz(plate, modes)?;
+            return Ok((b, eigenvalues, Vec::new()));
+        }
+        let g = &plate.grid;
+        let (nc, ns) = (g.nodes_chordwise(), g.nodes_spanwise());
+        let tip = g.edge_nodes(GridEdge::Tip);
+        let tip_mid_x = 0.5 * (g.positions_m[tip[0]].x + g.positions_m[tip[nc - 1]].x);
+        let loads: Vec<Vec<f64>> = (0..n_static)
+            .map(|k| {
+                plate.to_equations(|n| {
+                    let (i, j) = (n % nc, n / nc);
+                    let a = g.node_areas_m2[n];
+                    let u = g.chord_fractions[i];
+                    let eta = g.span_fractions[j];
+                    let w = match k {
+                        0 => a,
+                        1 => f64::from(u8::from(j == ns - 1)),
+                        2 => {
+                            if j == ns - 1 {
+                                g.positions_m[n].x - tip_mid_x
+                            } else {
+                                0.0
+                            }
+                        }
+                        3 => a * (u - 0.5),
+                        _ => a * eta,
+                    };
+                    [w, 0.0, 0.0]
+                })
+            })
+            .collect();
+        let f = DMatrix::from_fn(plate.bending_map.n_equations, n_static, |r, c| loads[c][r]);
+        let shapes = plate.static_solve(&f).map_err(model_error)?;
+        let m = plate.assemble_mass();
+        let m_times = |v: &[f64]| {
+            let mut out = vec![0.0; v.len()];
+            m.mul_vec(v, &mut out);
+            out
+        };
+        let dot = |a: &[f64], b: &[f64]| a.iter().zip(b).map(|(x, y)| x * y).sum::<f64>();
+        let mut basis: Vec<Vec<f64>> = modes
+            .column_iter()
+            .map(|c| c.iter().copied().collect())
+            .collect();
+        let n_modes = basis.len();
+        for col in shapes.column_iter() {
+            let mut v: Vec<f64> = col.iter().copied().collect();
+            let norm0 = dot(&v, &m_times(&v)).sqrt();
+            for _ in 0..2 {
+                for b in &basis {
+                    let c = dot(b, &m_times(&v));
+                    v.iter_mut().zip(b).for_each(|(x, y)| *x -= c * y);
+                }
+            }
+            let norm = dot(&v, &m_times(&v)).sqrt();
+            // A shape already (numerically) in the span adds nothing; skip it.
+            if norm.is_nan() || norm <= 1e-8 * norm0 {
+                continue;
+            }
+            v.iter_mut().for_each(|x| *x /= norm);
+            basis.push(v);
+        }
+        let n_eq = plate.bending_map.n_equations;
+        let b = DMatrix::from_fn(n_eq, basis.len(), |r, c| basis[c][r]);
+        let n_s = basis.len() - n_modes;
+        // A final Rayleigh-Ritz on the whole basis makes it exactly M-orthonormal and
+        // K-orthogonal (the modes from subspace iteration carry ~1e-6 vector errors); the
+        // first n_modes Ritz values are the modes' own eigenvalues.
+        let (b, eigenvalues) = Self::rayleigh_ritz(plate, b)?;
+        let names = (0..n_s)
+            .map(|i| format!("static-shape Ritz vector {}", i + 1))
+            .collect();
+        Ok((b, eigenvalues, names))
+    }
+
+    /// Rotates `basis` to the eigenvectors of (Bᵀ K B, Bᵀ M B) at 293 K: M-orthonormal,
+    /// K-diagonal, ascending Ritz values.
+    fn rayleigh_ritz(
+        plate: &PlateModel,
+        basis: DMatrix<f64>,
+    ) -> Result<(DMatrix<f64>, Vec<f64>), ModelError> {
+        let (k, m) = (plate.assemble_stiffness(None), plate.assemble_mass());
+        let n = basis.nrows();
+        let mut kb = DMatrix::<f64>::zeros(n, basis.ncols());
+        let mut mb = DMatrix::<f64>::zeros(n, basis.ncols());
+        let mut out = vec![0.0; n];
+        for (c, col) in basis.column_iter().enumerate() {
+            let v: Vec<f64> = col.iter().copied().collect();
+            k.mul_vec(&v, &mut out);
+            kb.column_mut(c).copy_from_slice(&out);
+            m.mul_vec(&v, &mut out);
+            mb.column_mut(c).copy_from_slice(&out);
+        }
+        let (values, q) = small_generalized(&(basis.transpose() * kb), &(basis.transpose() * mb))
+            .map_err(|_| {
+            ModelError::inconsistent(NAME, "the Ritz basis is linearly dependent")
+        })?;
+        Ok((basis * q, values))
+    }
+
+    /// Precomputes the reduced element matrices, root-load and rigid-body couplings.
+    fn from_basis(
+        plate: PlateModel,
+        basis: DMatrix<f64>,
+        eigenvalues: Vec<f64>,
+        names: Vec<String>,
+        damping_ratio: f64,
+    ) -> Self {
+        let r = basis.ncols();
+        let n_e = plate.n_elements();
+        let mut stiffness = vec![0.0; n_e * r * r];
+        let mut geometric = vec![0.0; 3 * n_e * r * r];
+        let mut root_elements = Vec::new();
+        let mut root_mass = DMatrix::<f64>::zeros(6, r);
+        let pivot = plate.grid.pivot_m;
+        let mut rigid_coupling = DMatrix::<f64>::zeros(r, 3);
+        let mut rigid_mass = Matrix3::<f64>::zeros();
+        for e in 0..n_e {
+            let be = plate.element_rows(&basis, e);
+            let ke = DMatrix::from_fn(12, 12, |a, b| plate.bending_stiffness[e][(a, b)]);
+            let kr = be.transpose() * &ke * &be;
+            stiffness[e * r * r..(e + 1) * r * r].copy_from_slice(kr.as_slice());
+            let mut ge = [
+                DMatrix::<f64>::zeros(12, 12),
+                DMatrix::zeros(12, 12),
+                DMatrix::zeros(12, 12),
+            ];
+            for (c, g) in ge.iter_mut().enumerate() {
+                for i in 0..4 {
+                    for j in 0..4 {
+                        g[(3 * i, 3 * j)] = plate.geometric[e][c][(i, j)];
+                    }
+                }
+                let gr = be.transpose() * &*g * &be;
+                let start = (3 * e + c) * r * r;
+                geometric[start..start + r * r].copy_from_slice(gr.as_slice());
+            }
+            let me = DMatrix::from_fn(12, 12, |a, b| plate.bending_mass[e][(a, b)]);
+            let nodes = plate.grid.elements[e];
+            if nodes
+                .iter()
+                .any(|&n| plate.supports.bending[n].iter().any(|&h| h))
+            {
+                let stiff = root_load_rows(&plate, e, &(&ke * &be), &pivot);
+                let geo = [0, 1, 2].map(|c| root_load_rows(&plate, e, &(&ge[c] * &be), &pivot));
+                root_mass += root_load_rows(&plate, e, &(&me * &be), &pivot);
+                root_elements.push(RootElement {
+                    element: e,
+                    stiffness: stiff,
+                    geometric: geo,
+                });
+            }
+            // Rigid motions of the tube on the element's nodes: z translation (w = 1) and pitch
+            // about the pivot axis (w = −(x − x_p), βx = 1); x translation is in-plane.
+            let mut rz = DMatrix::<f64>::zeros(12, 3);
+            for (k, &n) in nodes.iter().enumerate() {
+                let x = plate.grid.positions_m[n].x;
+                rz[(3 * k, 1)] = 1.0;
+                rz[(3 * k, 2)] = -(x - pivot.x);
+                rz[(3 * k + 1, 2)] = 1.0;
+            }
+            rigid_coupling += be.transpose() * &me * &rz;
+            let mrr = rz.transpose() * &me * &rz;
+            for a in 1..3 {
+                for b in 1..3 {
+                    rigid_mass[(a, b)] += mrr[(a, b)];
+                }
+            }
+            let mm = &plate.membrane_mass[e];
+            // Σ_ij M_m[u_i, u_j]: the element's mass in x translation.
+            rigid_mass[(0, 0)] += (0..4)
+                .flat_map(|i| (0..4).map(move |j| (i, j)))
+                .map(|(i, j)| mm[(2 * i, 2 * j)])
+                .sum::<f64>();
+        }
+        let n_eq_m = plate.membrane_map.n_equations;
+        let modal = ModalModel {
+            names,
+            mass: DMatrix::identity(r, r),
+            damping: DMatrix::zeros(r, r),
+            stiffness: DMatrix::from_diagonal(&DVector::from_vec(eigenvalues.clone())),
+        };
+        Self {
+            membrane_k: plate.membrane_matrix(),
+            membrane_rhs: vec![0.0; n_eq_m],
+            states: vec![
+                ElementState {
+                    stiffness_scale: 1.0,
+                    thermal_strain: 0.0
+                };
+                n_e
+            ],
+            resultants: vec![[0.0; 3]; n_e],
+            side: plate.grid.side,
+            plate,
+            damping_ratio,
+            basis,
+            reference_eigenvalues: eigenvalues.clone(),
+            reduced: Reduced {
+                size: r,
+                stiffness,
+                geometric,
+            },
+            root_elements,
+            root_mass,
+            root_stiffness: DMatrix::zeros(6, r),
+            rigid_coupling,
+            rigid_mass,
+            modal,
+            eigenvalues,
+            eigenvectors: DMatrix::identity(r, r),
+            jacobi: DMatrix::zeros(r, r),
+        }
+    }
+
+    /// The reference (293 K, stress-free) state: K_r from the reduced element sums.
+    fn reset_reference(&mut self) {
+        for s in &mut self.states {
+            *s = ElementState {
+                stiffness_scale: 1.0,
+                thermal_strain: 0.0,
+            };
+        }
+        self.resultants.iter_mut().for_each(|r| *r = [0.0; 3]);
+        self.update_reduced();
+    }
+
+    /// The selected side (mode shapes and root loads mirror for `Left`).
+    pub fn with_side(mut self, side: Side) -> Self {
+        self.side = side;
+        self
+    }
+
+    pub fn side(&self) -> Side {
+        self.side
+    }
+
+    /// Number of structural grid nodes `set_temperatures` expects (node order of
+    /// [`RitzPlate::grid`]).
+    pub fn temperature_nodes(&self) -> usize {
+        self.plate.grid.n_nodes()
+    }
+
+    /// The structural grid (node positions, thickness, maps to aero meshes).
+    pub fn grid(&self) -> &SurfaceGrid {
+        &self.plate.grid
+    }
+
+    /// The full-order plate behind the basis.
+    pub fn plate(&self) -> &PlateModel {
+        &self.plate
+    }
+
+    /// Ritz vectors over the free bending equations (n_eq × r), M-orthonormal.
+    pub fn basis(&self) -> &DMatrix<f64> {
+        &self.basis
+    }
+
+    /// Ritz values ω² (rad²/s²) of the basis at 293 K, ascending within modes and shapes.
+    pub fn reference_eigenvalues(&self) -> &[f64] {
+        &self.reference_eigenvalues
+    }
+
+    /// Element-mean membrane resultants (N/m: xx, yy, xy) of the latest temperature field.
+    pub fn membrane_resultants(&self) -> &[[f64; 3]] {
+        &self.resultants
+    }
+
+    /// Inertial coupling C = Φᵀ M R (r × 3) of the Ritz coordinates with the tube's rigid
+    /// accelerations a = (ẍ m/s², z̈ m/s², θ̈ rad/s² about +y through the pivot): the Ritz
+    /// equations get the generalized force −C a.
+    pub fn rigid_body_coupling(&self) -> &DMatrix<f64> {
+        &self.rigid_coupling
+    }
+
+    /// Rigid mass matrix Rᵀ M R of the surface for (x, z, pitch) about the pivot: kg, kg m,
+    /// kg m².
+    pub fn rigid_body_mass(&self) -> &Matrix3<f64> {
+        &self.rigid_mass
+    }
+
+    /// Recomputes K_r, root-load matrices, eigen-decomposition and damping from the current
+    /// element states and resultants (allocation-free).
+    fn update_reduced(&mut self) {
+        let r = self.reduced.size;
+        let rr = r * r;
+        let k = self.modal.stiffness.as_mut_slice();
+        k.iter_mut().for_each(|v| *v = 0.0);
+        for (e, state) in self.states.iter().enumerate() {
+            let s = state.stiffness_scale;
+            let ke = &self.reduced.stiffness[e * rr..(e + 1) * rr];
+            let n = self.resultants[e];
+            let g = &self.reduced.geometric[3 * e * rr..(3 * e + 3) * rr];
+            for idx in 0..rr {
+                k[idx] += s * ke[idx] + n[0] * g[idx] + n[1] * g[rr + idx] + n[2] * g[2 * rr + idx];
+            }
+        }
+        // Exact symmetry for the eigen-solver.
+        for i in 0..r {
+            for j in (i + 1)..r {
+                let avg = 0.5 * (k[i * r + j] + k[j * r + i]);
+                k[i * r + j] = avg;
+                k[j * r + i] = avg;
+            }
+        }
+        self.root_stiffness.fill(0.0);
+        for re in &self.root_elements {
+            let s = self.states[re.element].stiffness_scale;
+            let n = self.resultants[re.element];
+            for idx in 0..6 * r {
+                self.root_stiffness.as_mut_slice()[idx] += s * re.stiffness.as_slice()[idx]
+                    + n[0] * re.geometric[0].as_slice()[idx]
+                    + n[1] * re.geometric[1].as_slice()[idx]
+                    + n[2] * re.geometric[2].as_slice()[idx];
+            }
+        }
+        self.jacobi.copy_from(&self.modal.stiffness);
+        jacobi_eigen(
+            &mut self.jacobi,
+            &mut self.eigenvalues,
+            &mut self.eigenvectors,
+        );
+        // C = Ψ diag(2 ζ ω) Ψᵀ (M_r = I); a buckled (λ < 0) mode gets none.
+        let c = &mut self.modal.damping;
+        c.fill(0.0);
+        for m in 0..r {
+            let lam = self.eigenvalues[m];
+            if lam <= 0.0 {
+                continue;
+            }
+            let coef = 2.0 * self.damping_ratio * lam.sqrt();
+            for i in 0..r {
+                let pi = self.eigenvectors[(i, m)] * coef;
+                for j in 0..r {
+                    c[(i, j)] += pi * self.eigenvectors[(j, m)];
+                }
+            }
+        }
+    }
+
+    /// Displacement (m) at a mid-plane offset `z_offset_m` of a Ritz vector at a grid point:
+    /// (z βx, z βy, w) interpolated bilinearly.
+    fn displacement(&self, column: usize, at: &GridPoint, z_offset_m: f64) -> Vector3<f64> {
+        let v = self.basis.column(column);
+        let mut d = Vector3::zeros();
+        for k in 0..4 {
+            let n = at.nodes[k];
+            let mut nodal = [0.0; 3];
+            for (dof, val) in nodal.iter_mut().enumerate() {
+                if let Some(i) = self.plate.bending_map.equation[n * 3 + dof] {
+                    *val = v[i];
+                }
+            }
+            d += Vector3::new(z_offset_m * nodal[1], z_offset_m * nodal[2], nodal[0])
+                * at.weights[k];
+        }
+        d
+    }
+}
+
+impl StructureModel for RitzPlate {
+    fn name(&self) -> &str {
+        NAME
+    }
+
+    fn temperature_nodes(&self) -> usize {
+        self.plate.grid.n_nodes()
+    }
+
+    fn modal_model(&self) -> &ModalModel {
+        &self.modal
+    }
+
+    fn natural_frequencies_hz(&self) -> Result<Vec<f64>, ModelError> {
+        if let Some((mode, &lam)) = self
+            .eigenvalues
+            .iter()
+            .enumerate()
+            .find(|(_, l)| **l <= 0.0)
+        {
+            return Err(ModelError::inconsistent(
+                NAME,
+                format!(
+                    "buckled: mode {} of the current stiffness has eigenvalue {lam:.4e} rad²/s² \
+                     (≤ 0); compressive thermal stress exceeds the surface's buckling load",
+                    mode + 1
+                ),
+            ));
+        }
+        let f: Vec<f64> = self
+            .eigenvalues
+            .iter()
+            .map(|l| l.sqrt() / (2.0 * std::f64::consts::PI))
+            .collect();
+        if let Some(i) = f.iter().position(|v| !v.is_finite()) {
+            return Err(ModelError::NonFinite {
+                model: NAME.to_owned(),
+                quantity: "natural frequency".to_owned(),
+                location: format!(" of mode {}", i + 1),
+            });
+        }
+        Ok(f)
+    }
+
+    fn mode_shapes_on(&self, mesh: &PanelMesh) -> Result<ModeShapes, ModelError> {
+        let grid = &self.plate.grid;
+        // A mesh on the other side of y = 0 is the mirror image of this surface's.
+        let mean_y =
+            mesh.vertices.iter().map(|v| v.y).sum::<f64>() / mesh.vertices.len().max(1) as f64;
+        let grid_y = grid.positions_m.iter().map(|p| p.y).sum::<f64>() / grid.n_nodes() as f64;
+        let mirror = mean_y * grid_y < 0.0;
+        let points: Vec<Point3<f64>> = mesh
+            .vertices
+            .iter()
+            .map(|v| {
+                if mirror {
+                    Point3::new(v.x, -v.y, v.z)
+                } else {
+                    *v
+                }
+            })
+            .collect();
+        let map = grid
+            .map_points(&points, "vertex")
+            .map_err(|e| ModelError::inconsistent(NAME, e.to_string()))?;
+        let r = self.basis.ncols();
+        let z_mid = grid.mid_plane_z_m();
+        let mut shapes = DMatrix::<f64>::zeros(3 * points.len(), r);
+        for (i, (p, at)) in points.iter().zip(&map).enumerate() {
+            for c in 0..r {
+                let mut d = self.displacement(c, at, p.z - z_mid);
+                if mirror {
+                    d.y = -d.y;
+                }
+                shapes[(3 * i, c)] = d.x;
+                shapes[(3 * i + 1, c)] = d.y;
+                shapes[(3 * i + 2, c)] = d.z;
+            }
+        }
+        Ok(ModeShapes {
+            vertex_displacement: shapes,
+        })
+    }
+
+    fn set_temperatures(&mut self, node_temperatures_k: &[f64]) -> Result<(), ModelError> {
+        self.plate
+            .element_states(node_temperatures_k, &mut self.states)
+            .map_err(model_error)?;
+        self.plate
+            .membrane_resultants_into(
+                &self.states,
+                &mut self.membrane_k,
+                &mut self.membrane_rhs,
+                &mut self.resultants,
+            )
+            .map_err(model_error)?;
+        if let Some(e) = self
+            .resultants
+            .iter()
+            .position(|n| n.iter().any(|v| !v.is_finite()))
+        {
+            return Err(ModelError::NonFinite {
+                model: NAME.to_owned(),
+                quantity: "membrane stress resultant".to_owned(),
+                location: format!(" in element {e}"),
+            });
+        }
+        self.update_reduced();
+        Ok(())
+    }
+
+    fn root_loads(
+        &self,
+        modal_coordinates: &DVector<f64>,
+        modal_velocities: &DVector<f64>,
+        modal_accelerations: &DVector<f64>,
+    ) -> Result<Loads, ModelError> {
+        let r = self.basis.ncols();
+        for (what, v) in [
+            ("modal coordinates", modal_coordinates),
+            ("modal velocities", modal_velocities),
+            ("modal accelerations", modal_accelerations),
+        ] {
+            if v.len() != r {
+                return Err(ModelError::inconsistent(
+                    NAME,
+                    format!(
+                        "{} {what} given, the model has {r} Ritz coordinates",
+                        v.len()
+                    ),
+                ));
+            }
+        }
+        let l = &self.root_stiffness * modal_coordinates + &self.root_mass * modal_accelerations;
+        let mut loads = Loads {
+            force_n: Vector3::new(l[0], l[1], l[2]),
+            moment_nm: Vector3::new(l[3], l[4], l[5]),
+        };
+        if self.side != self.plate.grid.side {
+            // Mirror image in y: a polar force flips y, an axial moment flips x and z.
+            loads.force_n.y = -loads.force_n.y;
+            loads.moment_nm.x = -loads.moment_nm.x;
+            loads.moment_nm.z = -loads.moment_nm.z;
+        }
+        if loads
+            .force_n
+            .iter()
+            .chain(loads.moment_nm.iter())
+            .any(|v| !v.is_finite())
+        {
+            return Err(ModelError::NonFinite {
+                model: NAME.to_owned(),
+                quantity: "root load".to_owned(),
+                location: String::new(),
+            });
+        }
+        Ok(loads)
+    }
+}

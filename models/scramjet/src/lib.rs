@@ -1,0 +1,307 @@
+//! Scramjet propulsion: the `scramjet-1d` (fidelity 1) and `scramjet-q1d` (fidelity 2) models,
+//! each evaluated on spanwise sections of the deformed body mesh (paper §II.C, §III.E).
+//!
+//! **What the engine owns.** The inlet ramp (`inlet-ramp`, nose to inlet) and the external
+//! nozzle (`nozzle`, engine exit to tail) of the body mesh, both tagged `Propulsion`, and the
+//! unmeshed internal flow path between the inlet face (ramp end to cowl lip) and the engine
+//! exit. Its loads are the gauge-pressure integrals over the ramp and nozzle plus the momentum
+//! balance of the flow path; `panel_pressure_pa` carries its pressures on the ramp and nozzle
+//! panels (freestream elsewhere) so the body aero, which integrates `MainBody` panels only,
+//! never counts them twice. The cowl underside and side walls stay with the body aero.
+//!
+//! **Sections.** Each spanwise column of the body mesh's ramp, cowl and nozzle strips gives a
+//! two-dimensional section (the panels' edge midpoints in the x-z plane, so bending and
+//! torsion change each section's ramp and nozzle angles). The engine is solved at the centres
+//! of `spanwise_strips` equal-width bands, on sections interpolated between columns; the
+//! sectional force, pitching moment and mass flow per unit span are fitted across the span by
+//! quadratic least squares and integrated (paper §III.E); the spanwise first moments of the
+//! fitted forces give the rolling and yawing moments. Panel pressures are the fit evaluated at
+//! each column. The reported station states are those of the middle section.
+//!
+//! **Quasi-steady.** The engine sees the flight condition's Mach number, altitude and angle of
+//! attack and the deformed geometry; sideslip, body rates and elastic panel velocities are not
+//! used (the paper couples MASIV the same way, §II.C).
+//!
+//! **Sign conventions.** Body axes (x forward, z down), moments about the `[reference]`
+//! moment point. Thrust is the body x force, lift is -(body z force).
+//!
+//! **`scramjet-1d`** (after Bolender & Doman, "Nonlinear longitudinal dynamical model of an
+//! air-breathing hypersonic vehicle", J. Spacecraft Rockets 44(2), 2007): one bow shock from
+//! the ramp (deflection = ramp angle + α), mass capture with spillage when the shock passes
+//! ahead of the cowl lip, an isentropic diffuser to the combustor area, a constant-area
+//! combustor with Rayleigh heat addition and the fuel's mass, thermal-choking detection, an
+//! isentropic internal nozzle and a pressure falling linearly along the aftbody from the
+//! internal nozzle exit pressure to the freestream pressure at the tail.
+//!
+//! **`scramjet-q1d`** (after the structure of MASIV, paper §III.E, in reduced form): oblique
+//! shocks and Prandtl-Meyer expansions panel by panel along the ramp, a cowl shock and its
+//! reflections between the duct walls to the isolator exit, a quasi-one-dimensional combustor
+//! integrated along its length with area change, wall friction and fuel mass and heat released
+//! along a mixing-efficiency curve, an isentropic internal nozzle and a simple-wave expansion
+//! along the aftbody.
+//!
+//! **Off-design.** Spillage, thermal choking and unstart are statuses, never NaN. At thermal
+//! choking the combustor takes the largest heat release it can pass (sonic exit) and reports
+//! `thermal-choking` (a real engine would unstart). An unstarted section (bow shock detached,
+//! or the inlet or diffuser cannot pass the flow) captures nothing: its ramp keeps its
+//! external pressure (the pitot pressure behind a normal shock when detached) and its nozzle
+//! the freestream pressure. Negative or non-finite φ, subsonic flight and a mesh without the
+//! engine surfaces are errors.
+
+mod flow;
+mod geometry;
+mod model;
+mod one_d;
+mod quasi_one_d;
+mod section;
+mod settings;
+mod span;
+
+use hsv_core::aero::ReferenceValues;
+use hsv_core::error::ModelError;
+use hsv_core::propulsion::PropulsionModel;
+use hsv_core::registry::{Constructor, ModelContext, ModelDescriptor};
+use hsv_core::vehicle::GeometryConfig;
+use nalgebra::Point3;
+
+pub use flow::{
+    CombustorExit, Compression, FlowState, Turned, burned_total_temperature_k,
+    constant_area_combustor, supersonic_area_change, turn,
+};
+pub use geometry::{EngineSurfaces, SectionGeometry, direction, slope_rad};
+pub use model::{Scramjet, SectionEngine};
+pub use one_d::OneDEngine;
+pub use quasi_one_d::{Burner, QuasiOneDEngine, mixing_efficiency};
+pub use section::{
+    COMBUSTOR_ENTRY, COMBUSTOR_EXIT, Capture, Fuel, INLET, NOZZLE_EXIT, SectionConditions,
+    SectionSolution, Station, capture,
+};
+pub use settings::{
+    Checker, HYDROGEN_HEATING_VALUE_J_KG, HYDROGEN_STOICHIOMETRIC_FUEL_AIR_RATIO, OneDSettings,
+    QuasiOneDSettings,
+};
+pub use span::SpanFit;
+
+/// Registered name of `scramjet-1d`.
+pub const SCRAMJET_1D: &str = one_d::NAME;
+/// Registered name of `scramjet-q1d`.
+pub const SCRAMJET_Q1D: &str = quasi_one_d::NAME;
+
+/// `scramjet-1d` on spanwise sections.
+pub type Scramjet1d = Scramjet<OneDEngine>;
+/// `scramjet-q1d` on spanwise sections.
+pub type ScramjetQ1d = Scramjet<QuasiOneDEngine>;
+
+impl SectionEngine for OneDEngine {
+    fn name(&self) -> &'static str {
+        one_d::NAME
+    }
+
+    fn solve(
+        &self,
+        geometry: &SectionGeometry,
+        conditions: &SectionConditions<'_>,
+        out: &mut SectionSolution,
+    ) -> Result<(), ModelError> {
+        OneDEngine::solve(self, geometry, conditions, out)
+    }
+}
+
+impl SectionEngine for QuasiOneDEngine {
+    fn name(&self) -> &'static str {
+        quasi_one_d::NAME
+    }
+
+    fn solve(
+        &self,
+        geometry: &SectionGeometry,
+        conditions: &SectionConditions<'_>,
+        out: &mut SectionSolution,
+    ) -> Result<(), ModelError> {
+        QuasiOneDEngine::solve(self, geometry, conditions, out)
+    }
+}
+
+impl OneDSettings {
+    /// The engine these settings describe for `geometry`; errors name `<key_path>.<key>`.
+    pub fn engine(
+        &self,
+        geometry: &GeometryConfig,
+        check: &Checker<'_>,
+    ) -> Result<(OneDEngine, usize), ModelError> {
+        let strips = check.count("spanwise_strips", self.spanwise_strips, 3, 101)?;
+        let fuel = settings::fuel(
+            check,
+            self.stoichiometric_fuel_air_ratio,
+            self.fuel_heating_value_j_kg,
+            self.combustion_efficiency,
+        )?;
+        let (diffuser, nozzle) = settings::area_ratios(
+            check,
+            geometry,
+            self.diffuser_area_ratio,
+            self.internal_nozzle_area_ratio,
+            1.0,
+        )?;
+        Ok((
+            OneDEngine {
+                fuel,
+                diffuser_area_ratio: diffuser,
+                internal_nozzle_area_ratio: nozzle,
+            },
+            strips,
+        ))
+    }
+}
+
+impl QuasiOneDSettings {
+    /// The engine these settings describe for `geometry`; errors name `<key_path>.<key>`.
+    pub fn engine(
+        &self,
+        geometry: &GeometryConfig,
+        check: &Checker<'_>,
+    ) -> Result<(QuasiOneDEngine, usize), ModelError> {
+        let strips = check.count("spanwise_strips", self.spanwise_strips, 3, 101)?;
+        let fuel = settings::fuel(
+            check,
+            self.stoichiometric_fuel_air_ratio,
+            self.fuel_heating_value_j_kg,
+            self.combustion_efficiency,
+        )?;
+        let area_ratio = check.range(
+            "combustor_area_ratio",
+            self.combustor_area_ratio,
+            0.0,
+            10.0,
+            true,
+        )?;
+        let (diffuser, nozzle) = settings::area_ratios(
+            check,
+            geometry,
+            self.diffuser_area_ratio,
+            self.internal_nozzle_area_ratio,
+            area_ratio,
+        )?;
+        let isolator = check.range(
+            "isolator_length_fraction",
+            self.isolator_length_fraction,
+            0.0,
+            1.0,
+            true,
+        )?;
+        let combustor = check.range(
+            "combustor_length_fraction",
+            self.combustor_length_fraction,
+            0.0,
+            1.0,
+            true,
+        )?;
+        if isolator + combustor >= 1.0 {
+            return Err(check.fail(
+                "combustor_length_fraction",
+                format!(
+                    "isolator_length_fraction + combustor_length_fraction = {} leaves no internal nozzle; keep the sum below 1",
+                    isolator + combustor
+                ),
+            ));
+        }
+        Ok((
+            QuasiOneDEngine {
+                fuel,
+                diffuser_area_ratio: diffuser,
+                internal_nozzle_area_ratio: nozzle,
+                combustor_area_ratio: area_ratio,
+                wall_friction_coefficient: check.range(
+                    "wall_friction_coefficient",
+                    self.wall_friction_coefficient,
+                    0.0,
+                    0.05,
+                    false,
+                )?,
+                mixing_shape_parameter: check.range(
+                    "mixing_shape_parameter",
+                    self.mixing_shape_parameter,
+                    1.0,
+                    100.0,
+                    false,
+                )?,
+                isolator_length_fraction: isolator,
+                combustor_length_fraction: combustor,
+                combustor_steps: check.count(
+                    "combustor_steps",
+                    self.combustor_steps,
+                    10,
+                    100_000,
+                )?,
+            },
+            strips,
+        ))
+    }
+}
+
+/// The `[geometry]` table and the `[reference]` moment point of the vehicle config.
+fn vehicle_tables(ctx: &ModelContext<'_>) -> Result<(GeometryConfig, Point3<f64>), ModelError> {
+    let geometry: GeometryConfig = ctx.parse_config_table("geometry")?;
+    let reference: ReferenceValues = ctx.parse_config_table("reference")?;
+    Ok((geometry, reference.moment_point()))
+}
+
+fn build_1d(ctx: &ModelContext<'_>) -> Result<Box<dyn PropulsionModel>, ModelError> {
+    let settings: OneDSettings = ctx.parse_settings()?;
+    let (geometry, reference) = vehicle_tables(ctx)?;
+    let check = Checker {
+        file: ctx.file,
+        key_path: ctx.key_path,
+    };
+    let (engine, strips) = settings.engine(&geometry, &check)?;
+    Ok(Box::new(Scramjet::new(engine, strips, reference)))
+}
+
+fn build_q1d(ctx: &ModelContext<'_>) -> Result<Box<dyn PropulsionModel>, ModelError> {
+    let settings: QuasiOneDSettings = ctx.parse_settings()?;
+    let (geometry, reference) = vehicle_tables(ctx)?;
+    let check = Checker {
+        file: ctx.file,
+        key_path: ctx.key_path,
+    };
+    let (engine, strips) = settings.engine(&geometry, &check)?;
+    Ok(Box::new(Scramjet::new(engine, strips, reference)))
+}
+
+hsv_core::register_model!(ModelDescriptor {
+    name: one_d::NAME,
+    origin: env!("CARGO_PKG_NAME"),
+    fidelity: 1,
+    summary: "1-D scramjet after Bolender & Doman (2007): ramp shock with spillage, isentropic \
+              diffuser, Rayleigh combustor with choking detection, linear aftbody nozzle \
+              pressure; on spanwise strips with a quadratic fit",
+    settings_doc: "spanwise_strips = 5                  # sections across the engine (>= 3)\n\
+                   stoichiometric_fuel_air_ratio = 0.0291 # H2 (Heiser & Pratt 1994)\n\
+                   fuel_heating_value_j_kg = 1.2e8      # H2 lower heating value (Heiser & Pratt 1994)\n\
+                   combustion_efficiency = 0.9          # fraction of the heating value released\n\
+                   # diffuser_area_ratio = 1.0          # combustor area / inlet height; default from [geometry]\n\
+                   # internal_nozzle_area_ratio = 1.0   # nozzle exit / combustor area (>= 1); default from [geometry]",
+    constructor: Constructor::Propulsion(build_1d),
+});
+
+hsv_core::register_model!(ModelDescriptor {
+    name: quasi_one_d::NAME,
+    origin: env!("CARGO_PKG_NAME"),
+    fidelity: 2,
+    summary: "Quasi-1-D scramjet: 2-D inlet shocks with cowl-shock reflections, combustor \
+              integrated with area change, friction and mixing-limited heat release, \
+              simple-wave aftbody nozzle; on spanwise strips with a quadratic fit",
+    settings_doc: "spanwise_strips = 5                  # sections across the engine (>= 3)\n\
+                   stoichiometric_fuel_air_ratio = 0.0291 # H2 (Heiser & Pratt 1994)\n\
+                   fuel_heating_value_j_kg = 1.2e8      # H2 lower heating value (Heiser & Pratt 1994)\n\
+                   combustion_efficiency = 0.9          # fraction of the heating value released once mixed\n\
+                   combustor_area_ratio = 1.0           # combustor exit / entry area\n\
+                   wall_friction_coefficient = 0.002    # c_f in the combustor\n\
+                   mixing_shape_parameter = 5.0         # theta of eta_m = theta x / (1 + (theta - 1) x)\n\
+                   isolator_length_fraction = 0.2       # inlet face to combustor entry / engine length\n\
+                   combustor_length_fraction = 0.5      # combustor / engine length\n\
+                   combustor_steps = 200                # RK4 steps along the combustor\n\
+                   # diffuser_area_ratio = 1.0          # combustor entry / inlet height; default from [geometry]\n\
+                   # internal_nozzle_area_ratio = 1.0   # nozzle exit / combustor exit (>= 1); default from [geometry]",
+    constructor: Constructor::Propulsion(build_q1d),
+});

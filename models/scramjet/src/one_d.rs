@@ -1,0 +1,146 @@
+//! `scramjet-1d` on one section, after Bolender & Doman (2007): ramp shock, spillage, isentropic
+//! diffuser, constant-area combustor with Rayleigh heat (and fuel mass) addition, isentropic
+//! internal nozzle, and a linear pressure distribution on the external nozzle.
+
+use hsv_core::error::ModelError;
+use hsv_core::propulsion::EngineStatus;
+
+use crate::flow::{
+    Compression, FlowState, burned_total_temperature_k, constant_area_combustor,
+    supersonic_area_change,
+};
+use crate::geometry::SectionGeometry;
+use crate::section::{
+    COMBUSTOR_ENTRY, COMBUSTOR_EXIT, Fuel, INLET, NOZZLE_EXIT, SectionConditions, SectionSolution,
+    Station, add_flow_path_force, capture, check_finite, ramp_flow, unstarted,
+};
+
+/// Registered name.
+pub const NAME: &str = "scramjet-1d";
+
+/// The one-dimensional engine's parameters (resolved settings).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct OneDEngine {
+    pub fuel: Fuel,
+    /// Combustor area over the inlet face height (A2/A1).
+    pub diffuser_area_ratio: f64,
+    /// Internal nozzle exit area over the combustor area (Ae/A3 ≥ 1).
+    pub internal_nozzle_area_ratio: f64,
+}
+
+impl OneDEngine {
+    /// Solves one section into `out` (buffers reused).
+    pub fn solve(
+        &self,
+        geometry: &SectionGeometry,
+        conditions: &SectionConditions<'_>,
+        out: &mut SectionSolution,
+    ) -> Result<(), ModelError> {
+        out.reset(geometry);
+        let f = conditions.freestream;
+        let gas = &f.gas;
+        let p_inf = f.pressure_pa;
+
+        // Ramp: bow shock from the first segment, isentropic turns after it (B&D's single
+        // forebody shock on a straight ramp).
+        let ramp = match ramp_flow(
+            geometry,
+            conditions,
+            Compression::Isentropic,
+            &mut out.ramp_pressure_pa,
+        )? {
+            Ok(r) => r,
+            Err(_) => return unstarted(out, geometry, conditions, None),
+        };
+        out.ramp_shock_wave_angle_rad = ramp.shock_wave_angle_rad;
+        let inlet = ramp.inlet;
+        let cap = capture(geometry, conditions, &inlet);
+        let air = cap.mass_flow_kg_s_per_m;
+
+        // Diffuser (isolator): isentropic area change from the captured stream tube to the
+        // combustor area A2 = (A2/A1) × inlet face height.
+        let face_height = (geometry.cowl_lip() - geometry.ramp_end()).norm();
+        let combustor_area = self.diffuser_area_ratio * face_height;
+        let Some(entry) =
+            supersonic_area_change(&inlet, cap.stream_tube_area_m2_per_m, combustor_area, gas)?
+        else {
+            return unstarted(out, geometry, conditions, Some(inlet));
+        };
+
+        // Combustor: heat and fuel mass from φ.
+        let phi = conditions.fuel_equivalence_ratio;
+        let fuel_air = self.fuel.fuel_air_ratio(phi);
+        let t0_exit = burned_total_temperature_k(
+            entry.total_temperature_k(gas),
+            fuel_air,
+            self.fuel.burned_fuel_air_ratio(phi),
+            self.fuel.heat_release_j_kg(),
+            gas,
+        );
+        let burned = constant_area_combustor(&entry, fuel_air, t0_exit, gas)?;
+        let exit_air_fuel = air * (1.0 + fuel_air);
+
+        // Internal nozzle: isentropic expansion to Ae = (Ae/A3) A3.
+        let nozzle_area = self.internal_nozzle_area_ratio * combustor_area;
+        let Some(nozzle_exit) =
+            supersonic_area_change(&burned.state, combustor_area, nozzle_area, gas)?
+        else {
+            return unstarted(out, geometry, conditions, Some(inlet));
+        };
+
+        out.status = if !burned.within_limit {
+            EngineStatus::ThermalChoking
+        } else if cap.spills() {
+            EngineStatus::Spillage
+        } else {
+            EngineStatus::Ok
+        };
+        out.air_mass_flow_kg_s_per_m = air;
+        out.captured_fraction = cap.fraction();
+        out.fuel_air_ratio = fuel_air;
+        let station = |name, state: FlowState, area, mass| Station {
+            name,
+            state,
+            area_m2_per_m: area,
+            mass_flow_kg_s_per_m: mass,
+        };
+        out.stations.extend([
+            station(INLET, inlet, cap.stream_tube_area_m2_per_m, air),
+            station(COMBUSTOR_ENTRY, entry, combustor_area, air),
+            station(COMBUSTOR_EXIT, burned.state, combustor_area, exit_air_fuel),
+            station(NOZZLE_EXIT, nozzle_exit, nozzle_area, exit_air_fuel),
+        ]);
+
+        // External nozzle: pressure linear in arc length from the internal nozzle exit
+        // pressure at the engine exit to the freestream pressure at the tail (Bolender &
+        // Doman 2007, aftbody pressure distribution), taken at each segment's midpoint (exact
+        // for the integral of a straight nozzle).
+        let total: f64 = geometry
+            .nozzle_m
+            .windows(2)
+            .map(|w| (w[1] - w[0]).norm())
+            .sum();
+        let mut s = 0.0;
+        for (w, p) in geometry
+            .nozzle_m
+            .windows(2)
+            .zip(out.nozzle_pressure_pa.iter_mut())
+        {
+            let length = (w[1] - w[0]).norm();
+            let t = (s + 0.5 * length) / total;
+            *p = nozzle_exit.pressure_pa + (p_inf - nozzle_exit.pressure_pa) * t;
+            s += length;
+        }
+
+        let reference = conditions.reference_m;
+        let ramp_p = std::mem::take(&mut out.ramp_pressure_pa);
+        out.add_surface_pressure(&geometry.ramp_m, &ramp_p, p_inf, &reference);
+        out.ramp_pressure_pa = ramp_p;
+        let nozzle_p = std::mem::take(&mut out.nozzle_pressure_pa);
+        out.add_surface_pressure(&geometry.nozzle_m, &nozzle_p, p_inf, &reference);
+        out.nozzle_pressure_pa = nozzle_p;
+        let (first, last) = (out.stations[0], out.stations[3]);
+        add_flow_path_force(out, geometry, conditions, &first, &last);
+        check_finite(NAME, out, geometry.y_m)
+    }
+}

@@ -1,0 +1,400 @@
+//! What both engine models share on one two-dimensional section: the conditions, the result,
+//! the forebody ramp flow, the captured mass flow (spillage), the control-volume forces of the
+//! flow path and the unstarted engine.
+
+use hsv_core::error::ModelError;
+use hsv_core::flow::Freestream;
+use hsv_core::gas::{GasError, PerfectGas, rayleigh_pitot_pressure_ratio};
+use hsv_core::propulsion::EngineStatus;
+use nalgebra::{Point2, Vector2};
+
+use crate::flow::{Compression, FlowState, turn};
+use crate::geometry::{SectionGeometry, slope_rad};
+
+/// Flight and fuel conditions of one section evaluation.
+#[derive(Debug, Clone, Copy)]
+pub struct SectionConditions<'a> {
+    pub freestream: &'a Freestream,
+    /// Angle of attack, rad (adds to the ramp turning).
+    pub alpha_rad: f64,
+    /// Fuel equivalence ratio φ ≥ 0.
+    pub fuel_equivalence_ratio: f64,
+    /// Moment reference point (x, z) in the body frame, m.
+    pub reference_m: Point2<f64>,
+}
+
+/// Fuel: hydrogen by default.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Fuel {
+    /// Stoichiometric fuel/air mass ratio f_st.
+    pub stoichiometric_fuel_air_ratio: f64,
+    /// Lower heating value, J/kg of fuel.
+    pub heating_value_j_kg: f64,
+    /// Fraction of the heating value released in the combustor.
+    pub combustion_efficiency: f64,
+}
+
+impl Fuel {
+    /// Fuel mass added per unit air mass, f = φ f_st.
+    pub fn fuel_air_ratio(&self, phi: f64) -> f64 {
+        phi * self.stoichiometric_fuel_air_ratio
+    }
+
+    /// Fuel that can burn per unit air mass: min(φ, 1) f_st (oxygen limits fuel-rich mixtures).
+    pub fn burned_fuel_air_ratio(&self, phi: f64) -> f64 {
+        phi.min(1.0) * self.stoichiometric_fuel_air_ratio
+    }
+
+    /// Heat released per unit mass of burned fuel, η h, J/kg.
+    pub fn heat_release_j_kg(&self) -> f64 {
+        self.combustion_efficiency * self.heating_value_j_kg
+    }
+}
+
+/// A named engine station: state, flow area per unit span (m²/m) and mass flow per unit span
+/// (kg/(s m)).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Station {
+    pub name: &'static str,
+    pub state: FlowState,
+    pub area_m2_per_m: f64,
+    pub mass_flow_kg_s_per_m: f64,
+}
+
+/// Station names, in flow order.
+pub const INLET: &str = "inlet";
+pub const COMBUSTOR_ENTRY: &str = "combustor-entry";
+pub const COMBUSTOR_EXIT: &str = "combustor-exit";
+pub const NOZZLE_EXIT: &str = "nozzle-exit";
+
+/// Result of one section; buffers are reused between evaluations.
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct SectionSolution {
+    pub status: EngineStatus,
+    /// Force per unit span on the vehicle, body (x, z), N/m.
+    pub force_n_per_m: Vector2<f64>,
+    /// Pitching moment per unit span about the reference point, N m/m.
+    pub pitching_moment_nm_per_m: f64,
+    /// Air mass flow captured per unit span, kg/(s m).
+    pub air_mass_flow_kg_s_per_m: f64,
+    /// Captured over the largest capturable (freestream tube from the nose to the cowl lip).
+    pub captured_fraction: f64,
+    /// Wave angle of the ramp (bow) shock relative to the freestream, rad; `None` when the
+    /// nose expands the flow or the shock detaches.
+    pub ramp_shock_wave_angle_rad: Option<f64>,
+    /// Fuel added per unit air mass.
+    pub fuel_air_ratio: f64,
+    /// Inlet, combustor entry, combustor exit and nozzle exit (inlet only when unstarted).
+    pub stations: Vec<Station>,
+    /// Pressure on each ramp panel (segment), Pa.
+    pub ramp_pressure_pa: Vec<f64>,
+    /// Pressure on each nozzle panel (segment), Pa.
+    pub nozzle_pressure_pa: Vec<f64>,
+}
+
+impl SectionSolution {
+    /// Clears the result for `geometry`, keeping buffer capacity.
+    pub fn reset(&mut self, geometry: &SectionGeometry) {
+        self.status = EngineStatus::Ok;
+        self.force_n_per_m = Vector2::zeros();
+        self.pitching_moment_nm_per_m = 0.0;
+        self.air_mass_flow_kg_s_per_m = 0.0;
+        self.captured_fraction = 0.0;
+        self.ramp_shock_wave_angle_rad = None;
+        self.fuel_air_ratio = 0.0;
+        self.stations.clear();
+        self.ramp_pressure_pa.clear();
+        self.ramp_pressure_pa
+            .resize(geometry.ramp_m.len().saturating_sub(1), 0.0);
+        self.nozzle_pressure_pa.clear();
+        self.nozzle_pressure_pa
+            .resize(geometry.nozzle_m.len().saturating_sub(1), 0.0);
+    }
+
+    /// The station called `name`.
+    pub fn station(&self, name: &str) -> Option<&Station> {
+        self.stations.iter().find(|s| s.name == name)
+    }
+
+    /// Adds the force and moment of a point force per unit span applied at `at`.
+    pub fn add_force(&mut self, force: Vector2<f64>, at: &Point2<f64>, reference: &Point2<f64>) {
+        let r = at - reference;
+        self.force_n_per_m += force;
+        // (r × F)_y with r, F in (x, z): r_z F_x - r_x F_z.
+        self.pitching_moment_nm_per_m += r.y * force.x - r.x * force.y;
+    }
+
+    /// Adds the gauge-pressure force of every segment of a lower-surface polyline (outward
+    /// normal pointing down, out of the body): F = -(p - p∞) l n with n = (dz, -dx)/l.
+    pub fn add_surface_pressure(
+        &mut self,
+        line: &[Point2<f64>],
+        pressure_pa: &[f64],
+        freestream_pressure_pa: f64,
+        reference: &Point2<f64>,
+    ) {
+        for (w, &p) in line.windows(2).zip(pressure_pa) {
+            let d = w[1] - w[0];
+            let normal_times_length = Vector2::new(d.y, -d.x);
+            let mid = Point2::from((w[0].coords + w[1].coords) * 0.5);
+            self.add_force(
+                -(p - freestream_pressure_pa) * normal_times_length,
+                &mid,
+                reference,
+            );
+        }
+    }
+}
+
+/// The flow along the ramp: the state on each ramp segment and the bow shock.
+#[derive(Debug, Clone, Copy)]
+pub struct RampFlow {
+    /// State on the last ramp segment (entering the inlet face).
+    pub inlet: FlowState,
+    pub shock_wave_angle_rad: Option<f64>,
+}
+
+/// The ramp turning exceeds the maximum attached-shock deflection (the engine unstarts).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct DetachedRampShock;
+
+/// The ramp flow: bow shock (or expansion) from the freestream at the first ramp segment,
+/// deflection = segment slope + α, then segment to segment with `compression` for concave
+/// turns and Prandtl-Meyer expansions for convex ones. Writes each segment's pressure to
+/// `pressure_pa`. `Err(DetachedRampShock)` when the bow shock detaches.
+pub fn ramp_flow(
+    geometry: &SectionGeometry,
+    conditions: &SectionConditions<'_>,
+    compression: Compression,
+    pressure_pa: &mut [f64],
+) -> Result<Result<RampFlow, DetachedRampShock>, ModelError> {
+    let f = conditions.freestream;
+    let gas = &f.gas;
+    let free = FlowState {
+        mach: f.mach,
+        pressure_pa: f.pressure_pa,
+        temperature_k: f.temperature_k,
+    };
+    let mut slope_before = -conditions.alpha_rad;
+    let mut state = free;
+    let mut shock = None;
+    for (k, w) in geometry.ramp_m.windows(2).enumerate() {
+        let slope = slope_rad(&w[0], &w[1]);
+        let compression_rad = slope - slope_before;
+        // The bow shock is always a shock; later concave turns follow `compression`.
+        let how = if k == 0 {
+            Compression::Shock
+        } else {
+            compression
+        };
+        match turn(&state, compression_rad, gas, how) {
+            Ok(t) => {
+                if k == 0 && compression_rad > 0.0 {
+                    shock = Some(t.wave_angle_rad);
+                }
+                state = t.state;
+            }
+            Err(GasError::Detached { .. }) | Err(GasError::Subsonic { .. }) => {
+                return Ok(Err(DetachedRampShock));
+            }
+            Err(e) => return Err(e.into()),
+        }
+        pressure_pa[k] = state.pressure_pa;
+        slope_before = slope;
+    }
+    Ok(Ok(RampFlow {
+        inlet: state,
+        shock_wave_angle_rad: shock,
+    }))
+}
+
+/// Captured mass flow of a section.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Capture {
+    /// Captured air mass flow per unit span, kg/(s m).
+    pub mass_flow_kg_s_per_m: f64,
+    /// ρ∞ V∞ h∞: the freestream tube between the nose and the cowl lip, kg/(s m).
+    pub max_mass_flow_kg_s_per_m: f64,
+    /// Area of the inlet face normal to the ramp flow, m²/m.
+    pub face_area_m2_per_m: f64,
+    /// Stream-tube area of the captured flow at the inlet state, m²/m (≤ face area).
+    pub stream_tube_area_m2_per_m: f64,
+}
+
+impl Capture {
+    /// Captured over capturable.
+    pub fn fraction(&self) -> f64 {
+        self.mass_flow_kg_s_per_m / self.max_mass_flow_kg_s_per_m
+    }
+
+    /// Spillage: less than the whole tube from the nose to the lip is captured.
+    pub fn spills(&self) -> bool {
+        self.fraction() < 1.0 - 1e-9
+    }
+}
+
+/// Mass capture with spillage: ṁ = min(ρ∞V∞ h∞, ρ1V1 A_face), where h∞ is the height of the
+/// freestream tube between the nose and the cowl lip normal to the freestream and A_face the
+/// inlet face (ramp end to lip) normal to the ramp flow. When the bow shock passes ahead of
+/// the lip, the flow between it and the lip spills and the face carries ρ1V1 A_face (the
+/// shock-layer flow); when it meets the lip or enters the cowl, the whole tube is captured
+/// (the shock compresses stream tubes, so ρ1V1 A_face ≥ ρ∞V∞ h∞ there). The two agree at
+/// shock-on-lip (after Bolender & Doman, J. Spacecraft Rockets 44(2), 2007, inlet model).
+pub fn capture(
+    geometry: &SectionGeometry,
+    conditions: &SectionConditions<'_>,
+    inlet: &FlowState,
+) -> Capture {
+    let f = conditions.freestream;
+    let gas: &PerfectGas = &f.gas;
+    let (sa, ca) = conditions.alpha_rad.sin_cos();
+    // Freestream direction in (x, z): aft and up for α > 0.
+    let u = Vector2::new(-ca, -sa);
+    let to_lip = geometry.cowl_lip() - geometry.nose();
+    let tube_height = (to_lip.x * u.y - to_lip.y * u.x).abs();
+    let max = f.density_kg_m3 * f.velocity_m_s * tube_height;
+    let e1 = geometry.inlet_direction();
+    let face = geometry.cowl_lip() - geometry.ramp_end();
+    let face_area = (face.x * e1.y - face.y * e1.x).abs();
+    let flux = inlet.mass_flux_kg_m2_s(gas);
+    let mass_flow = max.min(flux * face_area);
+    Capture {
+        mass_flow_kg_s_per_m: mass_flow,
+        max_mass_flow_kg_s_per_m: max,
+        face_area_m2_per_m: face_area,
+        stream_tube_area_m2_per_m: mass_flow / flux,
+    }
+}
+
+/// Force of the flow path between the inlet face and the engine exit on the vehicle, per unit
+/// span, from the momentum balance of the duct's control volume with gauge pressures:
+/// F = (ṁ1 V1 + (p1 - p∞) A1) ê1 - (ṁe Ve + (pe - p∞) Ae) êe, each applied at its face's
+/// centre for the moment (uniform faces).
+pub fn add_flow_path_force(
+    out: &mut SectionSolution,
+    geometry: &SectionGeometry,
+    conditions: &SectionConditions<'_>,
+    inlet: &Station,
+    exit: &Station,
+) {
+    let f = conditions.freestream;
+    let gas = &f.gas;
+    let p_inf = f.pressure_pa;
+    let thrust_of = |s: &Station| {
+        s.mass_flow_kg_s_per_m * s.state.velocity_m_s(gas)
+            + (s.state.pressure_pa - p_inf) * s.area_m2_per_m
+    };
+    let inlet_centre =
+        Point2::from((geometry.ramp_end().coords + geometry.cowl_lip().coords) * 0.5);
+    let exit_centre =
+        Point2::from((geometry.nozzle_start().coords + geometry.exit_lower().coords) * 0.5);
+    let reference = conditions.reference_m;
+    out.add_force(
+        thrust_of(inlet) * geometry.inlet_direction(),
+        &inlet_centre,
+        &reference,
+    );
+    out.add_force(
+        -thrust_of(exit) * geometry.exit_direction(),
+        &exit_centre,
+        &reference,
+    );
+}
+
+/// The unstarted engine: no captured flow and no combustion; the ramp keeps its external
+/// pressure (pitot pressure behind a normal shock when the bow shock detaches, as the
+/// shock-expansion aero model does), the nozzle sees the freestream pressure. Only the ramp
+/// loads the vehicle. The inlet station is the flow on the last ramp segment (or behind the
+/// normal shock).
+pub fn unstarted(
+    out: &mut SectionSolution,
+    geometry: &SectionGeometry,
+    conditions: &SectionConditions<'_>,
+    ramp_inlet: Option<FlowState>,
+) -> Result<(), ModelError> {
+    let f = conditions.freestream;
+    let g = f.gas.gamma;
+    let inlet = match ramp_inlet {
+        Some(state) => state,
+        None => {
+            let pitot = f.pressure_pa * rayleigh_pitot_pressure_ratio(f.mach, g)?;
+            out.ramp_pressure_pa.iter_mut().for_each(|p| *p = pitot);
+            out.ramp_shock_wave_angle_rad = None;
+            let normal = hsv_core::gas::normal_shock(f.mach, g)?;
+            FlowState {
+                mach: normal.mach_downstream,
+                pressure_pa: f.pressure_pa * normal.pressure_ratio,
+                temperature_k: f.temperature_k * normal.temperature_ratio,
+            }
+        }
+    };
+    out.status = EngineStatus::Unstart;
+    out.nozzle_pressure_pa
+        .iter_mut()
+        .for_each(|p| *p = f.pressure_pa);
+    out.air_mass_flow_kg_s_per_m = 0.0;
+    out.captured_fraction = 0.0;
+    out.fuel_air_ratio = 0.0;
+    out.stations.clear();
+    out.stations.push(Station {
+        name: INLET,
+        state: inlet,
+        area_m2_per_m: 0.0,
+        mass_flow_kg_s_per_m: 0.0,
+    });
+    out.force_n_per_m = Vector2::zeros();
+    out.pitching_moment_nm_per_m = 0.0;
+    let ramp = std::mem::take(&mut out.ramp_pressure_pa);
+    out.add_surface_pressure(
+        &geometry.ramp_m,
+        &ramp,
+        f.pressure_pa,
+        &conditions.reference_m,
+    );
+    out.ramp_pressure_pa = ramp;
+    Ok(())
+}
+
+/// Checks a finished section for non-finite numbers, naming the first.
+pub fn check_finite(model: &str, out: &SectionSolution, y_m: f64) -> Result<(), ModelError> {
+    let named = [
+        ("thrust per unit span", out.force_n_per_m.x),
+        ("normal force per unit span", out.force_n_per_m.y),
+        (
+            "pitching moment per unit span",
+            out.pitching_moment_nm_per_m,
+        ),
+        ("captured mass flow", out.air_mass_flow_kg_s_per_m),
+    ];
+    for (quantity, value) in named {
+        if !value.is_finite() {
+            return Err(ModelError::NonFinite {
+                model: model.to_owned(),
+                quantity: quantity.to_owned(),
+                location: format!(" on the engine section at y = {y_m} m"),
+            });
+        }
+    }
+    for s in &out.stations {
+        if !s.state.is_physical() {
+            return Err(ModelError::NonFinite {
+                model: model.to_owned(),
+                quantity: format!("the {} state", s.name),
+                location: format!(" on the engine section at y = {y_m} m"),
+            });
+        }
+    }
+    if out
+        .ramp_pressure_pa
+        .iter()
+        .chain(&out.nozzle_pressure_pa)
+        .any(|p| !p.is_finite())
+    {
+        return Err(ModelError::NonFinite {
+            model: model.to_owned(),
+            quantity: "surface pressure".to_owned(),
+            location: format!(" on the engine section at y = {y_m} m"),
+        });
+    }
+    Ok(())
+}

@@ -10,6 +10,34 @@ use crate::mesh::PanelMesh;
 /// Stefan-Boltzmann constant σ, W/(m² K⁴) (CODATA 2018, exact), for re-radiation εσT⁴.
 pub const STEFAN_BOLTZMANN_W_M2_K4: f64 = 5.670_374_419e-8;
 
+/// Checks 0 < T_w ≤ melting point (K) for heat-flux model `model`, naming the panel if given:
+/// a wall above its melting point has no meaningful heat flux.
+pub fn check_wall_temperature(
+    model: &str,
+    wall_temperature_k: f64,
+    melting_point_k: f64,
+    panel: Option<usize>,
+) -> Result<(), ModelError> {
+    let at = panel.map_or_else(String::new, |p| format!(" at panel {p}"));
+    if !(wall_temperature_k.is_finite() && wall_temperature_k > 0.0) {
+        return Err(ModelError::out_of_range(
+            model,
+            &format!("wall temperature (K){at}"),
+            wall_temperature_k,
+            "finite and > 0",
+        ));
+    }
+    if wall_temperature_k > melting_point_k {
+        return Err(ModelError::out_of_range(
+            model,
+            &format!("wall temperature (K){at}: the structure has melted"),
+            wall_temperature_k,
+            format!("<= melting point {melting_point_k} K"),
+        ));
+    }
+    Ok(())
+}
+
 /// Aeroheating: the net heat flux into the structure at every panel of a wetted mesh.
 pub trait HeatFluxModel: Send {
     /// The registered name (`eckert`, `kriging-stanton`, ...).

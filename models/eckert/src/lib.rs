@@ -40,7 +40,7 @@ use hsv_core::gas::PerfectGas;
 use hsv_core::material::Material;
 use hsv_core::mesh::PanelMesh;
 use hsv_core::registry::{Constructor, ModelContext, ModelDescriptor};
-use hsv_core::thermal::HeatFluxModel;
+use hsv_core::thermal::{HeatFluxModel, check_wall_temperature};
 
 /// Registered name.
 pub const NAME: &str = "eckert";
@@ -295,7 +295,12 @@ impl Eckert {
         running_length_m: f64,
         wall_temperature_k: f64,
     ) -> Result<Option<ConvectiveHeating>, ModelError> {
-        check_wall_temperature(wall_temperature_k, self.settings.melting_point_k, None)?;
+        check_wall_temperature(
+            NAME,
+            wall_temperature_k,
+            self.settings.melting_point_k,
+            None,
+        )?;
         check_edge(edge, None)?;
         if !(running_length_m.is_finite() && running_length_m > 0.0) {
             return Err(ModelError::out_of_range(
@@ -377,34 +382,6 @@ impl Eckert {
     }
 }
 
-/// Checks 0 < T_w ≤ melting point, naming the panel if given.
-fn check_wall_temperature(
-    wall_temperature_k: f64,
-    melting_point_k: f64,
-    panel: Option<usize>,
-) -> Result<(), ModelError> {
-    if wall_temperature_k.is_finite() && wall_temperature_k > 0.0 {
-        if wall_temperature_k > melting_point_k {
-            return Err(ModelError::out_of_range(
-                NAME,
-                &format!(
-                    "wall temperature (K){}: the structure has melted",
-                    at_panel(panel)
-                ),
-                wall_temperature_k,
-                format!("<= melting point {melting_point_k} K"),
-            ));
-        }
-        return Ok(());
-    }
-    Err(ModelError::out_of_range(
-        NAME,
-        &format!("wall temperature (K){}", at_panel(panel)),
-        wall_temperature_k,
-        "finite and > 0",
-    ))
-}
-
 fn at_panel(panel: Option<usize>) -> String {
     panel.map_or_else(String::new, |p| format!(" at panel {p}"))
 }
@@ -477,7 +454,7 @@ impl HeatFluxModel for Eckert {
         for i in 0..n {
             let tw = wall_temperature_k[i];
             let edge = &aero.edge[i];
-            check_wall_temperature(tw, self.settings.melting_point_k, Some(i))?;
+            check_wall_temperature(NAME, tw, self.settings.melting_point_k, Some(i))?;
             check_edge(edge, Some(i))?;
             let convection = if edge.pressure_pa == 0.0 || edge.density_kg_m3 == 0.0 {
                 diagnostics.vacuum_panels += 1;

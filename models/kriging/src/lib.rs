@@ -27,9 +27,10 @@ use hsv_core::aero::{AeroSolution, PanelMotion};
 use hsv_core::error::ModelError;
 use hsv_core::flow::{FlightCondition, Freestream};
 use hsv_core::gas::PerfectGas;
+use hsv_core::material::Material;
 use hsv_core::mesh::{PanelMesh, PanelSpec, RegionKind, Strip, Surface};
 use hsv_core::registry::{Constructor, ModelContext, ModelDescriptor, Registry};
-use hsv_core::thermal::{HeatFluxModel, STEFAN_BOLTZMANN_W_M2_K4};
+use hsv_core::thermal::{HeatFluxModel, STEFAN_BOLTZMANN_W_M2_K4, check_wall_temperature};
 use linfa::prelude::{Dataset, Fit};
 use nalgebra::{Point3, Vector3};
 use ndarray::{Array1, Array2};
@@ -77,6 +78,8 @@ pub struct Settings {
     pub altitude_m: [f64; 2],
     /// Wall emissivity for re-radiation, 0 to 1.
     pub emissivity: f64,
+    /// Wall temperature above which the structure has melted, K.
+    pub melting_point_k: f64,
     /// JSON file the training is saved to and reloaded from; empty: train in memory every run.
     pub training_file: String,
     /// User training data instead of a base model: CSV with header
@@ -102,6 +105,7 @@ impl Default for Settings {
             running_length_m: [0.02, 5.0],
             altitude_m: [10_000.0, 35_000.0],
             emissivity: 0.8,
+            melting_point_k: Material::ti_6al_4v().melting_point_k,
             training_file: String::new(),
             training_csv: String::new(),
             extrapolate: false,
@@ -122,6 +126,7 @@ wall_temperature_ratio = [0.15, 0.85] # training box: T_wall / T_total
 running_length_m = [0.02, 5.0]        # training box: running length, m (log-sampled)
 altitude_m = [10000.0, 35000.0]       # training box: altitude, m
 emissivity = 0.8                      # wall emissivity for re-radiation
+melting_point_k = 1877.0              # wall temperature limit (Ti-6Al-4V solidus), K
 training_file = \"\"                    # JSON save/reload of the training; empty: train every run
 training_csv = \"\"                     # user data instead (header mach,inclination_deg,wall_temperature_ratio,running_length_m,altitude_m,stanton)
 extrapolate = false                   # clamp inputs outside the box instead of failing
@@ -330,6 +335,13 @@ fn check_settings(settings: &Settings, context: &ModelContext<'_>) -> Result<(),
             ),
         ));
     }
+    if !(settings.melting_point_k.is_finite() && settings.melting_point_k > 0.0) {
+        return Err(settings_error(
+            context,
+            "melting_point_k",
+            format!("{} must be > 0", settings.melting_point_k),
+        ));
+    }
     if !(settings.default_running_length_m.is_finite() && settings.default_running_length_m > 0.0) {
         return Err(settings_error(
             context,
@@ -358,6 +370,7 @@ fn fingerprint(settings: &Settings, context: &ModelContext<'_>) -> Result<String
     relevant.training_file.clear();
     relevant.extrapolate = false;
     relevant.emissivity = 0.0;
+    relevant.melting_point_k = 0.0;
     relevant.default_running_length_m = 0.0;
     let csv = if settings.training_csv.is_empty() {
         String::new()
@@ -411,7 +424,10 @@ fn sample_base_model(
     let registry =
         Registry::builtin().map_err(|e| ModelError::inconsistent(NAME, e.to_string()))?;
     let mut base_settings = config_model_settings(context, &settings.base_model);
+    // Convection only, over the whole box: re-radiation and the wall-temperature limit are
+    // applied online, so a box corner hotter than the melting point still trains.
     base_settings.insert("emissivity".to_owned(), toml::Value::Float(0.0));
+    base_settings.insert("melting_point_k".to_owned(), toml::Value::Float(f64::MAX));
     let base_path = format!("models.{}", settings.base_model);
     let mut base = registry
         .create_heat_flux(
@@ -427,7 +443,10 @@ fn sample_base_model(
             settings_error(
                 context,
                 "base_model",
-                format!("cannot build the training model (it needs an `emissivity` setting): {e}"),
+                format!(
+                    "cannot build the training model (it needs `emissivity` and \
+                     `melting_point_k` settings): {e}"
+                ),
             )
         })?;
     let aero_settings = config_model_settings(context, &settings.training_aero_model);
@@ -669,14 +688,7 @@ impl HeatFluxModel for KrigingStanton {
         self.convecting.clear();
         for (i, panel) in mesh.panels.iter().enumerate() {
             let wall_k = wall_temperature_k[i];
-            if !(wall_k.is_finite() && wall_k > 0.0) {
-                return Err(ModelError::out_of_range(
-                    NAME,
-                    &format!("wall temperature (K) on panel {i}"),
-                    wall_k,
-                    "finite and > 0",
-                ));
-            }
+            check_wall_temperature(NAME, wall_k, self.settings.melting_point_k, Some(i))?;
             out_w_m2[i] = -self.settings.emissivity * STEFAN_BOLTZMANN_W_M2_K4 * wall_k.powi(4);
             let edge = &aero.edge[i];
             if edge.pressure_pa <= 0.0 || edge.density_kg_m3 <= 0.0 || edge.velocity_m_s <= 0.0 {

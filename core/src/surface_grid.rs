@@ -619,6 +619,15 @@ impl SurfaceGrid {
         }
     }
 
+    /// Node values of this grid resampled at the nodes of `target` (bilinear in each cell of this
+    /// grid, clamped to its planform): a temperature field handed from one grid to another.
+    pub fn resample(&self, node_values: &[f64], target: &SurfaceGrid) -> Vec<f64> {
+        let map: Vec<GridPoint> = target.positions_m.iter().map(|p| self.locate(p)).collect();
+        let mut out = vec![0.0; map.len()];
+        Self::interpolate(&map, node_values, &mut out);
+        out
+    }
+
     /// Consistent nodal loads from point loads: `node_loads[n] += w f` for each located force
     /// (panel pressure force → grid node force). `node_loads` has one entry per node.
     pub fn scatter(map: &[GridPoint], values: &[f64], node_loads: &mut [f64]) {
@@ -680,6 +689,22 @@ mod tests {
                 assert_relative_eq!(g.positions_m[n].z, l.pivot_z_m, epsilon = 1e-12);
             }
             assert_eq!(g.pivot_m, crate::vehicle::pivot_point(&l, side));
+        }
+    }
+
+    /// On this planform x(u, η) and y(η) are bilinear in the grid's parametric coordinates, so
+    /// a field linear in x and y is bilinear there and resampling reproduces it exactly.
+    #[test]
+    fn resampling_reproduces_a_linear_field_exactly() {
+        let l = sample();
+        let coarse = SurfaceGrid::lifting_surface(&l, Side::Right, 16, 8).expect("grid");
+        let fine = SurfaceGrid::lifting_surface(&l, Side::Right, 24, 18).expect("grid");
+        let field = |p: &Point3<f64>| 400.0 + 30.0 * p.x - 20.0 * p.y;
+        let values: Vec<f64> = coarse.positions_m.iter().map(field).collect();
+        let resampled = coarse.resample(&values, &fine);
+        assert_eq!(resampled.len(), fine.n_nodes());
+        for (p, v) in fine.positions_m.iter().zip(&resampled) {
+            assert_relative_eq!(*v, field(p), max_relative = 1e-10);
         }
     }
 

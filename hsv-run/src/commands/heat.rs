@@ -24,8 +24,9 @@ use hsv_core::config::LoadedConfig;
 use hsv_core::flow::{FlightCondition, Freestream};
 use hsv_core::mesh::PanelMesh;
 use hsv_core::registry::{ModelContext, Registry};
+use hsv_core::surface_grid::SurfaceGrid;
 use hsv_core::thermal::{ConductionModel, HeatFluxModel};
-use hsv_core::vehicle::lifting_surface_mesh;
+use hsv_core::vehicle::{Side, lifting_surface_mesh};
 use hsv_model_conduction::{FullOrder, FullOrderSettings, PodBasis, PodSettings};
 
 use super::{ConfigArg, JsonFlag, load_config};
@@ -97,6 +98,8 @@ struct History {
     steps: usize,
     states: usize,
     final_node_temperatures_k: Vec<f64>,
+    /// Why the run stopped before the end (time, model and quantity), if it did.
+    stopped: Option<String>,
     /// Panel wall temperatures at the VTK sample times.
     #[serde(skip)]
     surface_frames: Vec<(f64, Vec<f64>, Vec<f64>)>,
@@ -214,23 +217,33 @@ fn run_model(
         steps,
         states: conduction.n_states(),
         final_node_temperatures_k: Vec::new(),
+        stopped: None,
         surface_frames: Vec::new(),
     };
     record(conduction, 0.0, &state, &mut nodes, &mut history);
+    let mut t_end = steps as f64 * args.dt_s;
     for k in 0..steps {
         let t = k as f64 * args.dt_s;
         if k % flux_every == 0 {
             conduction.surface_temperatures(&state, &mut wall);
-            heat.heat_flux(&s.mesh, &s.flight, &s.aero, &wall, &mut q)
-                .with_context(|| format!("heat flux for `{name}` at t = {t:.3} s"))?;
+            if let Err(e) = heat.heat_flux(&s.mesh, &s.flight, &s.aero, &wall, &mut q) {
+                history.stopped = Some(format!("heat flux for `{name}` at t = {t:.3} s: {e}"));
+                t_end = t;
+                break;
+            }
         }
         if k % frame_every == 0 {
             history.surface_frames.push((t, wall.clone(), q.clone()));
         }
         let start = Instant::now();
-        conduction
-            .step(&mut state, &q, args.dt_s)
-            .with_context(|| format!("conduction model `{name}` at t = {t:.3} s"))?;
+        let mut trial = state.clone();
+        if let Err(e) = conduction.step(&mut trial, &q, args.dt_s) {
+            // Keep the last good state: what was computed so far stays in the outputs.
+            history.stopped = Some(format!("conduction model `{name}` at t = {t:.3} s: {e}"));
+            t_end = t;
+            break;
+        }
+        state = trial;
         history.conduction_wall_time_s += start.elapsed().as_secs_f64();
         if (k + 1) % record_every == 0 || k + 1 == steps {
             record(
@@ -242,10 +255,11 @@ fn run_model(
             );
         }
     }
+    if history.stopped.is_some() {
+        record(conduction, t_end, &state, &mut nodes, &mut history);
+    }
     conduction.surface_temperatures(&state, &mut wall);
-    history
-        .surface_frames
-        .push((steps as f64 * args.dt_s, wall, q));
+    history.surface_frames.push((t_end, wall, q));
     Ok(history)
 }
 
@@ -375,7 +389,8 @@ pub fn run(args: HeatArgs, registry: &Registry) -> Result<()> {
             200,
         )?);
     }
-    write_outputs(&folder, &s, &histories)?;
+    let grids = temperature_field_grids(&loaded)?;
+    write_outputs(&folder, &s, &histories, grids.as_ref())?;
 
     if args.json.json {
         let models: Vec<_> = histories
@@ -389,6 +404,8 @@ pub fn run(args: HeatArgs, registry: &Registry) -> Result<()> {
                     "final_min_temperature_k": h.min_k.last(),
                     "final_max_temperature_k": h.max_k.last(),
                     "final_mean_temperature_k": h.mean_k.last(),
+                    "final_time_s": h.time_s.last(),
+                    "stopped": h.stopped,
                 })
             })
             .collect();
@@ -405,7 +422,7 @@ pub fn run(args: HeatArgs, registry: &Registry) -> Result<()> {
             "models": models,
         });
         println!("{}", serde_json::to_string_pretty(&summary)?);
-        return Ok(());
+        return stopped_error(&histories, &folder);
     }
     println!(
         "lifting surface ({} panels) at Mach {mach}, {} m, alpha {:.2} deg for {} s (dt {} s), heat flux `{}`",
@@ -420,14 +437,15 @@ pub fn run(args: HeatArgs, registry: &Registry) -> Result<()> {
         println!("{note}");
     }
     println!(
-        "{:<14} {:>7} {:>12} {:>12} {:>12} {:>14}",
-        "model", "states", "min T (K)", "max T (K)", "mean T (K)", "wall time (s)"
+        "{:<14} {:>7} {:>9} {:>12} {:>12} {:>12} {:>14}",
+        "model", "states", "t (s)", "min T (K)", "max T (K)", "mean T (K)", "wall time (s)"
     );
     for h in &histories {
         println!(
-            "{:<14} {:>7} {:>12.2} {:>12.2} {:>12.2} {:>14.3}",
+            "{:<14} {:>7} {:>9.2} {:>12.2} {:>12.2} {:>12.2} {:>14.3}",
             h.model,
             h.states,
+            h.time_s.last().copied().unwrap_or(0.0),
             h.min_k.last().copied().unwrap_or(f64::NAN),
             h.max_k.last().copied().unwrap_or(f64::NAN),
             h.mean_k.last().copied().unwrap_or(f64::NAN),
@@ -435,11 +453,108 @@ pub fn run(args: HeatArgs, registry: &Registry) -> Result<()> {
         );
     }
     println!("outputs in {}", folder.display());
-    Ok(())
+    println!(
+        "final fields for `hsv-run modes --temperature-field`: {}",
+        folder.join("temperature_field_<model>.csv").display()
+    );
+    stopped_error(&histories, &folder)
 }
 
-/// CSV history, temperature-range PNG, VTK surface fields with a PVD, final node field JSON.
-fn write_outputs(folder: &std::path::Path, s: &Setup, histories: &[History]) -> Result<()> {
+/// An error naming every model that stopped early (outputs up to that time are written).
+fn stopped_error(histories: &[History], folder: &std::path::Path) -> Result<()> {
+    let stopped: Vec<&str> = histories
+        .iter()
+        .filter_map(|h| h.stopped.as_deref())
+        .collect();
+    if stopped.is_empty() {
+        return Ok(());
+    }
+    bail!(
+        "{} (outputs up to that time are in {})",
+        stopped.join("; "),
+        folder.display()
+    )
+}
+
+/// The conduction grid and the lifting-surface structure's grid, when the structure is a
+/// `ritz-plate` on the vehicle planform: node temperatures are handed from one to the other.
+fn temperature_field_grids(loaded: &LoadedConfig) -> Result<Option<(SurfaceGrid, SurfaceGrid)>> {
+    if loaded.config.regions.lifting_surfaces.structure.as_deref() != Some("ritz-plate") {
+        return Ok(None);
+    }
+    let ritz: hsv_model_ritz_plate::Settings = hsv_core::config::parse_table(
+        loaded.model_settings("ritz-plate"),
+        &loaded.file,
+        "models.ritz-plate",
+    )?;
+    if ritz.planform != hsv_model_ritz_plate::PlanformChoice::Vehicle {
+        return Ok(None);
+    }
+    let full: FullOrderSettings = hsv_core::config::parse_table(
+        loaded.model_settings("full-order"),
+        &loaded.file,
+        "models.full-order",
+    )?;
+    // Node order is the same on both sides; resample on the right-hand planform.
+    let conduction = SurfaceGrid::lifting_surface(
+        &loaded.config.lifting_surface,
+        Side::Right,
+        full.elements_chordwise,
+        full.elements_spanwise,
+    )?;
+    let structure = hsv_model_ritz_plate::structural_grid(
+        &ritz,
+        &context(loaded, "ritz-plate", "models.ritz-plate"),
+    )?;
+    Ok(Some((conduction, structure)))
+}
+
+/// The final structural temperatures as the `node,temperature_k` CSV that
+/// `hsv-run modes --temperature-field` reads: resampled from the conduction grid onto the
+/// structure's grid when both are known (`grids`), else the conduction model's own nodes.
+fn write_temperature_field(
+    folder: &std::path::Path,
+    h: &History,
+    grids: Option<&(SurfaceGrid, SurfaceGrid)>,
+) -> Result<()> {
+    let path = folder.join(format!("temperature_field_{}.csv", h.model));
+    let (values, on) = match grids {
+        Some((conduction, structure))
+            if conduction.n_nodes() == h.final_node_temperatures_k.len() =>
+        {
+            (
+                conduction.resample(&h.final_node_temperatures_k, structure),
+                format!(
+                    "the ritz-plate grid ({} x {} elements)",
+                    structure.elements_chordwise, structure.elements_spanwise
+                ),
+            )
+        }
+        _ => (
+            h.final_node_temperatures_k.clone(),
+            "the conduction grid".to_owned(),
+        ),
+    };
+    let mut text = format!(
+        "# thickness-averaged structure temperatures of `{}` after {:.3} s in the flow, on {on}\n\
+         # input of `hsv-run modes --temperature-field`\nnode,temperature_k\n",
+        h.model,
+        h.time_s.last().copied().unwrap_or(0.0)
+    );
+    for (node, t) in values.iter().enumerate() {
+        text += &format!("{node},{t}\n");
+    }
+    std::fs::write(&path, text)
+        .with_context(|| format!("cannot write the temperature field {}", path.display()))
+}
+
+/// CSV history, temperature-range PNG, VTK surface fields with a PVD, final node field CSV.
+fn write_outputs(
+    folder: &std::path::Path,
+    s: &Setup,
+    histories: &[History],
+    grids: Option<&(SurfaceGrid, SurfaceGrid)>,
+) -> Result<()> {
     let mut plots = Vec::new();
     for h in histories {
         output::write_csv(
@@ -473,16 +588,7 @@ fn write_outputs(folder: &std::path::Path, s: &Setup, histories: &[History]) -> 
         }
         let entries: Vec<(f64, &str)> = pvd.iter().map(|(t, f)| (*t, f.as_str())).collect();
         output::write_pvd(&folder.join(format!("surface_{}.pvd", h.model)), &entries)?;
-        let field = serde_json::json!({
-            "model": h.model,
-            "time_s": h.time_s.last(),
-            "node_temperatures_k": h.final_node_temperatures_k,
-        });
-        std::fs::write(
-            folder.join(format!("temperature_field_{}.json", h.model)),
-            serde_json::to_string_pretty(&field)?,
-        )
-        .with_context(|| format!("cannot write the temperature field of `{}`", h.model))?;
+        write_temperature_field(folder, h, grids)?;
     }
     output::write_line_plots_png(
         &folder.join("temperature_range.png"),

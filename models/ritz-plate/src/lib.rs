@@ -177,7 +177,18 @@ fn construct(ctx: &ModelContext<'_>) -> Result<Box<dyn StructureModel>, ModelErr
         .material
         .resolve()
         .map_err(|e| settings_error(ctx, "material", e.to_string()))?;
-    let grid = match settings.planform {
+    let grid = structural_grid(&settings, ctx)?;
+    let model = RitzPlate::new(grid, material, &settings)?;
+    Ok(Box::new(model))
+}
+
+/// The structural grid `settings` describe (node order of `set_temperatures`), without building
+/// the model: what a temperature field for this structure must be sampled on.
+pub fn structural_grid(
+    settings: &Settings,
+    ctx: &ModelContext<'_>,
+) -> Result<SurfaceGrid, ModelError> {
+    match settings.planform {
         PlanformChoice::Vehicle => {
             let surface: LiftingSurfaceConfig = ctx.parse_config_table("lifting_surface")?;
             SurfaceGrid::lifting_surface(
@@ -206,9 +217,7 @@ fn construct(ctx: &ModelContext<'_>) -> Result<Box<dyn StructureModel>, ModelErr
             )
         }
     }
-    .map_err(|e| settings_error(ctx, "planform", e.to_string()))?;
-    let model = RitzPlate::new(grid, material, &settings)?;
-    Ok(Box::new(model))
+    .map_err(|e| settings_error(ctx, "planform", e.to_string()))
 }
 
 hsv_core::register_model!(ModelDescriptor {

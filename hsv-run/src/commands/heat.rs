@@ -68,7 +68,8 @@ pub struct HeatArgs {
     /// Aero model for the edge states (default: the config's lifting-surface aero model).
     #[arg(long = "aero", value_name = "NAME")]
     pub aero: Option<String>,
-    /// Mach numbers of the full-order snapshot runs that build a missing POD basis.
+    /// Mach numbers of the full-order snapshot runs that build a missing POD basis (default:
+    /// M − 1, M − 0.5 and M).
     #[arg(long = "snapshot-mach", value_name = "M", num_args = 1.., allow_negative_numbers = true)]
     pub snapshot_mach: Vec<f64>,
     /// Initial uniform temperature, K.
@@ -298,7 +299,9 @@ fn build_pod_basis(
         "models.full-order",
     )?;
     let machs = if args.snapshot_mach.is_empty() {
-        vec![(mach - 1.0).max(1.5), mach, mach + 1.0]
+        // Bracket the run's heating from below and at it: a snapshot run hotter than the run
+        // itself could leave the material data (Mach 7 at 10 km nears the solidus in 100 s).
+        vec![(mach - 1.0).max(1.5), (mach - 0.5).max(1.5), mach]
     } else {
         args.snapshot_mach.clone()
     };

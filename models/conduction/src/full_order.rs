@@ -481,7 +481,7 @@ impl ConductionModel for FullOrder {
 
     fn uniform_state(&self, temperature_k: f64) -> Result<DVector<f64>, ModelError> {
         for m in &self.materials {
-            m.at(temperature_k).map_err(material_error)?;
+            m.thermal_at(temperature_k).map_err(material_error)?;
         }
         Ok(DVector::from_element(self.grid.n_dofs(), temperature_k))
     }

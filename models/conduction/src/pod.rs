@@ -14,7 +14,9 @@
 //!
 //! **Nonlinearity.** Each material's k(T) and c_p(T) are replaced by their least-squares lines
 //! k ≈ k₀ + k₁ T, c_p ≈ c₀ + c₁ T over the snapshots' temperature range (Ti-6Al-4V: c_p is
-//! linear in the core table; k is within ±0.3 W/(m K) of its line over 293-923 K). Then
+//! linear in the core table up to the β transus, where it steps down by 119 J/(kg K) at
+//! 1267-1268 K; k is within ±0.3 W/(m K) of its line over 293-923 K, and steepens above).
+//! Snapshots that cross the transus get poorer lines. Then
 //! K_r(a) = K₀ + Σ_j a_j K₁ⱼ and C_r(a) = C₀ + Σ_j a_j C₁ⱼ exactly, with K₀ = Σ_e k₀ Φ_eᵀ G_e Φ_e,
 //! K₁ⱼ = Σ_e k₁ φ̄_ej Φ_eᵀ G_e Φ_e (φ̄_ej: mode j's mean over element e, as the full order takes
 //! k at the element's mean temperature), C₀ = Φᵀ diag(c₀) Φ, C₁ⱼ = Φᵀ diag(c₁ ∘ φ_j) Φ. The

@@ -5,7 +5,7 @@
 //! leading edge (Anderson, Hypersonic and High-Temperature Gas Dynamics §6.9: St ∝ Re_x^(−1/2)),
 //! so each "flight condition" is a pair (T_aw, h_ref). Snapshots come from three conditions; the
 //! check is a fourth condition between them, not in the snapshots. T_aw stays below 923 K,
-//! the top of the Ti-6Al-4V property table.
+//! where the Ti-6Al-4V c_p is linear and k nearly so (the model's line fits).
 
 use std::sync::OnceLock;
 

@@ -10,6 +10,54 @@ use crate::mesh::PanelMesh;
 /// Stefan-Boltzmann constant σ, W/(m² K⁴) (CODATA 2018, exact), for re-radiation εσT⁴.
 pub const STEFAN_BOLTZMANN_W_M2_K4: f64 = 5.670_374_419e-8;
 
+/// Checks what every conduction step receives: a finite, positive time step (s) and a finite
+/// heat flux (W/m²) on every panel.
+pub fn check_step_inputs(model: &str, flux_w_m2: &[f64], dt_s: f64) -> Result<(), ModelError> {
+    if !(dt_s.is_finite() && dt_s > 0.0) {
+        return Err(ModelError::out_of_range(
+            model,
+            "time step (s)",
+            dt_s,
+            "finite and > 0",
+        ));
+    }
+    if let Some(i) = flux_w_m2.iter().position(|q| !q.is_finite()) {
+        return Err(ModelError::out_of_range(
+            model,
+            &format!("heat flux (W/m^2) at panel {i}"),
+            flux_w_m2[i],
+            "finite",
+        ));
+    }
+    Ok(())
+}
+
+/// Checks what every heat-flux model receives: one edge state, wall temperature and output
+/// slot per panel of `mesh`, and a finite flight condition.
+pub fn check_heat_flux_inputs(
+    model: &str,
+    mesh: &PanelMesh,
+    flight: &FlightCondition,
+    aero: &AeroSolution,
+    wall_temperature_k: &[f64],
+    out_w_m2: &[f64],
+) -> Result<(), ModelError> {
+    let n = mesh.panels.len();
+    for (what, len) in [
+        ("edge states", aero.edge.len()),
+        ("wall temperatures", wall_temperature_k.len()),
+        ("heat-flux outputs", out_w_m2.len()),
+    ] {
+        if len != n {
+            return Err(ModelError::inconsistent(
+                model,
+                format!("{len} {what} for a mesh of {n} panels"),
+            ));
+        }
+    }
+    flight.check_finite()
+}
+
 /// Checks 0 < T_w ≤ melting point (K) for heat-flux model `model`, naming the panel if given:
 /// a wall above its melting point has no meaningful heat flux.
 pub fn check_wall_temperature(

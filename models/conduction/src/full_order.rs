@@ -24,7 +24,7 @@ use hsv_core::error::ModelError;
 use hsv_core::material::{Material, MaterialSetting};
 use hsv_core::mesh::{PanelMesh, RegionKind};
 use hsv_core::surface_grid::SurfaceGrid;
-use hsv_core::thermal::ConductionModel;
+use hsv_core::thermal::{ConductionModel, check_step_inputs};
 use hsv_core::vehicle::Side;
 use nalgebra::DVector;
 
@@ -417,22 +417,7 @@ impl FullOrder {
                 ),
             ));
         }
-        if !(dt_s.is_finite() && dt_s > 0.0) {
-            return Err(ModelError::out_of_range(
-                NAME,
-                "time step (s)",
-                dt_s,
-                "finite and > 0",
-            ));
-        }
-        if let Some(i) = flux_w_m2.iter().position(|q| !q.is_finite()) {
-            return Err(ModelError::out_of_range(
-                NAME,
-                &format!("heat flux (W/m^2) at panel {i}"),
-                flux_w_m2[i],
-                "finite",
-            ));
-        }
+        check_step_inputs(NAME, flux_w_m2, dt_s)?;
         if let Some(i) = state.iter().position(|t| !(t.is_finite() && *t > 0.0)) {
             return Err(ModelError::out_of_range(
                 NAME,

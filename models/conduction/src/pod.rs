@@ -31,7 +31,7 @@ use std::path::Path;
 
 use hsv_core::error::ModelError;
 use hsv_core::material::Material;
-use hsv_core::thermal::ConductionModel;
+use hsv_core::thermal::{ConductionModel, check_step_inputs};
 use nalgebra::{DMatrix, DVector, SymmetricEigen};
 
 use crate::banded::BandMatrix;
@@ -549,22 +549,7 @@ impl ConductionModel for Pod {
                 ),
             ));
         }
-        if !(dt_s.is_finite() && dt_s > 0.0) {
-            return Err(ModelError::out_of_range(
-                NAME,
-                "time step (s)",
-                dt_s,
-                "finite and > 0",
-            ));
-        }
-        if let Some(i) = surface_heat_flux_w_m2.iter().position(|q| !q.is_finite()) {
-            return Err(ModelError::out_of_range(
-                NAME,
-                &format!("heat flux (W/m^2) at panel {i}"),
-                surface_heat_flux_w_m2[i],
-                "finite",
-            ));
-        }
+        check_step_inputs(NAME, surface_heat_flux_w_m2, dt_s)?;
         let r = self.r;
         for j in 0..r {
             self.load[j] = 0.0;

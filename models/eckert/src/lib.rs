@@ -40,7 +40,7 @@ use hsv_core::gas::PerfectGas;
 use hsv_core::material::Material;
 use hsv_core::mesh::PanelMesh;
 use hsv_core::registry::{Constructor, ModelContext, ModelDescriptor};
-use hsv_core::thermal::{HeatFluxModel, check_wall_temperature};
+use hsv_core::thermal::{HeatFluxModel, check_heat_flux_inputs, check_wall_temperature};
 
 /// Registered name.
 pub const NAME: &str = "eckert";
@@ -428,20 +428,8 @@ impl HeatFluxModel for Eckert {
         wall_temperature_k: &[f64],
         out_w_m2: &mut [f64],
     ) -> Result<(), ModelError> {
+        check_heat_flux_inputs(NAME, mesh, flight, aero, wall_temperature_k, out_w_m2)?;
         let n = mesh.panels.len();
-        for (what, len) in [
-            ("edge states", aero.edge.len()),
-            ("wall temperatures", wall_temperature_k.len()),
-            ("heat-flux outputs", out_w_m2.len()),
-        ] {
-            if len != n {
-                return Err(ModelError::inconsistent(
-                    NAME,
-                    format!("{len} {what} for a mesh of {n} panels"),
-                ));
-            }
-        }
-        flight.check_finite()?;
         let gas = flight.freestream.gas;
         let mut running = std::mem::take(&mut self.running_length_m);
         mesh.strip_running_lengths_m(

@@ -30,7 +30,9 @@ use hsv_core::gas::PerfectGas;
 use hsv_core::material::Material;
 use hsv_core::mesh::{PanelMesh, PanelSpec, RegionKind, Strip, Surface};
 use hsv_core::registry::{Constructor, ModelContext, ModelDescriptor, Registry};
-use hsv_core::thermal::{HeatFluxModel, STEFAN_BOLTZMANN_W_M2_K4, check_wall_temperature};
+use hsv_core::thermal::{
+    HeatFluxModel, STEFAN_BOLTZMANN_W_M2_K4, check_heat_flux_inputs, check_wall_temperature,
+};
 use linfa::prelude::{Dataset, Fit};
 use nalgebra::{Point3, Vector3};
 use ndarray::{Array1, Array2};
@@ -657,20 +659,7 @@ impl HeatFluxModel for KrigingStanton {
         wall_temperature_k: &[f64],
         out_w_m2: &mut [f64],
     ) -> Result<(), ModelError> {
-        let n = mesh.panels.len();
-        for (what, len) in [
-            ("edge states", aero.edge.len()),
-            ("wall temperatures", wall_temperature_k.len()),
-            ("heat-flux outputs", out_w_m2.len()),
-        ] {
-            if len != n {
-                return Err(ModelError::inconsistent(
-                    NAME,
-                    format!("{len} {what} for a mesh of {n} panels"),
-                ));
-            }
-        }
-        flight.check_finite()?;
+        check_heat_flux_inputs(NAME, mesh, flight, aero, wall_temperature_k, out_w_m2)?;
         let freestream = &flight.freestream;
         let gas = freestream.gas;
         let total_temperature_k = freestream.total_temperature_k();

@@ -6,5 +6,6 @@ pub mod aero_job;
 pub mod commands;
 pub mod linked;
 pub mod output;
+pub mod progress;
 
 pub use linked::registry;

@@ -31,6 +31,7 @@ use hsv_model_conduction::{FullOrder, FullOrderSettings, PodBasis, PodSettings};
 
 use super::{ConfigArg, JsonFlag, load_config};
 use crate::output::{self, LinePlot, Series};
+use crate::progress::Progress;
 
 /// Arguments of `hsv-run heat`.
 #[derive(Args, Debug, Clone)]
@@ -223,6 +224,7 @@ fn run_model(
     };
     record(conduction, 0.0, &state, &mut nodes, &mut history);
     let mut t_end = steps as f64 * args.dt_s;
+    let mut progress = Progress::new(format!("heat: {name}"), steps);
     for k in 0..steps {
         let t = k as f64 * args.dt_s;
         if k % flux_every == 0 {
@@ -245,6 +247,7 @@ fn run_model(
             break;
         }
         state = trial;
+        progress.update(k + 1);
         history.conduction_wall_time_s += start.elapsed().as_secs_f64();
         if (k + 1) % record_every == 0 || k + 1 == steps {
             record(
@@ -322,13 +325,19 @@ fn build_pod_basis(
         let key = format!("models.{}", s.heat_flux);
         let mut heat =
             registry.create_heat_flux(&s.heat_flux, &context(loaded, &s.heat_flux, &key))?;
+        let mut progress = Progress::new(format!("POD snapshots at Mach {m}"), steps);
+        let mut done = 0;
         let run = hsv_model_conduction::collect_snapshots(
             &mut full,
             args.initial_k,
             args.dt_s,
             steps,
             every,
-            |wall, q| heat.heat_flux(&s.mesh, &s.flight, &s.aero, wall, q),
+            |wall, q| {
+                done += 1;
+                progress.update(done);
+                heat.heat_flux(&s.mesh, &s.flight, &s.aero, wall, q)
+            },
         )
         .with_context(|| format!("full-order snapshot run at Mach {m}"))?;
         snapshots.extend(run);

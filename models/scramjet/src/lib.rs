@@ -30,8 +30,9 @@
 //! the ramp (deflection = ramp angle + α), mass capture with spillage when the shock passes
 //! ahead of the cowl lip, an isentropic diffuser to the combustor area, a constant-area
 //! combustor with Rayleigh heat addition and the fuel's mass, thermal-choking detection, an
-//! isentropic internal nozzle and a pressure falling linearly along the aftbody from the
-//! internal nozzle exit pressure to the freestream pressure at the tail.
+//! isentropic internal nozzle and Chavez & Schmidt's aftbody pressure (1994), falling from the
+//! internal nozzle exit pressure to the freestream pressure at the tail as
+//! p(s) = p_e / (1 + (s/L)(p_e/p∞ − 1)).
 //!
 //! **`scramjet-q1d`** (after the structure of MASIV, paper §III.E, in reduced form): oblique
 //! shocks and Prandtl-Meyer expansions panel by panel along the ramp, a cowl shock and its
@@ -70,7 +71,7 @@ pub use flow::{
 };
 pub use geometry::{EngineSurfaces, SectionGeometry, direction, slope_rad};
 pub use model::{Scramjet, SectionEngine};
-pub use one_d::OneDEngine;
+pub use one_d::{OneDEngine, aftbody_mean_pressure_pa, aftbody_pressure_pa};
 pub use quasi_one_d::{Burner, QuasiOneDEngine, mixing_efficiency};
 pub use section::{
     COMBUSTOR_ENTRY, COMBUSTOR_EXIT, Capture, Fuel, INLET, NOZZLE_EXIT, SectionConditions,
@@ -273,7 +274,7 @@ hsv_core::register_model!(ModelDescriptor {
     origin: env!("CARGO_PKG_NAME"),
     fidelity: 1,
     summary: "1-D scramjet after Bolender & Doman (2007): ramp shock with spillage, isentropic \
-              diffuser, Rayleigh combustor with choking detection, linear aftbody nozzle \
+              diffuser, Rayleigh combustor with choking detection, Chavez-Schmidt aftbody nozzle \
               pressure; on spanwise strips with a quadratic fit",
     settings_doc: "spanwise_strips = 5                  # sections across the engine (>= 3)\n\
                    stoichiometric_fuel_air_ratio = 0.0291 # H2 (Heiser & Pratt 1994)\n\

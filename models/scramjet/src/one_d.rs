@@ -1,6 +1,6 @@
 //! `scramjet-1d` on one section, after Bolender & Doman (2007): ramp shock, spillage, isentropic
 //! diffuser, constant-area combustor with Rayleigh heat (and fuel mass) addition, isentropic
-//! internal nozzle, and a linear pressure distribution on the external nozzle.
+//! internal nozzle, and Chavez & Schmidt's pressure distribution on the external nozzle.
 
 use hsv_core::error::ModelError;
 use hsv_core::propulsion::EngineStatus;
@@ -111,10 +111,9 @@ impl OneDEngine {
             station(NOZZLE_EXIT, nozzle_exit, nozzle_area, exit_air_fuel),
         ]);
 
-        // External nozzle: pressure linear in arc length from the internal nozzle exit
-        // pressure at the engine exit to the freestream pressure at the tail (Bolender &
-        // Doman 2007, aftbody pressure distribution), taken at each segment's midpoint (exact
-        // for the integral of a straight nozzle).
+        // External nozzle: the aftbody pressure decays from the internal nozzle exit pressure
+        // to the freestream pressure at the tail (Chavez & Schmidt's distribution; B&D's own
+        // plume-matching aftbody is not modelled); each segment carries its exact mean.
         let total: f64 = geometry
             .nozzle_m
             .windows(2)
@@ -127,8 +126,7 @@ impl OneDEngine {
             .zip(out.nozzle_pressure_pa.iter_mut())
         {
             let length = (w[1] - w[0]).norm();
-            let t = (s + 0.5 * length) / total;
-            *p = nozzle_exit.pressure_pa + (p_inf - nozzle_exit.pressure_pa) * t;
+            *p = aftbody_mean_pressure_pa(nozzle_exit.pressure_pa, p_inf, total, s, s + length);
             s += length;
         }
 
@@ -143,4 +141,30 @@ impl OneDEngine {
         add_flow_path_force(out, geometry, conditions, &first, &last);
         check_finite(NAME, out, geometry.y_m)
     }
+}
+
+/// Aftbody pressure at arc length s from the engine exit, p(s) = p_e / (1 + (s/L)(p_e/p∞ − 1)),
+/// falling from p_e at s = 0 to p∞ at the tail s = L (Chavez & Schmidt, "Analytical
+/// aeropropulsive/aeroelastic hypersonic-vehicle model with dynamic analysis", J. Guidance
+/// Control Dynamics 17(6), 1994), Pa.
+pub fn aftbody_pressure_pa(exit_pa: f64, freestream_pa: f64, length_m: f64, s_m: f64) -> f64 {
+    exit_pa / (1.0 + s_m / length_m * (exit_pa / freestream_pa - 1.0))
+}
+
+/// Mean of `aftbody_pressure_pa` over s ∈ [s0, s1]:
+/// p_e ln((1 + k s1)/(1 + k s0)) / (k (s1 − s0)), k = (p_e/p∞ − 1)/L, Pa.
+pub fn aftbody_mean_pressure_pa(
+    exit_pa: f64,
+    freestream_pa: f64,
+    length_m: f64,
+    s0_m: f64,
+    s1_m: f64,
+) -> f64 {
+    let k = (exit_pa / freestream_pa - 1.0) / length_m;
+    let span = s1_m - s0_m;
+    // Below this the logarithm loses its digits; the midpoint value is then exact to rounding.
+    if (k * span).abs() < 1e-9 || span <= 0.0 {
+        return aftbody_pressure_pa(exit_pa, freestream_pa, length_m, 0.5 * (s0_m + s1_m));
+    }
+    exit_pa * ((k * s1_m).ln_1p() - (k * s0_m).ln_1p()) / (k * span)
 }

@@ -20,7 +20,8 @@ use hsv_core::vehicle::{BodyProfile, build_vehicle};
 use hsv_model_scramjet::{
     Burner, COMBUSTOR_ENTRY, COMBUSTOR_EXIT, Checker, FlowState, INLET, NOZZLE_EXIT, OneDEngine,
     OneDSettings, QuasiOneDEngine, QuasiOneDSettings, SCRAMJET_1D, SCRAMJET_Q1D, SectionConditions,
-    SectionGeometry, SectionSolution, constant_area_combustor,
+    SectionGeometry, SectionSolution, aftbody_mean_pressure_pa, aftbody_pressure_pa,
+    constant_area_combustor,
 };
 use nalgebra::{Point2, Point3};
 
@@ -466,17 +467,19 @@ fn positive_net_thrust_at_the_paper_condition() {
     }
 }
 
-/// Qualitative comparison with Bolender & Doman's model at Mach 8, 85,000 ft (25,908 m), α = 0:
-/// Parker et al. (2007) fit its thrust per unit span as T = β7 φ + β8 with β7 = 6.3785e3 lbf/ft
-/// = 93.09 kN/m per unit φ. Our models differ in nozzle treatment, so only the order of
-/// magnitude is checked: dT/dφ per unit span within a factor of two.
+/// Comparison with Bolender & Doman's model at Mach 8, 85,000 ft (25,908 m), α = 0: Parker et
+/// al. (2007) fit its thrust per unit span as T = β7 φ + β8 with β7 = 6.3785e3 lbf/ft = 93.09
+/// kN/m per unit φ. The quasi-1-D engine, whose simple-wave aftbody is closest to B&D's
+/// plume treatment, must be within a factor of two (measured: 0.95×). The 1-D engine's
+/// Chavez & Schmidt aftbody decays faster than B&D's plume-matched one, so it must fall below
+/// B&D but stay the same order (between 0.3× and 1×; measured: 0.41×).
 #[test]
 fn thrust_slope_at_mach_8_is_the_order_of_bolender_and_doman() {
     let body = body();
     let fl = flight(8.0, 25_908.0, 0.0);
     let width = 3.0;
     let bd_slope = 6.3785e3 * 4.448_221_615_260_5 / 0.3048;
-    for name in [SCRAMJET_1D, SCRAMJET_Q1D] {
+    for (name, lowest, highest) in [(SCRAMJET_1D, 0.3, 1.0), (SCRAMJET_Q1D, 0.5, 2.0)] {
         let mut m = model(name);
         let t0 = evaluate(m.as_mut(), &body, &fl, 0.0)
             .expect("runs")
@@ -488,12 +491,61 @@ fn thrust_slope_at_mach_8_is_the_order_of_bolender_and_doman() {
             .loads
             .force_n
             .x;
-        let slope = (t1 - t0) / 0.2 / width;
+        let ratio = (t1 - t0) / 0.2 / width / bd_slope;
         assert!(
-            slope > 0.5 * bd_slope && slope < 2.0 * bd_slope,
-            "{name}: dT/dphi = {slope} N/m vs B&D {bd_slope} N/m"
+            ratio > lowest && ratio < highest,
+            "{name}: dT/dphi is {ratio} times B&D's {bd_slope} N/m"
         );
     }
+}
+
+/// Chavez & Schmidt (J. Guidance Control Dynamics 17(6), 1994) aftbody pressure
+/// p(s) = p_e / (1 + (s/L)(p_e/p∞ − 1)): p_e at the engine exit, p∞ at the tail, and the
+/// closed-form force per unit span ∫₀ᴸ p ds = p_e L ln(p_e/p∞) / (p_e/p∞ − 1). The 1-d
+/// engine's segment pressures times their lengths must sum to it (to 1e-12: each segment
+/// carries its exact mean).
+#[test]
+fn one_d_aftbody_pressure_integrates_to_chavez_and_schmidt_closed_form() {
+    let (pe, p_inf, l) = (16.6e3, 2.19e3, 10.0);
+    assert_relative_eq!(
+        aftbody_pressure_pa(pe, p_inf, l, 0.0),
+        pe,
+        max_relative = 1e-15
+    );
+    assert_relative_eq!(
+        aftbody_pressure_pa(pe, p_inf, l, l),
+        p_inf,
+        max_relative = 1e-14
+    );
+    // Equal exit and freestream pressures: the uniform limit.
+    assert_relative_eq!(aftbody_mean_pressure_pa(p_inf, p_inf, l, 2.0, 3.0), p_inf);
+
+    let f = Freestream::standard(6.0, 26_000.0, PerfectGas::AIR).expect("atmosphere");
+    let out = solve_1d(&f, 0.0, 0.13);
+    let geometry = section();
+    let exit = out
+        .station(NOZZLE_EXIT)
+        .expect("nozzle exit")
+        .state
+        .pressure_pa;
+    let lengths: Vec<f64> = geometry
+        .nozzle_m
+        .windows(2)
+        .map(|w| (w[1] - w[0]).norm())
+        .collect();
+    let total: f64 = lengths.iter().sum();
+    let integral: f64 = lengths
+        .iter()
+        .zip(&out.nozzle_pressure_pa)
+        .map(|(l, p)| l * p)
+        .sum();
+    let r = exit / f.pressure_pa;
+    assert!(
+        r > 2.0,
+        "an underexpanded exit makes the check meaningful: {r}"
+    );
+    let closed_form = exit * total * r.ln() / (r - 1.0);
+    assert_relative_eq!(integral, closed_form, max_relative = 1e-12);
 }
 
 // ---------------------------------------------------------------------------------------------

@@ -162,8 +162,9 @@ pub fn aftbody_mean_pressure_pa(
 ) -> f64 {
     let k = (exit_pa / freestream_pa - 1.0) / length_m;
     let span = s1_m - s0_m;
-    // Below this the logarithm loses its digits; the midpoint value is then exact to rounding.
-    if (k * span).abs() < 1e-9 || span <= 0.0 {
+    // k → 0 (p_e = p∞) or a zero-length segment is 0/0; there the midpoint value is exact to
+    // O((k span)²).
+    if (k * span).abs() < 1e-9 {
         return aftbody_pressure_pa(exit_pa, freestream_pa, length_m, 0.5 * (s0_m + s1_m));
     }
     exit_pa * ((k * s1_m).ln_1p() - (k * s0_m).ln_1p()) / (k * span)

@@ -500,25 +500,47 @@ fn thrust_slope_at_mach_8_is_the_order_of_bolender_and_doman() {
 }
 
 /// Chavez & Schmidt (J. Guidance Control Dynamics 17(6), 1994) aftbody pressure
-/// p(s) = p_e / (1 + (s/L)(p_e/p∞ − 1)): p_e at the engine exit, p∞ at the tail, and the
-/// closed-form force per unit span ∫₀ᴸ p ds = p_e L ln(p_e/p∞) / (p_e/p∞ − 1). The 1-d
-/// engine's segment pressures times their lengths must sum to it (to 1e-12: each segment
-/// carries its exact mean).
+/// p(s) = p_e / (1 + (s/L)(p_e/p∞ − 1)): p_e at the engine exit, p∞ at the tail, and halfway
+/// the harmonic mean 2 p_e p∞ / (p_e + p∞) (3869.5 Pa for 16.6 and 2.19 kPa, where a linear
+/// decay would give 9395 Pa). A segment's mean must match composite Simpson quadrature of the
+/// point law (1e-10), and the 1-d engine's segment pressures times their lengths must sum to
+/// the closed-form force per unit span ∫₀ᴸ p ds = p_e L ln(p_e/p∞) / (p_e/p∞ − 1) (1e-12).
 #[test]
-fn one_d_aftbody_pressure_integrates_to_chavez_and_schmidt_closed_form() {
+fn one_d_aftbody_pressure_follows_chavez_and_schmidt() {
     let (pe, p_inf, l) = (16.6e3, 2.19e3, 10.0);
+    let p = |s| aftbody_pressure_pa(pe, p_inf, l, s);
+    assert_relative_eq!(p(0.0), pe, max_relative = 1e-15);
+    assert_relative_eq!(p(l), p_inf, max_relative = 1e-14);
     assert_relative_eq!(
-        aftbody_pressure_pa(pe, p_inf, l, 0.0),
-        pe,
-        max_relative = 1e-15
-    );
-    assert_relative_eq!(
-        aftbody_pressure_pa(pe, p_inf, l, l),
-        p_inf,
+        p(0.5 * l),
+        2.0 * pe * p_inf / (pe + p_inf),
         max_relative = 1e-14
     );
+    assert_relative_eq!(p(0.5 * l), 3869.505, max_relative = 1e-6);
+
+    let (s0, s1, n) = (2.0, 3.0, 1000);
+    let h = (s1 - s0) / n as f64;
+    let simpson: f64 = (0..=n)
+        .map(|i| {
+            let weight = if i == 0 || i == n {
+                1.0
+            } else if i % 2 == 1 {
+                4.0
+            } else {
+                2.0
+            };
+            weight * p(s0 + i as f64 * h)
+        })
+        .sum::<f64>()
+        * h
+        / 3.0;
+    assert_relative_eq!(
+        aftbody_mean_pressure_pa(pe, p_inf, l, s0, s1),
+        simpson / (s1 - s0),
+        max_relative = 1e-10
+    );
     // Equal exit and freestream pressures: the uniform limit.
-    assert_relative_eq!(aftbody_mean_pressure_pa(p_inf, p_inf, l, 2.0, 3.0), p_inf);
+    assert_relative_eq!(aftbody_mean_pressure_pa(p_inf, p_inf, l, s0, s1), p_inf);
 
     let f = Freestream::standard(6.0, 26_000.0, PerfectGas::AIR).expect("atmosphere");
     let out = solve_1d(&f, 0.0, 0.13);

@@ -37,9 +37,10 @@ fn aero_models(c: &mut Criterion) {
             settings: loaded.model_settings(name),
             key_path: &key_path,
             file: &loaded.file,
-            config: &loaded.raw,
+            region: hsv_core::testing::sample_region("right_surface"),
+            registry: hsv_core::testing::builtin_registry(),
         };
-        let mut model = registry.create_aero(name, &context).expect("model builds");
+        let mut model = registry.create::<dyn hsv_core::aero::AeroModel>(name, &context).expect("model builds");
         let mut solution = AeroSolution::default();
         group.bench_function(name.as_str(), |b| {
             b.iter(|| {

@@ -38,21 +38,23 @@ fn conduction(c: &mut Criterion) {
         settings: loaded.model_settings("eckert"),
         key_path: &key,
         file: &loaded.file,
-        config: &loaded.raw,
+        region: hsv_core::testing::sample_region("right_surface"),
+        registry: hsv_core::testing::builtin_registry(),
     };
     let mut aero_model = registry
-        .create_aero(
+        .create::<dyn hsv_core::aero::AeroModel>(
             "shock-expansion",
             &ModelContext {
                 settings: loaded.model_settings("shock-expansion"),
                 key_path: "models.shock-expansion",
                 file: &loaded.file,
-                config: &loaded.raw,
+                region: hsv_core::testing::sample_region("right_surface"),
+                registry: hsv_core::testing::builtin_registry(),
             },
         )
         .expect("aero");
     let mut heat = registry
-        .create_heat_flux("eckert", &context)
+        .create::<dyn hsv_core::thermal::HeatFluxModel>("eckert", &context)
         .expect("eckert");
     let flight_at = |mach: f64| {
         let f = Freestream::standard(mach, 26_000.0, loaded.config.gas).expect("freestream");

@@ -21,14 +21,15 @@ fn heat_flux(c: &mut Criterion) {
         settings: loaded.model_settings(name),
         key_path: key,
         file: &loaded.file,
-        config: &loaded.raw,
+        region: hsv_core::testing::sample_region("right_surface"),
+        registry: hsv_core::testing::builtin_registry(),
     };
     let mesh = lifting_surface_mesh(&loaded.config.lifting_surface, Side::Right).expect("mesh");
     let freestream = Freestream::standard(6.0, 26_000.0, loaded.config.gas).expect("freestream");
     let flight = FlightCondition::steady(freestream, 0.0, 0.0);
     let mut aero = AeroSolution::default();
     registry
-        .create_aero(
+        .create::<dyn hsv_core::aero::AeroModel>(
             "shock-expansion",
             &context("shock-expansion", "models.shock-expansion"),
         )
@@ -46,7 +47,7 @@ fn heat_flux(c: &mut Criterion) {
         ("kriging-stanton", "models.kriging-stanton"),
     ] {
         let mut model = registry
-            .create_heat_flux(name, &context(name, key))
+            .create::<dyn hsv_core::thermal::HeatFluxModel>(name, &context(name, key))
             .expect("heat-flux model");
         group.bench_function(name, |b| {
             b.iter(|| {

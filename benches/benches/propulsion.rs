@@ -32,10 +32,11 @@ fn propulsion_models(c: &mut Criterion) {
             settings: loaded.model_settings(name),
             key_path: &key_path,
             file: &loaded.file,
-            config: &loaded.raw,
+            region: hsv_core::testing::sample_region("propulsion"),
+            registry: hsv_core::testing::builtin_registry(),
         };
         let mut model = registry
-            .create_propulsion(name, &context)
+            .create::<dyn hsv_core::propulsion::PropulsionModel>(name, &context)
             .expect("model builds");
         let mut solution = PropulsionSolution::default();
         for (label, phi) in [("phi-0.13", 0.13), ("phi-0.6-choked", 0.6)] {

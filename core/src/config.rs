@@ -11,7 +11,12 @@ use serde::de::DeserializeOwned;
 use crate::aero::ReferenceValues;
 use crate::error::ModelError;
 use crate::gas::PerfectGas;
-use crate::vehicle::{GeometryConfig, LiftingSurfaceConfig};
+use crate::mesh::{PanelMesh, RegionKind};
+use crate::region::{ModelSettings, RegionGeometry, RegionInfo, merge_tables};
+use crate::vehicle::{
+    GeometryConfig, LiftingSurfaceConfig, Side, VehicleGeometry, body_mesh, build_vehicle,
+    lifting_surface_mesh,
+};
 
 /// The sample vehicle config, embedded in every binary.
 pub const SAMPLE_CONFIG_TOML: &str = include_str!("../../configs/sample-hsv.toml");
@@ -51,7 +56,8 @@ pub struct FlightConfig {
     pub beta_deg: f64,
 }
 
-/// Model names for one region; absent roles are not modelled in that region.
+/// Model names for one region, and its overrides of model settings; absent roles are not
+/// modelled in that region.
 #[derive(Debug, Clone, PartialEq, Default, serde::Serialize, serde::Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct RegionModels {
@@ -60,9 +66,32 @@ pub struct RegionModels {
     pub conduction: Option<String>,
     pub structure: Option<String>,
     pub propulsion: Option<String>,
+    /// `[regions.<region>.models.<name>]`: keys that override `[models.<name>]` in this region.
+    #[serde(default, skip_serializing_if = "BTreeMap::is_empty")]
+    pub models: BTreeMap<String, toml::Table>,
 }
 
-/// Which models each region of the vehicle runs.
+impl RegionModels {
+    /// `self` with every name and setting `over` gives replacing ours.
+    fn overlaid(&self, over: &RegionModels) -> RegionModels {
+        let pick = |a: &Option<String>, b: &Option<String>| b.clone().or_else(|| a.clone());
+        let mut models = self.models.clone();
+        for (name, table) in &over.models {
+            merge_tables(models.entry(name.clone()).or_default(), table);
+        }
+        RegionModels {
+            aero: pick(&self.aero, &over.aero),
+            heat_flux: pick(&self.heat_flux, &over.heat_flux),
+            conduction: pick(&self.conduction, &over.conduction),
+            structure: pick(&self.structure, &over.structure),
+            propulsion: pick(&self.propulsion, &over.propulsion),
+            models,
+        }
+    }
+}
+
+/// Which models each region of the vehicle runs. `lifting_surfaces` applies to both surfaces;
+/// `left_surface` and `right_surface` override it for one side.
 #[derive(Debug, Clone, PartialEq, Default, serde::Serialize, serde::Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct RegionsConfig {
@@ -71,7 +100,45 @@ pub struct RegionsConfig {
     #[serde(default)]
     pub lifting_surfaces: RegionModels,
     #[serde(default)]
+    pub left_surface: RegionModels,
+    #[serde(default)]
+    pub right_surface: RegionModels,
+    #[serde(default)]
     pub propulsion: RegionModels,
+}
+
+/// The regions of the vehicle, in assembly order.
+pub const REGION_NAMES: [&str; 4] = ["main_body", "left_surface", "right_surface", "propulsion"];
+
+impl RegionsConfig {
+    /// The models of region `name` (one of [`REGION_NAMES`]), overrides applied.
+    pub fn region(&self, name: &str) -> Option<RegionModels> {
+        match name {
+            "main_body" => Some(self.main_body.clone()),
+            "left_surface" => Some(self.lifting_surfaces.overlaid(&self.left_surface)),
+            "right_surface" => Some(self.lifting_surfaces.overlaid(&self.right_surface)),
+            "propulsion" => Some(self.propulsion.clone()),
+            _ => None,
+        }
+    }
+
+    /// The config table that holds region `name`'s overrides of model `model`, most specific
+    /// first, for messages.
+    fn override_path(&self, region: &str, model: &str) -> Option<String> {
+        let own = match region {
+            "main_body" => &self.main_body,
+            "left_surface" => &self.left_surface,
+            "right_surface" => &self.right_surface,
+            "propulsion" => &self.propulsion,
+            _ => return None,
+        };
+        if own.models.contains_key(model) {
+            return Some(format!("regions.{region}.models.{model}"));
+        }
+        let shared = matches!(region, "left_surface" | "right_surface")
+            && self.lifting_surfaces.models.contains_key(model);
+        shared.then(|| format!("regions.lifting_surfaces.models.{model}"))
+    }
 }
 
 /// The whole vehicle config.
@@ -133,6 +200,96 @@ impl LoadedConfig {
             .get(name)
             .unwrap_or_else(|| EMPTY.get_or_init(toml::Table::new))
     }
+
+    /// The body and both lifting-surface meshes.
+    pub fn vehicle(&self) -> Result<VehicleGeometry, ConfigError> {
+        build_vehicle(&self.config.geometry, &self.config.lifting_surface).map_err(|e| {
+            ConfigError {
+                file: self.file.clone(),
+                key_path: String::new(),
+                message: format!("building the vehicle geometry: {e}"),
+            }
+        })
+    }
+
+    /// A region around an arbitrary `mesh` (the whole vehicle, an STL file) that sees the global
+    /// `[models.*]` settings.
+    pub fn mesh_region(&self, name: &str, mesh: PanelMesh) -> RegionInfo {
+        let mut region =
+            RegionInfo::standalone(name, mesh, self.config.reference, self.config.gas, &self.file);
+        for (model, table) in &self.config.models {
+            region.settings.insert(
+                model.clone(),
+                ModelSettings {
+                    table: table.clone(),
+                    key_path: format!("models.{model}"),
+                },
+            );
+        }
+        region
+    }
+
+    /// Region `name` (one of [`REGION_NAMES`]) as its models see it: kind, side, geometry,
+    /// undeformed mesh and every model's settings with the region's overrides applied.
+    pub fn region(&self, name: &str) -> Result<RegionInfo, ConfigError> {
+        let c = &self.config;
+        let Some(models) = c.regions.region(name) else {
+            return Err(ConfigError {
+                file: self.file.clone(),
+                key_path: format!("regions.{name}"),
+                message: format!("unknown region; the regions are {}", REGION_NAMES.join(", ")),
+            });
+        };
+        let mesh_error = |e: crate::vehicle::VehicleError| ConfigError {
+            file: self.file.clone(),
+            key_path: String::new(),
+            message: format!("building the {name} mesh: {e}"),
+        };
+        let (kind, side, geometry, mesh) = match name {
+            "left_surface" | "right_surface" => {
+                let side = if name == "left_surface" { Side::Left } else { Side::Right };
+                let mesh = lifting_surface_mesh(&c.lifting_surface, side).map_err(mesh_error)?;
+                let geometry = RegionGeometry::LiftingSurface {
+                    planform: c.lifting_surface.clone(),
+                    side,
+                };
+                (RegionKind::LiftingSurface, Some(side), geometry, mesh)
+            }
+            _ => {
+                let kind = if name == "propulsion" {
+                    RegionKind::Propulsion
+                } else {
+                    RegionKind::MainBody
+                };
+                let mesh = body_mesh(&c.geometry).map_err(mesh_error)?;
+                (kind, None, RegionGeometry::Body(c.geometry.clone()), mesh)
+            }
+        };
+        let mut settings = BTreeMap::new();
+        let named = c.models.keys().chain(models.models.keys());
+        for model in named {
+            let mut table = c.models.get(model).cloned().unwrap_or_default();
+            if let Some(over) = models.models.get(model) {
+                merge_tables(&mut table, over);
+            }
+            let key_path = c
+                .regions
+                .override_path(name, model)
+                .unwrap_or_else(|| format!("models.{model}"));
+            settings.insert(model.clone(), ModelSettings { table, key_path });
+        }
+        Ok(RegionInfo {
+            name: name.to_owned(),
+            kind,
+            side,
+            geometry,
+            mesh,
+            reference: c.reference,
+            gas: c.gas,
+            file: self.file.clone(),
+            settings,
+        })
+    }
 }
 
 /// Parses config text; `file` names it in errors.
@@ -184,4 +341,48 @@ pub fn parse_table<T: DeserializeOwned>(
 /// The first line of a message: deserializer errors append context lines the key path already gives.
 fn first_line(message: &str) -> String {
     message.lines().next().unwrap_or_default().trim().to_owned()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn unknown_and_missing_keys_are_errors_naming_the_key() {
+        let text = SAMPLE_CONFIG_TOML.replace("width_m = 3.0", "widht_m = 3.0");
+        let err = parse_config(&text, "my.toml").unwrap_err().to_string();
+        assert!(
+            err.contains("my.toml") && err.contains("geometry.widht_m"),
+            "{err}"
+        );
+        let text = SAMPLE_CONFIG_TOML.replace("[lifting_surface]", "[lifting_surfaces]");
+        let err = parse_config(&text, "my.toml").unwrap_err().to_string();
+        assert!(err.contains("lifting_surface"), "{err}");
+    }
+
+    #[test]
+    fn region_settings_override_global_ones_per_side() {
+        let text = SAMPLE_CONFIG_TOML.replace(
+            "[regions.propulsion]",
+            "[regions.left_surface.models.eckert]\nemissivity = 0.5\n\n[regions.propulsion]",
+        );
+        let loaded = parse_config(&text, "my.toml").expect("config");
+        let left = loaded.region("left_surface").expect("left");
+        let right = loaded.region("right_surface").expect("right");
+        let eckert = left.model_settings("eckert");
+        assert_eq!(eckert.table["emissivity"].as_float(), Some(0.5));
+        assert_eq!(eckert.key_path, "regions.left_surface.models.eckert");
+        // Keys the region does not override keep their global values.
+        assert_eq!(
+            eckert.table["prandtl_number"],
+            loaded.model_settings("eckert")["prandtl_number"]
+        );
+        let global = right.model_settings("eckert");
+        assert_eq!(global.table["emissivity"].as_float(), Some(0.8));
+        assert_eq!(global.key_path, "models.eckert");
+        assert_eq!(left.side, Some(Side::Left));
+        assert!(left.mesh.vertices.iter().all(|v| v.y < 0.0));
+        let err = loaded.region("tail").unwrap_err().to_string();
+        assert!(err.contains("regions.tail") && err.contains("main_body"), "{err}");
+    }
 }

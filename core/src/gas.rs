@@ -778,6 +778,66 @@ pub fn newtonian_cp_max(mach: f64, gamma: f64) -> Result<f64, GasError> {
     Ok((pitot - 1.0) / (0.5 * gamma * m * m))
 }
 
+/// Surface state beyond shock detachment, as ratios to the upstream static state
+/// (see [`detached_surface`]).
+#[derive(Clone, Copy, Debug, PartialEq, serde::Serialize)]
+pub struct DetachedSurface {
+    /// p/p1 on the surface.
+    pub pressure_ratio: f64,
+    /// p0/p1: total pressure of the flow along the surface over the upstream static pressure
+    /// (>= `pressure_ratio`; equal at a normal impact, where the surface flow stagnates).
+    pub total_pressure_ratio: f64,
+    /// w = (sin²θ - sin²θ_max)/(1 - sin²θ_max): 0 at detachment, 1 at a normal impact (θ >= π/2).
+    pub newtonian_weight: f64,
+}
+
+/// Pressure on a surface inclined θ >= θ_max to M >= 1 flow, where no attached shock exists:
+/// modified Newtonian Cp = Cp_max sin²θ (Anderson, Hypersonic and High-Temperature Gas Dynamics,
+/// eq. 3.15, Cp_max from the Rayleigh pitot formula) rescaled so that it starts at the
+/// weak-shock value at θ_max: Cp(θ) = Cp_d + (Cp_max - Cp_d) w, w = (sin²θ - sin²θ_max)/(1 -
+/// sin²θ_max) (our matching; continuous at θ_max, monotone in θ, the pitot pressure at 90°).
+/// Cp is linear in p/p1, so p/p1 = p_d + (p02/p1 - p_d) w, with p_d the oblique-shock p2/p1 at
+/// (θ_max, β_max) (oblique-shock relations of NACA 1135) and p02/p1 the pitot ratio (NACA 1135 eq. 100). The
+/// surface flow's total pressure is blended with the same w between the oblique shock's at
+/// θ_max and the normal shock's (eq. 99), so an edge Mach number from p0/p is continuous too
+/// (M2 at θ_max, 0 at 90°). θ beyond π/2 counts as π/2.
+pub fn detached_surface(
+    mach: f64,
+    inclination_rad: f64,
+    gamma: f64,
+) -> Result<DetachedSurface, GasError> {
+    let gamma = check_gamma(gamma)?;
+    let m = check_supersonic(mach, "a detached-shock surface pressure needs M >= 1")?;
+    let theta = finite("surface inclination (rad)", inclination_rad)?;
+    let beta_max = wave_angle_at_max_deflection(m, gamma);
+    let theta_max = deflection_from_wave_angle(m, beta_max, gamma).max(0.0);
+    // A few ulp below θ_max is rounding in the caller's detachment test.
+    if theta < theta_max - 1e-9 {
+        return Err(GasError::out_of_range(
+            "surface inclination (rad)",
+            theta,
+            format!("theta >= theta_max = {theta_max} (below it the shock is attached)"),
+        ));
+    }
+    let sin2_max = theta_max.sin().powi(2);
+    let sin2 = theta.min(FRAC_PI_2).sin().powi(2);
+    let weight = if sin2_max < 1.0 {
+        ((sin2 - sin2_max) / (1.0 - sin2_max)).clamp(0.0, 1.0)
+    } else {
+        1.0
+    };
+    let attached = oblique_from_beta(m, beta_max, theta_max, gamma);
+    let normal = normal_shock_unchecked(m, gamma);
+    let upstream_total = total_pressure_ratio(m, gamma);
+    let pitot = upstream_total * normal.total_pressure_ratio;
+    let attached_total = upstream_total * attached.total_pressure_ratio;
+    Ok(DetachedSurface {
+        pressure_ratio: attached.pressure_ratio + (pitot - attached.pressure_ratio) * weight,
+        total_pressure_ratio: attached_total + (pitot - attached_total) * weight,
+        newtonian_weight: weight,
+    })
+}
+
 // ---------------------------------------------------------------------------------------------
 // Rayleigh flow (heat addition in a constant-area duct)
 // ---------------------------------------------------------------------------------------------

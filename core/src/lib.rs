@@ -6,12 +6,16 @@
 //! perfect-gas relations, frames, and panel meshes. SI units throughout.
 
 pub mod atmosphere;
+pub mod coupling;
 pub mod frames;
 pub mod gas;
+pub mod linalg;
 pub mod material;
+pub mod region;
 pub mod mesh;
 pub mod stl;
 pub mod surface_grid;
+pub mod testing;
 pub mod vehicle;
 
 pub mod aero;

@@ -636,6 +636,20 @@ mod tests {
         assert!((ti.youngs_modulus_pa(294.0).unwrap() / 110.3e9 - 1.0).abs() < 0.05);
     }
 
+    /// E(293 K) against two handbooks: MMPDS 16.0 Msi = 110.3 GPa and ASM Aerospace
+    /// Specification Metals / MatWeb (Ti-6Al-4V ELI, annealed, MTP643) 113.8 GPa (16 500 ksi),
+    /// both room-temperature static values. The table keeps Fukuhara & Sanpei's resonance fit
+    /// (105.31 GPa; their 296 K point is 103.34 GPa) so that the whole curve to 1323.66 K comes
+    /// from one specimen and one method: it is 4.5 % below MMPDS and 7.5 % below ASM, within
+    /// the 105-120 GPa spread that producers' datasheets quote for the alloy.
+    #[test]
+    fn ti_6al_4v_room_temperature_modulus_against_handbooks() {
+        let e = Material::ti_6al_4v().youngs_modulus_pa(293.0).unwrap();
+        assert_relative_eq!(e, 105.31e9, max_relative = 1e-12);
+        assert!((e / 110.3e9 - 1.0).abs() < 0.05, "MMPDS: {e}");
+        assert!((e / 113.8e9 - 1.0).abs() < 0.08, "ASM: {e}");
+    }
+
     /// The rows above 923 K against their sources (see [`TI_6AL_4V_TABLE`]):
     /// - Fukuhara & Sanpei (1993) measured E: rows at 1186.25 K (60.534 GPa), 1263.04 K
     ///   (33.489 GPa, the minimum near the β transus) and 1323.66 K (38.342 GPa, the last point)

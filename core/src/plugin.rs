@@ -21,7 +21,7 @@ use crate::aero::{AeroModel, AeroSolution, EdgeState, PanelMotion};
 use crate::error::ModelError;
 use crate::flow::FlightCondition;
 use crate::mesh::PanelMesh;
-use crate::registry::{Factory, Origin, RegistryEntry};
+use crate::registry::{Factory, Origin, Registry, RegistryEntry, RegistryError};
 
 /// First bytes of every [`PluginHeader`].
 pub const PLUGIN_MAGIC: [u8; 8] = *b"HSVPLUG\0";
@@ -124,6 +124,9 @@ pub enum PluginError {
     NoEntry { path: String, message: String },
     #[error("plugin {path}: {message}")]
     BadHeader { path: String, message: String },
+    /// A model name the plugin registers is taken or malformed.
+    #[error(transparent)]
+    Register(#[from] RegistryError),
 }
 
 /// Reads a static C string from a plugin.
@@ -142,6 +145,18 @@ fn plugin_str(pointer: *const c_char, what: &str, path: &str) -> Result<String, 
             path: path.to_owned(),
             message: format!("{what} is not UTF-8"),
         })
+}
+
+impl Registry {
+    /// Loads the dylib plugin at `path` and registers its models; returns how many.
+    pub fn load_plugin(&mut self, path: &Path) -> Result<usize, PluginError> {
+        let entries = load_plugin(path)?;
+        let count = entries.len();
+        for entry in entries {
+            self.insert(entry)?;
+        }
+        Ok(count)
+    }
 }
 
 /// Loads the plugin at `path`, checks its header and returns one registry entry per model.

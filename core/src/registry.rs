@@ -3,6 +3,7 @@
 //! A model crate registers itself with [`register_model!`]; the binary links it with a
 //! `use hsv_model_x as _;` line. [`Registry::builtin`] collects the descriptors, sorts them by
 //! name and rejects duplicates; look-ups of unknown names answer with the closest known names.
+//! Plugins join through `Registry::load_plugin` (in `plugin.rs`, so this module does not know them).
 
 use std::collections::BTreeMap;
 use std::fmt;
@@ -13,6 +14,7 @@ use serde::de::DeserializeOwned;
 use crate::aero::AeroModel;
 use crate::error::ModelError;
 use crate::propulsion::PropulsionModel;
+use crate::region::{ModelSettings, RegionInfo};
 use crate::structure::StructureModel;
 use crate::thermal::{ConductionModel, HeatFluxModel};
 
@@ -75,20 +77,38 @@ impl fmt::Display for Family {
     }
 }
 
-/// What a constructor gets: its own settings table plus the whole vehicle config.
+/// What a constructor gets: its settings, the region it is built for and the host registry.
+///
+/// Composite models (a surrogate trained on a base model, a reduced model built from a full one)
+/// build their base models through [`ModelContext::registry`], so plugins serve as base models
+/// too, and read the base model's settings as the same region sees them with
+/// [`ModelContext::for_model`].
 #[derive(Debug, Clone, Copy)]
 pub struct ModelContext<'a> {
-    /// The model's settings (`[models.<name>]`), empty when the config has none.
+    /// The model's settings (`[models.<name>]` overlaid by `[regions.<region>.models.<name>]`).
     pub settings: &'a toml::Table,
     /// Dotted key path of `settings` in the config file, for error messages.
     pub key_path: &'a str,
     /// The config file the settings come from.
     pub file: &'a str,
-    /// The whole vehicle config, for models that need geometry or materials from it.
-    pub config: &'a toml::Table,
+    /// The region the model is built for: name, kind, side, geometry, mesh.
+    pub region: &'a RegionInfo,
+    /// The host registry (built-in models and loaded plugins).
+    pub registry: &'a Registry,
 }
 
 impl<'a> ModelContext<'a> {
+    /// The context of model `name` in `region`: its settings as the region sees them.
+    pub fn new(region: &'a RegionInfo, registry: &'a Registry, settings: &'a ModelSettings) -> Self {
+        Self {
+            settings: &settings.table,
+            key_path: &settings.key_path,
+            file: &region.file,
+            region,
+            registry,
+        }
+    }
+
     /// Parses the settings table into `T`, naming file and full key path on any error.
     ///
     /// `T` should be `#[serde(deny_unknown_fields)]` so misspelt keys are caught.
@@ -97,21 +117,35 @@ impl<'a> ModelContext<'a> {
             .map_err(ModelError::from)
     }
 
-    /// Parses a top-level table of the vehicle config (for example `lifting_surface`).
-    pub fn parse_config_table<T: DeserializeOwned>(&self, key: &str) -> Result<T, ModelError> {
-        let Some(value) = self.config.get(key) else {
-            return Err(ModelError::Settings {
-                file: self.file.to_owned(),
-                key_path: key.to_owned(),
-                message: "missing table".to_owned(),
-            });
-        };
-        let table = value.as_table().ok_or_else(|| ModelError::Settings {
+    /// Settings of another model (`name`) as this region sees them, for composite models.
+    pub fn settings_for(&self, name: &str) -> ModelSettings {
+        self.region.model_settings(name)
+    }
+
+    /// Builds model `name` of role `M` in the same region with `settings` (from
+    /// [`Self::settings_for`], possibly adjusted), through the host registry.
+    pub fn build<M: ?Sized + RoleModel>(
+        &self,
+        name: &str,
+        settings: &ModelSettings,
+    ) -> Result<Box<M>, RegistryError> {
+        self.registry.create::<M>(
+            name,
+            &ModelContext::new(self.region, self.registry, settings),
+        )
+    }
+
+    /// A settings error at `key` under this model's table.
+    pub fn settings_error(&self, key: &str, message: impl Into<String>) -> ModelError {
+        ModelError::Settings {
             file: self.file.to_owned(),
-            key_path: key.to_owned(),
-            message: format!("expected a table, found {}", value.type_str()),
-        })?;
-        crate::config::parse_table(table, self.file, key).map_err(ModelError::from)
+            key_path: if key.is_empty() {
+                self.key_path.to_owned()
+            } else {
+                format!("{}.{key}", self.key_path)
+            },
+            message: message.into(),
+        }
     }
 }
 
@@ -283,14 +317,18 @@ pub enum RegistryError {
     BadName { name: String },
     #[error(transparent)]
     Model(#[from] ModelError),
-    #[error(transparent)]
-    Plugin(#[from] crate::plugin::PluginError),
 }
 
 /// Every model known by name.
 #[derive(Clone, Default)]
 pub struct Registry {
     entries: BTreeMap<String, RegistryEntry>,
+}
+
+impl fmt::Debug for Registry {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.debug_list().entries(self.entries.keys()).finish()
+    }
 }
 
 fn is_kebab_case(name: &str) -> bool {
@@ -322,16 +360,6 @@ impl Registry {
             })?;
         }
         Ok(registry)
-    }
-
-    /// Loads the dylib plugin at `path` and registers its models; returns how many.
-    pub fn load_plugin(&mut self, path: &std::path::Path) -> Result<usize, RegistryError> {
-        let entries = crate::plugin::load_plugin(path)?;
-        let count = entries.len();
-        for entry in entries {
-            self.insert(entry)?;
-        }
-        Ok(count)
     }
 
     /// Adds one model; a name already taken is an error naming both origins.
@@ -423,66 +451,47 @@ impl Registry {
         Ok(entry)
     }
 
-    /// Builds the aero model `name`.
-    pub fn create_aero(
+    /// Builds model `name` of role `M` (`dyn AeroModel`, `dyn HeatFluxModel`, ...):
+    /// `registry.create::<dyn AeroModel>("shock-expansion", &context)`.
+    pub fn create<M: ?Sized + RoleModel>(
         &self,
         name: &str,
         context: &ModelContext<'_>,
-    ) -> Result<Box<dyn AeroModel>, RegistryError> {
-        match &self.entry_for(name, Role::Aero)?.factory {
-            Factory::Aero(build) => Ok(build(context)?),
-            other => Err(wrong_role(name, other.role(), Role::Aero)),
-        }
-    }
-
-    /// Builds the heat-flux model `name`.
-    pub fn create_heat_flux(
-        &self,
-        name: &str,
-        context: &ModelContext<'_>,
-    ) -> Result<Box<dyn HeatFluxModel>, RegistryError> {
-        match &self.entry_for(name, Role::HeatFlux)?.factory {
-            Factory::HeatFlux(build) => Ok(build(context)?),
-            other => Err(wrong_role(name, other.role(), Role::HeatFlux)),
-        }
-    }
-
-    /// Builds the conduction model `name`.
-    pub fn create_conduction(
-        &self,
-        name: &str,
-        context: &ModelContext<'_>,
-    ) -> Result<Box<dyn ConductionModel>, RegistryError> {
-        match &self.entry_for(name, Role::Conduction)?.factory {
-            Factory::Conduction(build) => Ok(build(context)?),
-            other => Err(wrong_role(name, other.role(), Role::Conduction)),
-        }
-    }
-
-    /// Builds the structure model `name`.
-    pub fn create_structure(
-        &self,
-        name: &str,
-        context: &ModelContext<'_>,
-    ) -> Result<Box<dyn StructureModel>, RegistryError> {
-        match &self.entry_for(name, Role::Structure)?.factory {
-            Factory::Structure(build) => Ok(build(context)?),
-            other => Err(wrong_role(name, other.role(), Role::Structure)),
-        }
-    }
-
-    /// Builds the propulsion model `name`.
-    pub fn create_propulsion(
-        &self,
-        name: &str,
-        context: &ModelContext<'_>,
-    ) -> Result<Box<dyn PropulsionModel>, RegistryError> {
-        match &self.entry_for(name, Role::Propulsion)?.factory {
-            Factory::Propulsion(build) => Ok(build(context)?),
-            other => Err(wrong_role(name, other.role(), Role::Propulsion)),
+    ) -> Result<Box<M>, RegistryError> {
+        let entry = self.entry_for(name, M::ROLE)?;
+        match M::constructor(&entry.factory) {
+            Some(build) => Ok(build(context)?),
+            None => Err(wrong_role(name, entry.role(), M::ROLE)),
         }
     }
 }
+
+/// The trait object of one role, so [`Registry::create`] is one generic function.
+pub trait RoleModel {
+    const ROLE: Role;
+    /// The constructor in `factory` if it builds this role.
+    fn constructor(factory: &Factory) -> Option<&SharedConstructor<Self>>;
+}
+
+macro_rules! role_model {
+    ($trait:path, $role:ident) => {
+        impl RoleModel for dyn $trait {
+            const ROLE: Role = Role::$role;
+            fn constructor(factory: &Factory) -> Option<&SharedConstructor<Self>> {
+                match factory {
+                    Factory::$role(build) => Some(build),
+                    _ => None,
+                }
+            }
+        }
+    };
+}
+
+role_model!(AeroModel, Aero);
+role_model!(HeatFluxModel, HeatFlux);
+role_model!(ConductionModel, Conduction);
+role_model!(StructureModel, Structure);
+role_model!(PropulsionModel, Propulsion);
 
 fn wrong_role(name: &str, actual: Role, wanted: Role) -> RegistryError {
     RegistryError::WrongRole {
@@ -559,19 +568,30 @@ mod tests {
     fn wrong_role_is_reported() {
         let mut registry = Registry::empty();
         registry.insert(entry("shock-expansion", "a")).unwrap();
-        let table = toml::Table::new();
-        let context = ModelContext {
-            settings: &table,
-            key_path: "models.shock-expansion",
-            file: "test.toml",
-            config: &table,
-        };
+        let region = RegionInfo::standalone(
+            "test",
+            PanelMesh::default(),
+            crate::aero::ReferenceValues {
+                area_m2: 1.0,
+                chord_m: 1.0,
+                span_m: 1.0,
+                moment_point_m: [0.0; 3],
+            },
+            crate::gas::PerfectGas::AIR,
+            "test.toml",
+        );
+        let settings = region.model_settings("shock-expansion");
+        let context = ModelContext::new(&region, &registry, &settings);
         let err = registry
-            .create_structure("shock-expansion", &context)
+            .create::<dyn StructureModel>("shock-expansion", &context)
             .err()
             .unwrap();
         assert!(matches!(err, RegistryError::WrongRole { .. }), "{err}");
-        assert!(registry.create_aero("shock-expansion", &context).is_ok());
+        assert!(
+            registry
+                .create::<dyn AeroModel>("shock-expansion", &context)
+                .is_ok()
+        );
     }
 
     #[test]

@@ -267,7 +267,10 @@ fn written_files_read_back() {
 
 #[test]
 fn the_sample_vehicle_body_survives_an_stl_round_trip() {
-    let vehicle = hsv_core::vehicle::build_sample_vehicle().expect("sample vehicle");
+    let vehicle = hsv_core::config::LoadedConfig::sample()
+        .expect("sample")
+        .vehicle()
+        .expect("sample vehicle");
     let body = &vehicle.body;
     let bytes = stl_binary_bytes(body, "sample body");
     let (back, report) = parse_stl_with_report(&bytes, "body.stl").expect("parses");

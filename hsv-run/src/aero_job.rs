@@ -4,7 +4,7 @@ use std::time::Instant;
 
 use anyhow::{Context, Result, bail};
 use hsv_core::aero::{
-    AeroDiagnostics, AeroSolution, Coefficients, Loads, PanelMotion, ReferenceValues,
+    AeroDiagnostics, AeroModel, AeroSolution, Coefficients, Loads, PanelMotion, ReferenceValues,
     integrate_pressure,
 };
 use hsv_core::config::LoadedConfig;
@@ -119,15 +119,11 @@ pub fn run_aero(
     };
     let mut solution = AeroSolution::default();
     let mut rows = Vec::with_capacity(request.models.len());
+    let region = loaded.mesh_region("vehicle", mesh.mesh.clone());
     for name in &request.models {
-        let key_path = format!("models.{name}");
-        let context = ModelContext {
-            settings: loaded.model_settings(name),
-            key_path: &key_path,
-            file: &loaded.file,
-            config: &loaded.raw,
-        };
-        let mut model = registry.create_aero(name, &context)?;
+        let settings = region.model_settings(name);
+        let context = ModelContext::new(&region, registry, &settings);
+        let mut model = registry.create::<dyn AeroModel>(name, &context)?;
         let start = Instant::now();
         model
             .evaluate(&mesh.mesh, &flight, &PanelMotion::default(), &mut solution)

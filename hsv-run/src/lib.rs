@@ -7,5 +7,6 @@ pub mod commands;
 pub mod linked;
 pub mod output;
 pub mod progress;
+pub mod vehicle;
 
 pub use linked::registry;

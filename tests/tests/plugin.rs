@@ -56,7 +56,8 @@ fn context<'a>(settings: &'a toml::Table, empty: &'a toml::Table) -> ModelContex
         settings,
         key_path: "models.ackeret",
         file: "test.toml",
-        config: empty,
+        region: hsv_core::testing::sample_region("right_surface"),
+        registry: hsv_core::testing::empty_registry(),
     }
 }
 
@@ -73,7 +74,7 @@ fn ackeret_plugin_reproduces_flat_plate_lift_slope() {
 
     let empty = toml::Table::new();
     let mut model = registry
-        .create_aero("ackeret", &context(&empty, &empty))
+        .create::<dyn hsv_core::aero::AeroModel>("ackeret", &context(&empty, &empty))
         .expect("creates");
     let plate = flat_plate();
     let mach = 3.0;
@@ -112,14 +113,14 @@ fn plugin_errors_cross_the_boundary_as_messages() {
     settings.insert("order".into(), toml::Value::Integer(3));
     let empty = toml::Table::new();
     let err = registry
-        .create_aero("ackeret", &context(&settings, &empty))
+        .create::<dyn hsv_core::aero::AeroModel>("ackeret", &context(&settings, &empty))
         .err()
         .expect("unknown setting rejected")
         .to_string();
     assert!(err.contains("`order`"), "{err}");
 
     let mut model = registry
-        .create_aero("ackeret", &context(&empty, &empty))
+        .create::<dyn hsv_core::aero::AeroModel>("ackeret", &context(&empty, &empty))
         .unwrap();
     let subsonic = Freestream::standard(0.8, 10_000.0, PerfectGas::AIR).unwrap();
     let err = model

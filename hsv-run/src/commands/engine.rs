@@ -82,14 +82,10 @@ impl Setup<'_> {
     }
 
     fn model(&self, registry: &Registry, name: &str) -> Result<Box<dyn PropulsionModel>> {
-        let key_path = format!("models.{name}");
-        let context = ModelContext {
-            settings: self.loaded.model_settings(name),
-            key_path: &key_path,
-            file: &self.loaded.file,
-            config: &self.loaded.raw,
-        };
-        Ok(registry.create_propulsion(name, &context)?)
+        let region = self.loaded.region("propulsion")?;
+        let settings = region.model_settings(name);
+        let context = ModelContext::new(&region, registry, &settings);
+        Ok(registry.create::<dyn PropulsionModel>(name, &context)?)
     }
 
     fn evaluate(

@@ -19,15 +19,16 @@ use std::time::Instant;
 
 use anyhow::{Context, Result, bail};
 use clap::Args;
-use hsv_core::aero::{AeroSolution, PanelMotion};
+use hsv_core::aero::{AeroModel, AeroSolution, PanelMotion};
+use hsv_core::region::RegionInfo;
 use hsv_core::config::LoadedConfig;
 use hsv_core::flow::{FlightCondition, Freestream};
 use hsv_core::mesh::PanelMesh;
 use hsv_core::registry::{ModelContext, Registry};
 use hsv_core::surface_grid::SurfaceGrid;
 use hsv_core::thermal::{ConductionModel, HeatFluxModel};
-use hsv_core::vehicle::{Side, lifting_surface_mesh};
-use hsv_model_conduction::{FullOrder, FullOrderSettings, PodBasis, PodSettings};
+use hsv_core::vehicle::Side;
+use hsv_model_conduction::{FullOrderSettings, PodBasis, PodSettings};
 
 use super::{ConfigArg, JsonFlag, load_config};
 use crate::output::{self, LinePlot, Series};
@@ -113,16 +114,11 @@ struct Setup {
     mesh: PanelMesh,
     aero: AeroSolution,
     heat_flux: String,
+    region: RegionInfo,
 }
 
-fn context<'a>(loaded: &'a LoadedConfig, name: &str, key_path: &'a str) -> ModelContext<'a> {
-    ModelContext {
-        settings: loaded.model_settings(name),
-        key_path,
-        file: &loaded.file,
-        config: &loaded.raw,
-    }
-}
+/// The heated lifting surface: the right one (the left is its mirror image).
+const HEATED_REGION: &str = "right_surface";
 
 fn check_positive(flag: &str, value: f64) -> Result<()> {
     if !(value.is_finite() && value > 0.0) {
@@ -141,43 +137,38 @@ fn setup(loaded: &LoadedConfig, registry: &Registry, args: &HeatArgs, mach: f64)
     }
     let freestream = Freestream::standard(mach, altitude_m, loaded.config.gas)?;
     let flight = FlightCondition::steady(freestream, alpha_deg.to_radians(), 0.0);
-    let full: FullOrderSettings = hsv_core::config::parse_table(
-        loaded.model_settings("full-order"),
-        &loaded.file,
-        "models.full-order",
-    )?;
-    let mesh = lifting_surface_mesh(&loaded.config.lifting_surface, full.side)?;
+    let region = loaded.region(HEATED_REGION)?;
     let aero_name = match &args.aero {
         Some(name) => name.clone(),
         None => loaded
             .config
             .regions
-            .lifting_surfaces
-            .aero
-            .clone()
+            .region(HEATED_REGION)
+            .and_then(|r| r.aero)
             .unwrap_or_else(|| "shock-expansion".to_owned()),
     };
-    let key = format!("models.{aero_name}");
-    let mut aero_model = registry.create_aero(&aero_name, &context(loaded, &aero_name, &key))?;
+    let settings = region.model_settings(&aero_name);
+    let mut aero_model = registry
+        .create::<dyn AeroModel>(&aero_name, &ModelContext::new(&region, registry, &settings))?;
     let mut aero = AeroSolution::default();
     aero_model
-        .evaluate(&mesh, &flight, &PanelMotion::default(), &mut aero)
+        .evaluate(&region.mesh, &flight, &PanelMotion::default(), &mut aero)
         .with_context(|| format!("aero model `{aero_name}`"))?;
     let heat_flux = match &args.heat_flux {
         Some(name) => name.clone(),
         None => loaded
             .config
             .regions
-            .lifting_surfaces
-            .heat_flux
-            .clone()
+            .region(HEATED_REGION)
+            .and_then(|r| r.heat_flux)
             .unwrap_or_else(|| "eckert".to_owned()),
     };
     Ok(Setup {
         flight,
-        mesh,
+        mesh: region.mesh.clone(),
         aero,
         heat_flux,
+        region,
     })
 }
 
@@ -308,23 +299,24 @@ fn build_pod_basis(
     } else {
         args.snapshot_mach.clone()
     };
-    let grid = hsv_core::surface_grid::SurfaceGrid::lifting_surface(
-        &loaded.config.lifting_surface,
-        full_settings.side,
-        full_settings.elements_chordwise,
-        full_settings.elements_spanwise,
-    )?;
-    let mesh = lifting_surface_mesh(&loaded.config.lifting_surface, full_settings.side)?;
-    let mut full = FullOrder::new(&grid, &mesh, full_settings.clone())?;
+    let region = loaded.region(HEATED_REGION)?;
+    let pod_settings = region.model_settings("pod");
+    let mut full = hsv_model_conduction::full_order_for(&ModelContext::new(
+        &region,
+        registry,
+        &pod_settings,
+    ))?;
     let steps = (args.duration_s / args.dt_s).round().max(1.0) as usize;
     let every = (steps / 100).max(1);
     let mut snapshots = Vec::new();
     for &m in &machs {
         check_positive("--snapshot-mach", m)?;
         let s = setup(loaded, registry, args, m)?;
-        let key = format!("models.{}", s.heat_flux);
-        let mut heat =
-            registry.create_heat_flux(&s.heat_flux, &context(loaded, &s.heat_flux, &key))?;
+        let settings = s.region.model_settings(&s.heat_flux);
+        let mut heat = registry.create::<dyn HeatFluxModel>(
+            &s.heat_flux,
+            &ModelContext::new(&s.region, registry, &settings),
+        )?;
         let mut progress = Progress::new(format!("POD snapshots at Mach {m}"), steps);
         let mut done = 0;
         let run = hsv_model_conduction::collect_snapshots(
@@ -387,11 +379,14 @@ pub fn run(args: HeatArgs, registry: &Registry) -> Result<()> {
                 ));
             }
         }
-        let key = format!("models.{name}");
-        let mut conduction = registry.create_conduction(name, &context(&loaded, name, &key))?;
-        let key = format!("models.{}", s.heat_flux);
-        let mut heat =
-            registry.create_heat_flux(&s.heat_flux, &context(&loaded, &s.heat_flux, &key))?;
+        let settings = s.region.model_settings(name);
+        let mut conduction = registry
+            .create::<dyn ConductionModel>(name, &ModelContext::new(&s.region, registry, &settings))?;
+        let settings = s.region.model_settings(&s.heat_flux);
+        let mut heat = registry.create::<dyn HeatFluxModel>(
+            &s.heat_flux,
+            &ModelContext::new(&s.region, registry, &settings),
+        )?;
         histories.push(run_model(
             name,
             conduction.as_mut(),
@@ -401,7 +396,7 @@ pub fn run(args: HeatArgs, registry: &Registry) -> Result<()> {
             200,
         )?);
     }
-    let grids = temperature_field_grids(&loaded)?;
+    let grids = temperature_field_grids(&loaded, registry)?;
     write_outputs(&folder, &s, &histories, grids.as_ref())?;
 
     if args.json.json {
@@ -490,23 +485,31 @@ fn stopped_error(histories: &[History], folder: &std::path::Path) -> Result<()> 
 
 /// The conduction grid and the lifting-surface structure's grid, when the structure is a
 /// `ritz-plate` on the vehicle planform: node temperatures are handed from one to the other.
-fn temperature_field_grids(loaded: &LoadedConfig) -> Result<Option<(SurfaceGrid, SurfaceGrid)>> {
-    if loaded.config.regions.lifting_surfaces.structure.as_deref() != Some("ritz-plate") {
+fn temperature_field_grids(
+    loaded: &LoadedConfig,
+    registry: &Registry,
+) -> Result<Option<(SurfaceGrid, SurfaceGrid)>> {
+    let region = loaded.region(HEATED_REGION)?;
+    let structure_name = loaded
+        .config
+        .regions
+        .region(HEATED_REGION)
+        .and_then(|r| r.structure);
+    if structure_name.as_deref() != Some("ritz-plate") {
         return Ok(None);
     }
-    let ritz: hsv_model_ritz_plate::Settings = hsv_core::config::parse_table(
-        loaded.model_settings("ritz-plate"),
-        &loaded.file,
-        "models.ritz-plate",
-    )?;
+    let settings = region.model_settings("ritz-plate");
+    let context = ModelContext::new(&region, registry, &settings);
+    let ritz: hsv_model_ritz_plate::Settings = context.parse_settings()?;
     if ritz.planform != hsv_model_ritz_plate::PlanformChoice::Vehicle {
         return Ok(None);
     }
-    let full: FullOrderSettings = hsv_core::config::parse_table(
-        loaded.model_settings("full-order"),
-        &loaded.file,
-        "models.full-order",
-    )?;
+    let full: FullOrderSettings = ModelContext::new(
+        &region,
+        registry,
+        &region.model_settings("full-order"),
+    )
+    .parse_settings()?;
     // Node order is the same on both sides; resample on the right-hand planform.
     let conduction = SurfaceGrid::lifting_surface(
         &loaded.config.lifting_surface,
@@ -514,10 +517,7 @@ fn temperature_field_grids(loaded: &LoadedConfig) -> Result<Option<(SurfaceGrid,
         full.elements_chordwise,
         full.elements_spanwise,
     )?;
-    let structure = hsv_model_ritz_plate::structural_grid(
-        &ritz,
-        &context(loaded, "ritz-plate", "models.ritz-plate"),
-    )?;
+    let (structure, _) = hsv_model_ritz_plate::structural_grid(&ritz, &context)?;
     Ok(Some((conduction, structure)))
 }
 

@@ -16,8 +16,9 @@ use hsv_core::config::LoadedConfig;
 use hsv_core::mesh::{ModeShapes, PanelMesh};
 use hsv_core::registry::{ModelContext, Registry};
 use hsv_core::structure::StructureModel;
-use hsv_core::vehicle::{Side, build_vehicle};
-use nalgebra::{DVector, Point3, Vector3};
+use hsv_core::region::RegionInfo;
+use hsv_core::vehicle::Side;
+use nalgebra::{DVector, Vector3};
 
 use super::{ConfigArg, JsonFlag, load_config};
 use crate::output::{self, LinePlot, Series};
@@ -221,22 +222,16 @@ pub struct ModesReport {
     pub notes: Vec<String>,
 }
 
-/// Builds structure model `name` from the config.
+/// Builds structure model `name` for `region`.
 fn build_structure(
-    loaded: &LoadedConfig,
+    region: &RegionInfo,
     registry: &Registry,
     name: &str,
 ) -> Result<Box<dyn StructureModel>> {
-    let key_path = format!("models.{name}");
-    let context = ModelContext {
-        settings: loaded.model_settings(name),
-        key_path: &key_path,
-        file: &loaded.file,
-        config: &loaded.raw,
-    };
+    let settings = region.model_settings(name);
     registry
-        .create_structure(name, &context)
-        .with_context(|| format!("building structure model `{name}`"))
+        .create::<dyn StructureModel>(name, &ModelContext::new(region, registry, &settings))
+        .with_context(|| format!("building structure model `{name}` for region `{}`", region.name))
 }
 
 /// Frequencies paired with the model's mode names; an error from the model is a buckled state.
@@ -274,79 +269,21 @@ fn modes_of(model: &dyn StructureModel) -> Result<ModesOutcome> {
     }
 }
 
-/// Mirror image of a mesh in the x-z plane (y → −y), orientation kept outward.
-fn mirrored(mesh: &PanelMesh) -> Result<PanelMesh> {
-    let vertices: Vec<Point3<f64>> = mesh
-        .vertices
-        .iter()
-        .map(|v| Point3::new(v.x, -v.y, v.z))
-        .collect();
-    let specs: Vec<hsv_core::mesh::PanelSpec> = mesh
-        .panels
-        .iter()
-        .map(|p| {
-            let v = p.vertices;
-            // Reversed order keeps the normals outward after the reflection.
-            if p.vertex_count == 4 {
-                hsv_core::mesh::PanelSpec::quad(v[0], v[3], v[2], v[1], p.surface)
-            } else {
-                hsv_core::mesh::PanelSpec::triangle(v[0], v[2], v[1], p.surface)
-            }
-        })
-        .collect();
-    Ok(PanelMesh::new(
-        vertices,
-        &specs,
-        mesh.strips.clone(),
-        mesh.surfaces.clone(),
-    )?)
-}
-
-/// Shapes of `model` on `mesh`; if the model rejects the mesh (a surface model built for the
-/// other side), the shapes on the mirror image, mirrored back (u_y → −u_y).
+/// Shapes of `model` on `mesh`, or a note saying why there are none.
 fn shapes_on(
     model: &dyn StructureModel,
     mesh: &PanelMesh,
     notes: &mut Vec<String>,
 ) -> Option<ModeShapes> {
-    let checked = |shapes: ModeShapes| shapes.check(mesh).map(|()| shapes);
-    match model.mode_shapes_on(mesh) {
-        Ok(shapes) => match checked(shapes) {
-            Ok(s) => Some(s),
-            Err(e) => {
-                notes.push(format!("mode shapes not written: {e}"));
-                None
-            }
-        },
-        Err(direct) => {
-            let mirrored_shapes = mirrored(mesh)
-                .ok()
-                .and_then(|m| model.mode_shapes_on(&m).ok());
-            match mirrored_shapes {
-                Some(mut shapes) => {
-                    let rows = shapes.vertex_displacement.nrows();
-                    for r in (1..rows).step_by(3) {
-                        shapes.vertex_displacement.row_mut(r).neg_mut();
-                    }
-                    match checked(shapes) {
-                        Ok(s) => {
-                            notes.push(
-                                "mode shapes mapped through the mirror image of this side"
-                                    .to_owned(),
-                            );
-                            Some(s)
-                        }
-                        Err(e) => {
-                            notes.push(format!("mode shapes not written: {e}"));
-                            None
-                        }
-                    }
-                }
-                None => {
-                    notes.push(format!("mode shapes not written: {direct}"));
-                    None
-                }
-            }
+    let shapes = model
+        .mode_shapes_on(mesh)
+        .map_err(|e| e.to_string())
+        .and_then(|shapes| shapes.check(mesh).map(|()| shapes).map_err(|e| e.to_string()));
+    match shapes {
+        Ok(shapes) => Some(shapes),
+        Err(e) => {
+            notes.push(format!("mode shapes not written: {e}"));
+            None
         }
     }
 }
@@ -358,10 +295,8 @@ pub fn compute(
     temperature: Temperature,
 ) -> Result<ModesReport> {
     let regions = &loaded.config.regions;
-    let vehicle = build_vehicle(&loaded.config.geometry, &loaded.config.lifting_surface)
-        .with_context(|| format!("{}: building the vehicle geometry", loaded.file))?;
     let mut notes = Vec::new();
-    let body = match &regions.main_body.structure {
+    let body = match regions.main_body.structure.as_deref() {
         None => {
             notes.push(
                 "no main-body structure model configured (regions.main_body.structure)".to_owned(),
@@ -369,16 +304,17 @@ pub fn compute(
             None
         }
         Some(name) => {
-            let model = build_structure(loaded, registry, name)?;
+            let region = loaded.region("main_body")?;
+            let model = build_structure(&region, registry, name)?;
             let mut body_notes = Vec::new();
             let outcome = modes_of(model.as_ref())?;
-            let shapes = shapes_on(model.as_ref(), &vehicle.body, &mut body_notes);
+            let shapes = shapes_on(model.as_ref(), &region.mesh, &mut body_notes);
             Some(StructureModes {
-                model: name.clone(),
+                model: name.to_owned(),
                 component: "main body".to_owned(),
                 outcome,
                 shapes,
-                mesh: vehicle.body.clone(),
+                mesh: region.mesh,
                 notes: body_notes,
             })
         }
@@ -391,51 +327,48 @@ pub fn compute(
         );
     }
     let mut surfaces = Vec::new();
-    match &regions.lifting_surfaces.structure {
-        None => notes.push(
-            "no lifting-surface structure model configured (regions.lifting_surfaces.structure)"
-                .to_owned(),
-        ),
-        Some(name) => {
-            for (side, mesh) in [
-                (Side::Left, &vehicle.left_surface),
-                (Side::Right, &vehicle.right_surface),
-            ] {
-                let mut model = build_structure(loaded, registry, name)?;
-                let n_nodes = model.temperature_nodes();
-                let mut surface_notes = Vec::new();
-                if n_nodes == 0 {
-                    surface_notes.push(format!(
-                        "`{name}` has no temperature dependence; frequencies at its reference state"
-                    ));
-                } else {
-                    let node_k = temperature.node_temperatures(n_nodes, name)?;
-                    model.set_temperatures(&node_k).with_context(|| {
-                        format!(
-                            "{} lifting surface at {}",
-                            side.name(),
-                            temperature.describe()
-                        )
-                    })?;
-                }
-                let outcome = modes_of(model.as_ref())?;
-                let shapes = match outcome {
-                    ModesOutcome::Modes(_) => shapes_on(model.as_ref(), mesh, &mut surface_notes),
-                    ModesOutcome::Buckled(_) => None,
-                };
-                surfaces.push((
-                    side,
-                    StructureModes {
-                        model: name.clone(),
-                        component: format!("{} lifting surface", side.name()),
-                        outcome,
-                        shapes,
-                        mesh: mesh.clone(),
-                        notes: surface_notes,
-                    },
-                ));
+    for (side, region_name) in [(Side::Left, "left_surface"), (Side::Right, "right_surface")] {
+        let Some(name) = regions.region(region_name).and_then(|r| r.structure) else {
+            notes.push(format!(
+                "no {region_name} structure model configured (regions.{region_name}.structure or \
+                 regions.lifting_surfaces.structure)"
+            ));
+            continue;
+        };
+        let region = loaded.region(region_name)?;
+        let mut model = build_structure(&region, registry, &name)?;
+        let mut surface_notes = Vec::new();
+        match model.thermal_stiffness_mut() {
+            None => surface_notes.push(format!(
+                "`{name}` has no temperature dependence; frequencies at its reference state"
+            )),
+            Some(thermal) => {
+                let node_k = temperature.node_temperatures(thermal.temperature_nodes(), &name)?;
+                thermal.set_temperatures(&node_k).with_context(|| {
+                    format!(
+                        "{} lifting surface at {}",
+                        side.name(),
+                        temperature.describe()
+                    )
+                })?;
             }
         }
+        let outcome = modes_of(model.as_ref())?;
+        let shapes = match outcome {
+            ModesOutcome::Modes(_) => shapes_on(model.as_ref(), &region.mesh, &mut surface_notes),
+            ModesOutcome::Buckled(_) => None,
+        };
+        surfaces.push((
+            side,
+            StructureModes {
+                model: name.clone(),
+                component: format!("{} lifting surface", side.name()),
+                outcome,
+                shapes,
+                mesh: region.mesh,
+                notes: surface_notes,
+            },
+        ));
     }
     if body.is_none() && surfaces.is_empty() {
         bail!(

@@ -21,14 +21,13 @@
 #![allow(clippy::needless_range_loop)]
 
 use hsv_core::error::ModelError;
+use hsv_core::linalg::BandedMatrix;
 use hsv_core::material::{Material, MaterialSetting};
 use hsv_core::mesh::{PanelMesh, RegionKind};
 use hsv_core::surface_grid::SurfaceGrid;
 use hsv_core::thermal::{ConductionModel, check_step_inputs};
-use hsv_core::vehicle::Side;
 use nalgebra::DVector;
 
-use crate::banded::BandMatrix;
 use crate::grid::{Layer, ThermalGrid};
 
 /// Registered name.
@@ -55,8 +54,6 @@ fn one() -> usize {
 #[derive(Debug, Clone, PartialEq, serde::Deserialize, serde::Serialize)]
 #[serde(deny_unknown_fields, default)]
 pub struct Settings {
-    /// Which lifting surface the grid covers.
-    pub side: Side,
     /// Grid elements along the chord (≥ 2; the ridge is a node line).
     pub elements_chordwise: usize,
     /// Grid elements along the span.
@@ -78,7 +75,6 @@ pub struct Settings {
 impl Default for Settings {
     fn default() -> Self {
         Self {
-            side: Side::Right,
             elements_chordwise: 16,
             elements_spanwise: 8,
             structure_material: MaterialSetting::default(),
@@ -94,7 +90,6 @@ impl Default for Settings {
 
 /// What `hsv-run describe full-order` prints.
 pub const SETTINGS_DOC: &str = "\
-side = \"right\"                 # lifting surface the grid covers: \"right\" or \"left\"
 elements_chordwise = 16        # grid elements along the chord (>= 2)
 elements_spanwise = 8          # grid elements along the span
 structure_material = \"ti-6al-4v\" # structural material (name or full table)
@@ -213,7 +208,7 @@ pub struct FullOrder {
     /// Plate node → weights over the structure's levels (thickness average).
     node_average: Vec<(usize, f64)>,
     // Scratch.
-    matrix: BandMatrix,
+    matrix: BandedMatrix,
     factored_dt_s: Option<f64>,
     load: Vec<f64>,
     capacity: Vec<f64>,
@@ -263,7 +258,7 @@ impl FullOrder {
         let n = thermal.n_dofs();
         Ok(Self {
             constant_properties: materials.iter().all(has_constant_thermal_properties),
-            matrix: BandMatrix::zeros(n, thermal.bandwidth),
+            matrix: BandedMatrix::zeros(n, thermal.bandwidth),
             factored_dt_s: None,
             load: vec![0.0; n],
             capacity: vec![0.0; n],

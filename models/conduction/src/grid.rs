@@ -19,7 +19,7 @@ use nalgebra::{Matrix3, Point3, Vector3};
 
 use hsv_core::surface_grid::SurfaceGrid;
 
-use crate::banded::reverse_cuthill_mckee;
+use hsv_core::linalg::reverse_cuthill_mckee;
 
 /// One layer of the through-thickness stack.
 #[derive(Debug, Clone, Copy, PartialEq)]

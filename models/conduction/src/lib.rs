@@ -1,11 +1,9 @@
 //! The conduction models of the lifting surface: `full-order` finite-element transient heat
 //! conduction and `pod`, its proper-orthogonal-decomposition Galerkin reduced-order model.
 //!
-//! Both build the structural grid of one lifting surface (`[lifting_surface]` of the vehicle
-//! config, core `surface_grid.rs`) and take the heat flux of every panel of that surface's
-//! wetted mesh (core `vehicle::lifting_surface_mesh`), in mesh order.
+//! Both build the structural grid of their region's lifting surface (core `surface_grid.rs`)
+//! and take the heat flux of every panel of the region's wetted mesh, in mesh order.
 
-pub mod banded;
 pub mod full_order;
 pub mod grid;
 pub mod pod;
@@ -15,37 +13,34 @@ use hsv_core::mesh::PanelMesh;
 use hsv_core::registry::{Constructor, ModelContext, ModelDescriptor};
 use hsv_core::surface_grid::SurfaceGrid;
 use hsv_core::thermal::ConductionModel;
-use hsv_core::vehicle::{LiftingSurfaceConfig, lifting_surface_mesh};
 
 pub use full_order::{FullOrder, Settings as FullOrderSettings};
 pub use pod::{Pod, PodBasis, Settings as PodSettings, collect_snapshots};
 
 /// The settings error for `key` under the model's table.
 fn settings_error(ctx: &ModelContext<'_>, key: &str, value: f64, allowed: &str) -> ModelError {
-    ModelError::Settings {
-        file: ctx.file.to_owned(),
-        key_path: format!("{}.{key}", ctx.key_path),
-        message: format!("{value} is outside the allowed range ({allowed})"),
-    }
+    ctx.settings_error(
+        key,
+        format!("{value} is outside the allowed range ({allowed})"),
+    )
 }
 
-/// The structural grid and wetted mesh of the lifting surface the settings name.
+/// The structural grid of the region's lifting surface at the settings' resolution, and the
+/// region's wetted mesh.
 pub fn lifting_surface_geometry(
     ctx: &ModelContext<'_>,
     settings: &FullOrderSettings,
     model: &str,
 ) -> Result<(SurfaceGrid, PanelMesh), ModelError> {
-    let lifting: LiftingSurfaceConfig = ctx.parse_config_table("lifting_surface")?;
+    let (planform, side) = ctx.region.lifting_surface(model)?;
     let grid = SurfaceGrid::lifting_surface(
-        &lifting,
-        settings.side,
+        planform,
+        side,
         settings.elements_chordwise,
         settings.elements_spanwise,
     )
     .map_err(|e| ModelError::inconsistent(model, e.to_string()))?;
-    let mesh = lifting_surface_mesh(&lifting, settings.side)
-        .map_err(|e| ModelError::inconsistent(model, e.to_string()))?;
-    Ok((grid, mesh))
+    Ok((grid, ctx.region.mesh.clone()))
 }
 
 /// Parses and range-checks `[models.full-order]`-style settings from `ctx`.
@@ -63,41 +58,29 @@ fn construct_full_order(ctx: &ModelContext<'_>) -> Result<Box<dyn ConductionMode
     Ok(Box::new(FullOrder::new(&grid, &mesh, settings)?))
 }
 
-/// `[models.full-order]` of the vehicle config as the context `pod` builds its grid from.
-fn full_order_table(ctx: &ModelContext<'_>) -> toml::Table {
-    ctx.config
-        .get("models")
-        .and_then(|m| m.get(full_order::NAME))
-        .and_then(toml::Value::as_table)
-        .cloned()
-        .unwrap_or_default()
+/// The full-order model `pod` projects, built from `[models.full-order]` as this region sees it.
+pub fn full_order_for(ctx: &ModelContext<'_>) -> Result<FullOrder, ModelError> {
+    let full = ctx.settings_for(full_order::NAME);
+    let full_ctx = ModelContext::new(ctx.region, ctx.registry, &full);
+    let full_settings = full_order_settings(&full_ctx)?;
+    let (grid, mesh) = lifting_surface_geometry(&full_ctx, &full_settings, pod::NAME)?;
+    FullOrder::new(&grid, &mesh, full_settings)
 }
 
 fn construct_pod(ctx: &ModelContext<'_>) -> Result<Box<dyn ConductionModel>, ModelError> {
     let settings: PodSettings = ctx.parse_settings()?;
-    let table = full_order_table(ctx);
-    let key_path = format!("models.{}", full_order::NAME);
-    let full_ctx = ModelContext {
-        settings: &table,
-        key_path: &key_path,
-        file: ctx.file,
-        config: ctx.config,
-    };
-    let full_settings = full_order_settings(&full_ctx)?;
-    let (grid, mesh) = lifting_surface_geometry(&full_ctx, &full_settings, pod::NAME)?;
-    let full = FullOrder::new(&grid, &mesh, full_settings)?;
+    let full = full_order_for(ctx)?;
     let path = std::path::Path::new(&settings.basis_file);
     if !path.exists() {
-        return Err(ModelError::Settings {
-            file: ctx.file.to_owned(),
-            key_path: format!("{}.basis_file", ctx.key_path),
-            message: format!(
+        return Err(ctx.settings_error(
+            "basis_file",
+            format!(
                 "POD basis file `{}` does not exist; build one from full-order snapshots \
-                 (hsv_model_conduction::collect_snapshots, PodBasis::from_snapshots and \
-                 PodBasis::save)",
+                 (`hsv-run heat` does, or hsv_model_conduction::collect_snapshots, \
+                 PodBasis::from_snapshots and PodBasis::save)",
                 settings.basis_file
             ),
-        });
+        ));
     }
     let basis = PodBasis::load(path)?;
     Ok(Box::new(Pod::new(&full, basis, settings)?))

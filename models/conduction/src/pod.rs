@@ -30,11 +30,11 @@
 use std::path::Path;
 
 use hsv_core::error::ModelError;
+use hsv_core::linalg::BandedMatrix;
 use hsv_core::material::Material;
 use hsv_core::thermal::{ConductionModel, check_step_inputs};
 use nalgebra::{DMatrix, DVector, SymmetricEigen};
 
-use crate::banded::BandMatrix;
 use crate::full_order::{FullOrder, Settings as FullOrderSettings};
 
 /// Registered name.
@@ -339,7 +339,7 @@ pub struct Pod {
     /// Φᵀ 1: the coefficients of a uniform unit field.
     uniform: DVector<f64>,
     // Scratch.
-    matrix: BandMatrix,
+    matrix: BandedMatrix,
     capacity: DMatrix<f64>,
     conduction: DMatrix<f64>,
     load: DVector<f64>,
@@ -460,7 +460,7 @@ impl Pod {
         }
         let uniform = phi.transpose() * DVector::from_element(n, 1.0);
         Ok(Self {
-            matrix: BandMatrix::zeros(r, r.saturating_sub(1)),
+            matrix: BandedMatrix::zeros(r, r.saturating_sub(1)),
             capacity: DMatrix::zeros(r, r),
             conduction: DMatrix::zeros(r, r),
             load: DVector::zeros(r),

@@ -328,7 +328,8 @@ fn sample_context<'a>(config: &'a toml::Table, settings: &'a toml::Table) -> Mod
         settings,
         key_path: "models.full-order",
         file: "sample-hsv.toml",
-        config,
+        region: hsv_core::testing::sample_region("right_surface"),
+        registry: hsv_core::testing::builtin_registry(),
     }
 }
 
@@ -341,7 +342,7 @@ fn registered_model_heats_the_sample_lifting_surface() {
     let settings = toml::Table::new();
     let registry = Registry::builtin().unwrap();
     let mut model = registry
-        .create_conduction("full-order", &sample_context(&config, &settings))
+        .create::<dyn hsv_core::thermal::ConductionModel>("full-order", &sample_context(&config, &settings))
         .unwrap();
     let mut state = model.uniform_state(293.0).unwrap();
     let n = model.n_surface_panels();

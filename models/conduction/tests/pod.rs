@@ -198,7 +198,7 @@ fn basis_is_saved_and_reloaded_by_the_registered_model() {
     settings.insert("modes".into(), toml::Value::Integer(12));
     let registry = Registry::builtin().unwrap();
     let model = registry
-        .create_conduction("pod", &context(&settings, &config))
+        .create::<dyn hsv_core::thermal::ConductionModel>("pod", &context(&settings, &config))
         .unwrap();
     assert_eq!(model.n_states(), 12);
     let state = model.uniform_state(293.0).unwrap();
@@ -209,7 +209,7 @@ fn basis_is_saved_and_reloaded_by_the_registered_model() {
     // Too many modes for the basis.
     settings.insert("modes".into(), toml::Value::Integer(40));
     let err = registry
-        .create_conduction("pod", &context(&settings, &config))
+        .create::<dyn hsv_core::thermal::ConductionModel>("pod", &context(&settings, &config))
         .err()
         .unwrap()
         .to_string();
@@ -228,7 +228,7 @@ fn basis_is_saved_and_reloaded_by_the_registered_model() {
         .unwrap()
         .insert("full-order".into(), toml::Value::Table(fo));
     let err = registry
-        .create_conduction("pod", &context(&settings, &other))
+        .create::<dyn hsv_core::thermal::ConductionModel>("pod", &context(&settings, &other))
         .err()
         .unwrap()
         .to_string();
@@ -237,7 +237,7 @@ fn basis_is_saved_and_reloaded_by_the_registered_model() {
     // No basis file.
     std::fs::remove_file(&path).unwrap();
     let err = registry
-        .create_conduction("pod", &context(&settings, &config))
+        .create::<dyn hsv_core::thermal::ConductionModel>("pod", &context(&settings, &config))
         .err()
         .unwrap()
         .to_string();
@@ -253,6 +253,7 @@ fn context<'a>(settings: &'a toml::Table, config: &'a toml::Table) -> ModelConte
         settings,
         key_path: "models.pod",
         file: "sample-hsv.toml",
-        config,
+        region: hsv_core::testing::sample_region("right_surface"),
+        registry: hsv_core::testing::builtin_registry(),
     }
 }

@@ -476,7 +476,8 @@ fn heat_flux_runs_along_strips_from_the_leading_edge() {
     assert!((2..5).contains(&turbulent));
 }
 
-/// Vacuum (p = ρ = 0) and stagnant (u = 0) edges get no convection, only re-radiation.
+/// Vacuum (p = ρ = 0) edges, and stagnant (u = 0) edges on panels parallel to the flow (no
+/// stagnation region), get no convection, only re-radiation.
 #[test]
 fn vacuum_and_stagnant_panels_only_radiate() {
     let mesh = plate_mesh(2);
@@ -559,7 +560,8 @@ fn context<'a>(settings: &'a toml::Table) -> ModelContext<'a> {
         settings,
         key_path: "models.eckert",
         file: "vehicle.toml",
-        config: settings,
+        region: hsv_core::testing::sample_region("right_surface"),
+        registry: hsv_core::testing::empty_registry(),
     }
 }
 
@@ -571,12 +573,12 @@ fn registered_constructor_reads_and_checks_settings() {
         toml::from_str("reference = \"meador-smart\"\nregime = \"turbulent\"\nemissivity = 0.6")
             .unwrap();
     let built = registry
-        .create_heat_flux("eckert", &context(&good))
+        .create::<dyn hsv_core::thermal::HeatFluxModel>("eckert", &context(&good))
         .unwrap();
     assert_eq!(built.name(), "eckert");
     let bad: toml::Table = toml::from_str("emissivity = -0.1").unwrap();
     let err = registry
-        .create_heat_flux("eckert", &context(&bad))
+        .create::<dyn hsv_core::thermal::HeatFluxModel>("eckert", &context(&bad))
         .err()
         .unwrap()
         .to_string();
@@ -586,14 +588,14 @@ fn registered_constructor_reads_and_checks_settings() {
     );
     let typo: toml::Table = toml::from_str("emisivity = 0.5").unwrap();
     let err = registry
-        .create_heat_flux("eckert", &context(&typo))
+        .create::<dyn hsv_core::thermal::HeatFluxModel>("eckert", &context(&typo))
         .err()
         .unwrap()
         .to_string();
     assert!(err.contains("emisivity"), "{err}");
     let wrong: toml::Table = toml::from_str("reference = \"white\"").unwrap();
     let err = registry
-        .create_heat_flux("eckert", &context(&wrong))
+        .create::<dyn hsv_core::thermal::HeatFluxModel>("eckert", &context(&wrong))
         .err()
         .unwrap()
         .to_string();

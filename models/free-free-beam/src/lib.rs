@@ -8,7 +8,7 @@
 //! (x = 0) to the tail (x = −30.4 m) at height `axis_z_m`.
 //!
 //! Method: finite elements ([`fe`]: Hermite cubic bending in two planes, linear torsion and
-//! axial, consistent mass), free-free modes by a shifted Cholesky eigen-solve ([`eigen`]), the
+//! axial, consistent mass), free-free modes by a shifted Cholesky eigen-solve ([`modes`]), the
 //! six rigid-body modes identified by frequency and checked against the analytic rigid motions,
 //! elastic modes classified by their kinetic energy per DOF group and the requested number of
 //! each kind kept, mass-normalized: generalized mass I, stiffness diag(ω²), damping diag(2ζω).
@@ -18,18 +18,21 @@
 //! u = w(x) + θ(x) × (r − r_axis(x)), w and θ interpolated with the element shape functions;
 //! vertices beyond the beam ends move rigidly with the end section.
 
-pub mod eigen;
 pub mod fe;
+pub mod modes;
 
 use hsv_core::error::ModelError;
 use hsv_core::mesh::{ModeShapes, PanelMesh};
 use hsv_core::registry::{Constructor, ModelContext, ModelDescriptor};
-use hsv_core::structure::{ModalModel, StructureModel};
+use hsv_core::region::RegionGeometry;
+use hsv_core::structure::{
+    MassDistribution, MassProperties, ModalModel, RigidBodyCoupling, RigidDof, StructureModel,
+};
 use hsv_core::vehicle::{BodyProfile, GeometryConfig, body_profile};
-use nalgebra::{DMatrix, DVector, Vector3};
+use nalgebra::{DMatrix, DVector, Matrix3, Point3, Vector3};
 
-pub use eigen::{ElasticModes, RIGID_BODY_MODES};
 pub use fe::{BeamMesh, ModeKind, Section, SectionMotion};
+pub use modes::{ElasticModes, RIGID_BODY_MODES};
 
 /// Registered name.
 pub const NAME: &str = "free-free-beam";
@@ -310,6 +313,9 @@ pub fn profile_centroid_z_m(profile: &BodyProfile) -> f64 {
 pub struct FreeFreeBeam {
     settings: Settings,
     axis_z_m: f64,
+    mass_properties: MassProperties,
+    /// Φᵀ M R of the kept modes with the six rigid motions about the nose station (n × 6).
+    rigid_coupling: DMatrix<f64>,
     mesh: BeamMesh,
     mass: DMatrix<f64>,
     stiffness: DMatrix<f64>,
@@ -349,10 +355,9 @@ impl FreeFreeBeam {
                 bad.key, bad.value, bad.allowed
             ),
         })?;
-        let geometry: Option<GeometryConfig> = if ctx.config.contains_key("geometry") {
-            Some(ctx.parse_config_table("geometry")?)
-        } else {
-            None
+        let geometry: Option<&GeometryConfig> = match &ctx.region.geometry {
+            RegionGeometry::Body(g) => Some(g),
+            _ => None,
         };
         if let Some(g) = &geometry {
             for (ours, theirs, their_key) in [
@@ -405,7 +410,7 @@ impl FreeFreeBeam {
     fn build(settings: Settings, axis_z_m: f64) -> Result<Self, ModelError> {
         let mesh = settings.beam_mesh();
         let (mass, stiffness) = mesh.assemble();
-        let elastic = eigen::free_free_modes(
+        let elastic = modes::free_free_modes(
             NAME,
             &mass,
             &stiffness,
@@ -461,9 +466,15 @@ impl FreeFreeBeam {
             )),
         };
         let kept_shapes = DMatrix::from_fn(mesh.n_dof(), n, |r, c| elastic.shapes[(r, kept[c])]);
+        let rigid = mesh.rigid_body_modes();
+        let mass_rigid = rigid.transpose() * &mass * &rigid;
+        let mass_properties = rigid_mass_properties(&mass_rigid, axis_z_m);
+        let rigid_coupling = kept_shapes.transpose() * &mass * &rigid;
         Ok(Self {
             settings,
             axis_z_m,
+            mass_properties,
+            rigid_coupling,
             mesh,
             mass,
             stiffness,
@@ -530,9 +541,65 @@ impl FreeFreeBeam {
     }
 }
 
+/// Mass, centre of mass and inertia from the rigid-body mass matrix Rᵀ M R (6 × 6, about the
+/// nose station of the beam axis at z = `axis_z_m`): m = (Rᵀ M R)₀₀, the centre of mass from the
+/// first moment (Rᵀ M R)₂₄ = ∫ μ s ds, the inertia about the nose station from the rotational
+/// block, moved to the centre of mass by the parallel-axis theorem.
+fn rigid_mass_properties(mass_rigid: &DMatrix<f64>, axis_z_m: f64) -> MassProperties {
+    let mass_kg = mass_rigid[(0, 0)];
+    let nose = Point3::new(0.0, 0.0, axis_z_m);
+    let center = Point3::new(-mass_rigid[(2, 4)] / mass_kg, 0.0, axis_z_m);
+    let about_nose = MassProperties {
+        mass_kg,
+        center_of_mass_m: center,
+        inertia_kg_m2: Matrix3::from_fn(|i, j| mass_rigid[(3 + i, 3 + j)]),
+    };
+    let d = center - nose;
+    MassProperties {
+        inertia_kg_m2: about_nose.inertia_kg_m2
+            - mass_kg * (Matrix3::identity() * d.norm_squared() - d * d.transpose()),
+        ..about_nose
+    }
+}
+
+impl MassDistribution for FreeFreeBeam {
+    fn mass_properties(&self) -> MassProperties {
+        self.mass_properties
+    }
+}
+
+impl RigidBodyCoupling for FreeFreeBeam {
+    fn rigid_dofs(&self) -> &[RigidDof] {
+        &[
+            RigidDof::TranslationX,
+            RigidDof::TranslationY,
+            RigidDof::TranslationZ,
+            RigidDof::RotationX,
+            RigidDof::RotationY,
+            RigidDof::RotationZ,
+        ]
+    }
+
+    fn rigid_reference_point_m(&self) -> Point3<f64> {
+        Point3::new(0.0, 0.0, self.axis_z_m)
+    }
+
+    fn rigid_coupling(&self) -> &DMatrix<f64> {
+        &self.rigid_coupling
+    }
+}
+
 impl StructureModel for FreeFreeBeam {
     fn name(&self) -> &str {
         NAME
+    }
+
+    fn mass_properties(&self) -> Option<&dyn MassDistribution> {
+        Some(self)
+    }
+
+    fn rigid_body_coupling(&self) -> Option<&dyn RigidBodyCoupling> {
+        Some(self)
     }
 
     fn modal_model(&self) -> &ModalModel {

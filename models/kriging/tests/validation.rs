@@ -17,7 +17,9 @@ use hsv_core::mesh::{PanelMesh, PanelSpec, RegionKind, Strip, Surface};
 use hsv_core::registry::{ModelContext, Registry};
 use hsv_core::thermal::HeatFluxModel;
 use hsv_model_eckert as _;
-use hsv_model_kriging::{KrigingStanton, Settings};
+use hsv_model_kriging::{
+    CSV_HEADER, KrigingStanton, Settings, recovery_factor, recovery_temperature_k,
+};
 use hsv_model_shock_expansion as _;
 use nalgebra::{Point3, Vector3};
 
@@ -28,7 +30,8 @@ fn context<'a>(settings: &'a toml::Table, config: &'a toml::Table) -> ModelConte
         settings,
         key_path: "models.kriging-stanton",
         file: "vehicle.toml",
-        config,
+        region: hsv_core::testing::sample_region("right_surface"),
+        registry: hsv_core::testing::builtin_registry(),
     }
 }
 
@@ -77,13 +80,13 @@ fn plate(inclination_deg: f64, running_length_m: f64) -> PanelMesh {
     .unwrap()
 }
 
-/// Convective heat flux (W/m²) of `model` on a plate at the given inputs, edge state from
-/// shock-expansion.
-fn convective_flux(model: &mut dyn HeatFluxModel, x: [f64; 5]) -> f64 {
+/// Convective heat flux (W/m²) of `model` on a plate at the given inputs (x[2] = T_w/T_aw with
+/// the recovery factor of the regime), edge state from shock-expansion.
+fn convective_flux(model: &mut dyn HeatFluxModel, x: [f64; 5], turbulent: bool) -> f64 {
     let registry = Registry::builtin().unwrap();
     let empty = toml::Table::new();
     let mut aero = registry
-        .create_aero("shock-expansion", &context(&empty, &empty))
+        .create::<dyn hsv_core::aero::AeroModel>("shock-expansion", &context(&empty, &empty))
         .unwrap();
     let mesh = plate(x[1], x[3]);
     let freestream = Freestream::standard(x[0], x[4], PerfectGas::AIR).unwrap();
@@ -91,7 +94,8 @@ fn convective_flux(model: &mut dyn HeatFluxModel, x: [f64; 5]) -> f64 {
     let mut solution = AeroSolution::default();
     aero.evaluate(&mesh, &flight, &PanelMotion::default(), &mut solution)
         .unwrap();
-    let wall_k = x[2] * freestream.total_temperature_k();
+    let wall_k =
+        x[2] * recovery_temperature_k(&solution.edge[0], 1.4, recovery_factor(PR, turbulent));
     let mut q = [0.0];
     model
         .heat_flux(&mesh, &flight, &solution, &[wall_k], &mut q)
@@ -105,16 +109,16 @@ fn rms(errors: &[f64]) -> f64 {
 
 /// Crowell & McNamara (2012)-style check: the surrogate of Eckert's laminar heating over the
 /// default box (100 samples) reproduces Eckert on 40 fresh points within its reported hold-out
-/// RMS error, and that error is below 10 % (measured: 7.4 % reported, 1.4 % on the fresh points;
-/// the hold-out fit has 20 fewer samples than the final one).
+/// RMS error, and that error is below 10 % (the hold-out fit has 20 fewer samples than the
+/// final one).
 #[test]
 fn surrogate_reproduces_eckert_on_unseen_points_within_reported_error() {
     let mut surrogate = build_in(
-        "emissivity = 0.0\nsamples = 100\nmelting_point_k = 1e9\n",
-        "[models.eckert]\nregime = \"laminar\"\n",
+        "emissivity = 0.0\nsamples = 100\nmelting_point_k = 1e9\nregime = \"laminar\"\n",
+        "",
     )
     .unwrap();
-    let reported = surrogate.surrogate().holdout_rms_relative_error;
+    let reported = surrogate.surrogate().holdout_rms_relative_error();
     assert!(reported < 0.10, "hold-out RMS error {reported}");
 
     let registry = Registry::builtin().unwrap();
@@ -122,7 +126,10 @@ fn surrogate_reproduces_eckert_on_unseen_points_within_reported_error() {
         toml::from_str("emissivity = 0.0\nregime = \"laminar\"\nmelting_point_k = 1e9").unwrap();
     let empty = toml::Table::new();
     let mut eckert = registry
-        .create_heat_flux("eckert", &context(&eckert_settings, &empty))
+        .create::<dyn hsv_core::thermal::HeatFluxModel>(
+            "eckert",
+            &context(&eckert_settings, &empty),
+        )
         .unwrap();
 
     let defaults = Settings::default();
@@ -143,8 +150,8 @@ fn surrogate_reproduces_eckert_on_unseen_points_within_reported_error() {
     let errors: Vec<f64> = (0..40)
         .map(|i| {
             let x = halton_point(i, lower, upper);
-            let truth = convective_flux(eckert.as_mut(), x);
-            convective_flux(&mut surrogate, x) / truth - 1.0
+            let truth = convective_flux(eckert.as_mut(), x, false);
+            convective_flux(&mut surrogate, x, false) / truth - 1.0
         })
         .collect();
     let measured = rms(&errors);
@@ -166,20 +173,33 @@ fn surrogate_trained_from_csv_reproduces_blasius_colburn_law() {
         let re_x = f.density_kg_m3 * f.velocity_m_s * x[3] / f.dynamic_viscosity_pa_s;
         0.332 / re_x.sqrt() * PR.powf(-2.0 / 3.0)
     };
-    let mut csv = String::from(
-        "mach,inclination_deg,wall_temperature_ratio,running_length_m,altitude_m,stanton\n",
-    );
+    let mut csv = format!("{CSV_HEADER}\n");
     for i in 0..60 {
         // Training points from a later stretch of the sequence than the test points below.
         let x = halton_point(500 + i, lower, upper);
-        csv += &format!("{},{},{},{},{},{}\n", x[0], x[1], x[2], x[3], x[4], law(x));
+        csv += &format!(
+            "{},{},{},{},{},0,{}\n",
+            x[0],
+            x[1],
+            x[2],
+            x[3],
+            x[4],
+            law(x)
+        );
     }
     let path = std::env::temp_dir().join(format!("hsv-kriging-blasius-{}.csv", std::process::id()));
     std::fs::write(&path, csv).unwrap();
     let surrogate = build(&format!("training_csv = {:?}\n", path.to_str().unwrap())).unwrap();
     std::fs::remove_file(&path).ok();
-    let reported = surrogate.surrogate().holdout_rms_relative_error;
+    let reported = surrogate.surrogate().holdout_rms_relative_error();
     assert!(reported < 0.02, "hold-out RMS error {reported}");
+    // Laminar rows only: no turbulent surrogate, and asking for one is an error.
+    assert!(surrogate.surrogate().turbulent.is_none());
+    let err = surrogate
+        .stanton([6.0, 5.0, 0.4, 1.0, 20_000.0], true)
+        .unwrap_err()
+        .to_string();
+    assert!(err.contains("no turbulent surrogate"), "{err}");
 
     // Test points inside the sampled hull: the box shrunk by 10 % on every side.
     let (inner_lower, inner_upper): (Vec<f64>, Vec<f64>) = (0..5)
@@ -193,7 +213,7 @@ fn surrogate_trained_from_csv_reproduces_blasius_colburn_law() {
     let errors: Vec<f64> = (0..30)
         .map(|i| {
             let x = halton_point(i, inner_lower, inner_upper);
-            surrogate.stanton(x).unwrap() / law(x) - 1.0
+            surrogate.stanton(x, false).unwrap() / law(x) - 1.0
         })
         .collect();
     let measured = rms(&errors);
@@ -217,7 +237,12 @@ fn saved_training_reloads_identically_and_retrains_on_changed_settings() {
     let saved = std::fs::read_to_string(&path).unwrap();
     let second = build(&settings).unwrap();
     let x = [6.0, 5.0, 0.4, 1.0, 26_000.0];
-    assert_eq!(first.stanton(x).unwrap(), second.stanton(x).unwrap());
+    for turbulent in [false, true] {
+        assert_eq!(
+            first.stanton(x, turbulent).unwrap(),
+            second.stanton(x, turbulent).unwrap()
+        );
+    }
     assert_eq!(
         std::fs::read_to_string(&path).unwrap(),
         saved,
@@ -225,7 +250,10 @@ fn saved_training_reloads_identically_and_retrains_on_changed_settings() {
     );
 
     let third = build(&format!("{settings}seed = 7\n")).unwrap();
-    assert_ne!(first.stanton(x).unwrap(), third.stanton(x).unwrap());
+    assert_ne!(
+        first.stanton(x, false).unwrap(),
+        third.stanton(x, false).unwrap()
+    );
     std::fs::remove_file(&path).ok();
 }
 
@@ -235,15 +263,19 @@ fn saved_training_reloads_identically_and_retrains_on_changed_settings() {
 fn inputs_outside_the_box_are_errors_naming_the_box() {
     let surrogate = build("samples = 30\n").unwrap();
     let err = surrogate
-        .stanton([12.0, 5.0, 0.4, 1.0, 26_000.0])
+        .stanton([17.0, 5.0, 0.4, 1.0, 26_000.0], true)
         .unwrap_err()
         .to_string();
-    assert!(err.contains("mach") && err.contains("[3, 10]"), "{err}");
+    assert!(err.contains("mach") && err.contains("[3, 16]"), "{err}");
 
     let clamped = build("samples = 30\nextrapolate = true\n").unwrap();
     assert_eq!(
-        clamped.stanton([12.0, 5.0, 0.4, 1.0, 26_000.0]).unwrap(),
-        clamped.stanton([10.0, 5.0, 0.4, 1.0, 26_000.0]).unwrap()
+        clamped
+            .stanton([17.0, 5.0, 0.4, 1.0, 26_000.0], true)
+            .unwrap(),
+        clamped
+            .stanton([16.0, 5.0, 0.4, 1.0, 26_000.0], true)
+            .unwrap()
     );
 }
 
@@ -280,7 +312,7 @@ fn wall_above_melting_point_is_an_error() {
     let empty = toml::Table::new();
     let mut solution = AeroSolution::default();
     registry
-        .create_aero("shock-expansion", &context(&empty, &empty))
+        .create::<dyn hsv_core::aero::AeroModel>("shock-expansion", &context(&empty, &empty))
         .unwrap()
         .evaluate(&mesh, &flight, &PanelMotion::default(), &mut solution)
         .unwrap();
@@ -290,4 +322,112 @@ fn wall_above_melting_point_is_an_error() {
         .unwrap_err()
         .to_string();
     assert!(err.contains("melted") && err.contains("1877"), "{err}");
+}
+
+/// Eckert's heating of a plate at the given inputs with `settings` (emissivity 0 for
+/// convection only).
+fn eckert_flux(settings: &str, x: [f64; 5], turbulent: bool) -> f64 {
+    let registry = Registry::builtin().unwrap();
+    let table: toml::Table = toml::from_str(settings).unwrap();
+    let empty = toml::Table::new();
+    let mut eckert = registry
+        .create::<dyn hsv_core::thermal::HeatFluxModel>("eckert", &context(&table, &empty))
+        .unwrap();
+    convective_flux(eckert.as_mut(), x, turbulent)
+}
+
+/// The paper's flutter case (a 293 K surface at 10 km, Mach up to 16; §IV.B) lies inside the
+/// default box: at Mach 8, 10 km, a 293 K plate inclined 5° at 0.5 m (edge Reynolds number
+/// ~3e7: turbulent, as the default transitional rule decides) the surrogate reproduces Eckert
+/// within the turbulent surrogate's largest hold-out error, and that error is below 10 %.
+/// Test-sized training (60 samples per regime); the default 150 is checked in
+/// `default_training_reports_percent_level_errors` (ignored: run with `--ignored`).
+#[test]
+fn cold_wall_at_mach_8_and_10_km_matches_eckert_within_reported_error() {
+    let mut surrogate = build("samples = 60\nemissivity = 0.0\nmelting_point_k = 1e9\n").unwrap();
+    let freestream = Freestream::standard(8.0, 10_000.0, PerfectGas::AIR).unwrap();
+    let mesh = plate(5.0, 0.5);
+    let registry = Registry::builtin().unwrap();
+    let empty = toml::Table::new();
+    let mut solution = AeroSolution::default();
+    registry
+        .create::<dyn hsv_core::aero::AeroModel>("shock-expansion", &context(&empty, &empty))
+        .unwrap()
+        .evaluate(
+            &mesh,
+            &FlightCondition::steady(freestream, 0.0, 0.0),
+            &PanelMotion::default(),
+            &mut solution,
+        )
+        .unwrap();
+    assert!(surrogate.is_turbulent(&solution.edge[0], 0.5));
+    let recovery = recovery_temperature_k(&solution.edge[0], 1.4, recovery_factor(PR, true));
+    let x = [8.0, 5.0, 293.0 / recovery, 0.5, 10_000.0];
+    let box_ = surrogate.surrogate();
+    for k in 0..5 {
+        let v = if k == 3 { x[3].log10() } else { x[k] };
+        assert!(
+            (box_.lower[k]..=box_.upper[k]).contains(&v),
+            "input {k} = {v}"
+        );
+    }
+    let reported = box_.turbulent.as_ref().unwrap().holdout_max_relative_error;
+    assert!(reported < 0.10, "largest hold-out error {reported}");
+    let truth = eckert_flux("emissivity = 0.0\nmelting_point_k = 1e9", x, true);
+    let ours = convective_flux(&mut surrogate, x, true);
+    assert!(truth > 0.0);
+    assert!(
+        (ours / truth - 1.0).abs() <= reported,
+        "surrogate {ours} W/m2, eckert {truth} W/m2, reported {reported}"
+    );
+}
+
+/// Eckert: a wall above its adiabatic-wall (recovery) temperature is cooled by the flow,
+/// q ∝ T_aw − T_w (Eckert 1955; Anderson, Hypersonic §6.9). With St referenced to T_aw the
+/// surrogate gives the same sign at T_w = 1.05 T_aw, laminar and turbulent.
+#[test]
+fn wall_above_recovery_temperature_is_cooled_like_eckert() {
+    let mut surrogate = build("samples = 40\nemissivity = 0.0\nmelting_point_k = 1e9\n").unwrap();
+    for (x, turbulent) in [
+        ([8.0, 5.0, 1.05, 0.5, 10_000.0], true),
+        ([6.0, 5.0, 1.05, 0.02, 35_000.0], false),
+    ] {
+        let regime = if turbulent { "turbulent" } else { "laminar" };
+        let truth = eckert_flux(
+            &format!("emissivity = 0.0\nmelting_point_k = 1e9\nregime = {regime:?}"),
+            x,
+            turbulent,
+        );
+        let mut forced = build(&format!(
+            "samples = 40\nemissivity = 0.0\nmelting_point_k = 1e9\nregime = {regime:?}\n"
+        ))
+        .unwrap();
+        let ours = convective_flux(&mut forced, x, turbulent);
+        assert!(
+            truth < 0.0 && ours < 0.0,
+            "{regime}: eckert {truth}, surrogate {ours}"
+        );
+    }
+    // The transitional default at 10 km, 0.5 m is turbulent and cools too.
+    assert!(convective_flux(&mut surrogate, [8.0, 5.0, 1.05, 0.5, 10_000.0], true) < 0.0);
+}
+
+/// The default training (150 samples per regime over Mach 3-16, 10-35 km) and its hold-out
+/// errors, printed; slow in a debug build, so ignored by default
+/// (`cargo test -p hsv-model-kriging --release -- --ignored --nocapture`).
+#[test]
+#[ignore]
+fn default_training_reports_percent_level_errors() {
+    let start = std::time::Instant::now();
+    let surrogate = build("").unwrap();
+    let s = surrogate.surrogate();
+    for (name, part) in [("laminar", &s.laminar), ("turbulent", &s.turbulent)] {
+        let part = part.as_ref().unwrap();
+        println!(
+            "{name}: {} samples, hold-out RMS {:.4}, max {:.4}",
+            part.samples, part.holdout_rms_relative_error, part.holdout_max_relative_error
+        );
+        assert!(part.holdout_rms_relative_error < 0.05);
+    }
+    println!("trained in {:.1} s", start.elapsed().as_secs_f64());
 }

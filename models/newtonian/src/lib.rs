@@ -303,7 +303,8 @@ mod tests {
             settings,
             key_path: "models.newtonian-vector",
             file: "test.toml",
-            config: settings,
+            region: hsv_core::testing::sample_region("right_surface"),
+            registry: hsv_core::testing::empty_registry(),
         }
     }
 

@@ -160,7 +160,8 @@ mod tests {
             settings,
             key_path: "models.piston-theory",
             file: "test.toml",
-            config: settings,
+            region: hsv_core::testing::sample_region("right_surface"),
+            registry: hsv_core::testing::empty_registry(),
         }
     }
 

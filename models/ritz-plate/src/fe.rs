@@ -258,6 +258,30 @@ pub fn membrane_thermal(quad: &Quad, e_pa: f64, nu: f64) -> MembraneThermal {
     out
 }
 
+/// Equivalent nodal bending load of a unit through-thickness free-strain difference
+/// Δε = ε_th(z = +t/2) − ε_th(z = −t/2) = 1 (lower face minus upper face, z down), ε_th linear in z:
+/// free curvature κ_T = Δε/t (1, 1, 0), thermal moment M_T = ∫ E ε_th z dz = E t² Δε / 12,
+/// f = ∫ B_bᵀ D_b κ_T dA = ∫ B_bᵀ (M_T / (1 − ν)) (1, 1, 0) dA (Boley & Weiner, Theory of Thermal
+/// Stresses, 1960, ch. 12, thin plates).
+pub fn bending_thermal(quad: &Quad, e_pa: f64, nu: f64) -> SVector<f64, 12> {
+    let unit = SVector::<f64, 3>::new(1.0, 1.0, 0.0);
+    let c = plane_stress(nu) * e_pa;
+    let mut f = SVector::<f64, 12>::zeros();
+    for (s, t) in gauss_points() {
+        let p = quad.point(s, t);
+        let mut bb = SMatrix::<f64, 3, 12>::zeros();
+        for n in 0..4 {
+            bb[(0, 3 * n + 1)] = p.dx[n];
+            bb[(1, 3 * n + 2)] = p.dy[n];
+            bb[(2, 3 * n + 1)] = p.dy[n];
+            bb[(2, 3 * n + 2)] = p.dx[n];
+        }
+        // D_b κ_T = (E t³/12) C (Δε/t): the t² keeps sharp edges (t = 0) finite.
+        f += bb.transpose() * c * unit * (p.thickness.powi(2) / 12.0 * p.det.abs());
+    }
+    f
+}
+
 /// Geometric stiffness patterns on w for unit resultants: G_xx = ∫ w,xᵀ w,x, G_yy = ∫ w,yᵀ w,y,
 /// G_xy = ∫ (w,xᵀ w,y + w,yᵀ w,x) dA, so K_G = N_xx G_xx + N_yy G_yy + N_xy G_xy.
 pub fn geometric_patterns(quad: &Quad) -> [Mat4; 3] {
@@ -340,5 +364,42 @@ mod tests {
         let n_bar = (th.stress * u - th.free) / th.area_m2;
         assert!(n_bar.norm() < 1e-6 * th.free.norm() / th.area_m2);
         assert!((km * u - th.load).norm() < 1e-9 * th.load.norm());
+    }
+
+    /// The thermal-moment load is self-equilibrated (rigid motions do no work on it), and the
+    /// free curvature κ_T = 1/t of a uniform-thickness element (βx = κ x, βy = κ y, w = −κ (x² +
+    /// y²)/2 at the nodes) makes it the element's elastic force K u: no stress, as for the free
+    /// plate under a linear through-thickness temperature (Boley & Weiner 1960).
+    #[test]
+    fn thermal_moment_load_is_self_equilibrated_and_matches_the_free_curvature() {
+        let mut q = skewed();
+        let f = bending_thermal(&q, 1e11, 0.3);
+        // Virtual work of f on w = 1; pitch (w = −x, βx = 1); roll (w = y, βy = −1).
+        let mut work = [0.0; 3];
+        for n in 0..4 {
+            let [x, y] = q.xy[n];
+            work[0] += f[3 * n];
+            work[1] += -x * f[3 * n] + f[3 * n + 1];
+            work[2] += y * f[3 * n] - f[3 * n + 2];
+        }
+        for w in work {
+            assert!(w.abs() < 1e-10 * f.norm(), "{work:?}");
+        }
+        q.thickness_m = [0.04; 4];
+        let f = bending_thermal(&q, 1e11, 0.3);
+        let k = bending_stiffness(&q, 1e11, 0.3);
+        let kappa = 1.0 / 0.04;
+        let mut u = SVector::<f64, 12>::zeros();
+        for n in 0..4 {
+            let [x, y] = q.xy[n];
+            u[3 * n] = -0.5 * kappa * (x * x + y * y);
+            u[3 * n + 1] = kappa * x;
+            u[3 * n + 2] = kappa * y;
+        }
+        assert!(
+            (k * u - f).norm() < 1e-9 * f.norm(),
+            "{}",
+            (k * u - f).norm()
+        );
     }
 }

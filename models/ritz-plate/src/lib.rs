@@ -15,9 +15,16 @@
 //! body, pitch about the pivot axis, paper §III.C) is the coordinator's input: its inertial
 //! coupling with the Ritz coordinates is [`RitzPlate::rigid_body_coupling`] (generalized force
 //! −C a_root) and the surface's rigid mass [`RitzPlate::rigid_body_mass`].
-//! [`StructureModel::root_loads`] returns the load the elastic surface exerts on the tube,
-//! from the root-row reactions of the full model, r = K_cf Φ q + M_cf Φ q̈ (damping forces
-//! excluded), as force and moment about the pivot point.
+//!
+//! **Root loads.** [`RitzPlate::root_loads_by_force_summation`] returns the load the elastic
+//! surface exerts on the tube by force summation over the free body of the surface: the
+//! applied load (every node, the root row included) minus the inertia of the elastic motion,
+//! L = Rᵀ (f − M Φ q̈), as force and moment about the pivot (R: the rigid motions of the tube).
+//! Stiffness and damping forces are internal, so a truncated Ritz basis only enters through
+//! q̈, which converges much faster than the stresses. [`StructureModel::root_loads`], whose
+//! trait signature does not yet pass the applied loads, still gives the mode-displacement
+//! reactions r = K_cf Φ q + M_cf Φ q̈ of the full model's root row, which miss the root row's
+//! own load and converge slowly for loads outside the basis.
 //!
 //! **Ritz basis** (paper §III.C: 10 free-vibration modes + 5 static load shapes; after
 //! Falkiewicz & Cesnik): the first N clamped-root modes at 293 K plus the deflections under
@@ -34,26 +41,33 @@
 //! when K_r loses positive definiteness [`StructureModel::natural_frequencies_hz`] reports the
 //! surface as buckled. Damping: modal, ζ on every current eigenmode.
 //!
+//! **Thermal moments** ([`RitzPlate::set_temperature_field`]): a through-thickness temperature
+//! difference ΔT (lower face minus upper, linear in z) gives the thermal moment
+//! M_T = ∫ E α ΔT z/t z dz = E α ΔT t²/12 (Boley & Weiner, Theory of Thermal Stresses, 1960),
+//! the equivalent nodal load f_T = Σ_e s_e Δε_e f_e and the generalized thermal force
+//! Q_T = Φᵀ f_T ([`RitzPlate::thermal_generalized_forces`]), summed from reduced element vectors
+//! like K_r. It is self-equilibrated, so it adds nothing to the root loads.
+//!
 //! **Side.** The model is built for the right surface (y > 0); [`RitzPlate::with_side`] selects
 //! the left. Mode shapes map onto a mesh of either side (the left as the mirror image).
 
-pub mod banded;
-pub mod eigen;
 pub mod fe;
 pub mod plate;
 
 use hsv_core::aero::Loads;
 use hsv_core::error::ModelError;
+use hsv_core::linalg::{BandedMatrix, SymmetricEigenSolver, generalized_symmetric_eigen};
 use hsv_core::material::{Material, MaterialSetting};
 use hsv_core::mesh::{ModeShapes, PanelMesh};
 use hsv_core::registry::{Constructor, ModelContext, ModelDescriptor};
-use hsv_core::structure::{ModalModel, StructureModel};
+use hsv_core::structure::{
+    MassDistribution, MassProperties, ModalModel, RigidBodyCoupling, RigidDof, RootLoads,
+    StructureModel, ThermalStiffness,
+};
 use hsv_core::surface_grid::{GridEdge, GridPoint, SurfaceGrid};
-use hsv_core::vehicle::{LiftingSurfaceConfig, Side};
+use hsv_core::vehicle::Side;
 use nalgebra::{DMatrix, DVector, Matrix3, Point3, Vector3};
 
-use crate::banded::BandedMatrix;
-use crate::eigen::{jacobi_eigen, small_generalized};
 use crate::plate::{ElementState, PlateError, PlateModel, Supports};
 
 /// Registered name.
@@ -145,6 +159,11 @@ pub struct Settings {
     /// Root condition (only `clamped`).
     #[serde(default)]
     pub root: RootChoice,
+    /// Adds one more static shape, the deflection under a uniform thermal moment (a uniform
+    /// through-thickness temperature difference), so a thermal bending load is reproduced
+    /// exactly; off by default (the paper's basis has the five load shapes).
+    #[serde(default)]
+    pub thermal_moment_shape: bool,
 }
 
 impl Default for Settings {
@@ -159,15 +178,8 @@ impl Default for Settings {
             planform: PlanformChoice::Vehicle,
             rectangular: None,
             root: RootChoice::Clamped,
+            thermal_moment_shape: false,
         }
-    }
-}
-
-fn settings_error(ctx: &ModelContext<'_>, key: &str, message: String) -> ModelError {
-    ModelError::Settings {
-        file: ctx.file.to_owned(),
-        key_path: format!("{}.{key}", ctx.key_path),
-        message,
     }
 }
 
@@ -176,36 +188,36 @@ fn construct(ctx: &ModelContext<'_>) -> Result<Box<dyn StructureModel>, ModelErr
     let material = settings
         .material
         .resolve()
-        .map_err(|e| settings_error(ctx, "material", e.to_string()))?;
-    let grid = structural_grid(&settings, ctx)?;
-    let model = RitzPlate::new(grid, material, &settings)?;
+        .map_err(|e| ctx.settings_error("material", e.to_string()))?;
+    let (grid, side) = structural_grid(&settings, ctx)?;
+    let model = RitzPlate::new(grid, material, &settings)?.with_side(side);
     Ok(Box::new(model))
 }
 
-/// The structural grid `settings` describe (node order of `set_temperatures`), without building
-/// the model: what a temperature field for this structure must be sampled on.
+/// The structural grid `settings` describe (node order of `set_temperatures`) and the side of
+/// the region's surface, without building the model: what a temperature field for this
+/// structure must be sampled on. The grid is the right surface's; the left mirrors it.
 pub fn structural_grid(
     settings: &Settings,
     ctx: &ModelContext<'_>,
-) -> Result<SurfaceGrid, ModelError> {
+) -> Result<(SurfaceGrid, Side), ModelError> {
     match settings.planform {
         PlanformChoice::Vehicle => {
-            let surface: LiftingSurfaceConfig = ctx.parse_config_table("lifting_surface")?;
+            let (surface, side) = ctx.region.lifting_surface(NAME)?;
             SurfaceGrid::lifting_surface(
-                &surface,
+                surface,
                 Side::Right,
                 settings.elements_chordwise,
                 settings.elements_spanwise,
             )
+            .map(|grid| (grid, side))
         }
         PlanformChoice::Rectangular => {
             let r = settings.rectangular.ok_or_else(|| {
-                settings_error(
-                    ctx,
+                ctx.settings_error(
                     "rectangular",
                     "planform = \"rectangular\" needs a [rectangular] table with chord_m, span_m, \
-                     thickness_m"
-                        .to_owned(),
+                     thickness_m",
                 )
             })?;
             SurfaceGrid::rectangular(
@@ -215,9 +227,10 @@ pub fn structural_grid(
                 settings.elements_chordwise,
                 settings.elements_spanwise,
             )
+            .map(|grid| (grid, Side::Right))
         }
     }
-    .map_err(|e| settings_error(ctx, "planform", e.to_string()))
+    .map_err(|e| ctx.settings_error("planform", e.to_string()))
 }
 
 hsv_core::register_model!(ModelDescriptor {
@@ -233,7 +246,8 @@ hsv_core::register_model!(ModelDescriptor {
                    material = \"ti-6al-4v\"      # or a table: name, density_kg_m3, poisson_ratio, melting_point_k, table = [{temperature_k, youngs_modulus_pa, thermal_expansion_per_k, conductivity_w_m_k, specific_heat_j_kg_k}, ...]\n\
                    damping_ratio = 0.02        # modal damping ratio of every mode\n\
                    planform = \"vehicle\"        # or \"rectangular\" with [models.ritz-plate.rectangular] chord_m, span_m, thickness_m\n\
-                   root = \"clamped\"            # root nodes clamped to the torque tube",
+                   root = \"clamped\"            # root nodes clamped to the torque tube\n\
+                   thermal_moment_shape = false # add the uniform thermal-moment deflection to the basis",
     constructor: Constructor::Structure(construct),
 });
 
@@ -256,6 +270,9 @@ struct Reduced {
     stiffness: Vec<f64>,
     /// G_r,e,c: element e, component c at `[(3e + c) r² ..]`.
     geometric: Vec<f64>,
+    /// Φ_eᵀ f_e: generalized thermal-moment force of a unit face strain difference in element
+    /// e at E_ref, at `[e r ..]`.
+    thermal: Vec<f64>,
 }
 
 /// Root-load matrices of one element touching the root: load on the tube (F, M) per Ritz
@@ -283,6 +300,11 @@ pub struct RitzPlate {
     root_mass: DMatrix<f64>,
     /// Current load on the tube per unit q (6 × r).
     root_stiffness: DMatrix<f64>,
+    /// Resultant about the pivot of the inertia forces M Φ per unit q̈ over every node (6 × r):
+    /// Rᵀ M Φ, the force-summation inertia.
+    root_inertia: DMatrix<f64>,
+    /// Current generalized thermal-moment force Q_T (r).
+    thermal_forces: DVector<f64>,
     rigid_coupling: DMatrix<f64>,
     rigid_mass: Matrix3<f64>,
     modal: ModalModel,
@@ -294,7 +316,7 @@ pub struct RitzPlate {
     resultants: Vec<[f64; 3]>,
     membrane_k: BandedMatrix,
     membrane_rhs: Vec<f64>,
-    jacobi: DMatrix<f64>,
+    symmetric_eigen: SymmetricEigenSolver,
 }
 
 /// Converts a 12-row element block of generalized forces at held root dofs into the load on
@@ -329,6 +351,66 @@ fn root_load_rows(
         }
     }
     out
+}
+
+/// The tube's six rigid motions on element `e`'s bending dofs (12 × 6, columns x, y, z
+/// translation and rotation about x, y, z through the pivot): w = 1 for z; roll w = y − y_p,
+/// βy = −1; pitch w = −(x − x_p), βx = 1; the in-plane motions (x, y, yaw) move no bending dof.
+/// Rᵀ g is then the force and moment about the pivot of nodal bending forces g (virtual work).
+fn tube_rigid_motions(plate: &PlateModel, e: usize) -> DMatrix<f64> {
+    let pivot = plate.grid.pivot_m;
+    let mut r = DMatrix::<f64>::zeros(12, 6);
+    for (k, &n) in plate.grid.elements[e].iter().enumerate() {
+        let p = plate.grid.positions_m[n];
+        r[(3 * k, 2)] = 1.0;
+        r[(3 * k, 3)] = p.y - pivot.y;
+        r[(3 * k + 2, 3)] = -1.0;
+        r[(3 * k, 4)] = -(p.x - pivot.x);
+        r[(3 * k + 1, 4)] = 1.0;
+    }
+    r
+}
+
+/// The mirror image in y of a load about a point: a polar force flips y, an axial moment flips
+/// x and z.
+fn mirror_in_y(mut loads: Loads) -> Loads {
+    loads.force_n.y = -loads.force_n.y;
+    loads.moment_nm.x = -loads.moment_nm.x;
+    loads.moment_nm.z = -loads.moment_nm.z;
+    loads
+}
+
+/// Checks that each modal vector has `r` entries, naming the one that does not.
+fn check_modal_lengths(r: usize, vectors: [(&str, &DVector<f64>); 3]) -> Result<(), ModelError> {
+    for (what, v) in vectors {
+        if v.len() != r {
+            return Err(ModelError::inconsistent(
+                NAME,
+                format!(
+                    "{} {what} given, the model has {r} Ritz coordinates",
+                    v.len()
+                ),
+            ));
+        }
+    }
+    Ok(())
+}
+
+/// A root load with a non-finite component is an error, not NaN.
+fn finite_root_load(loads: Loads) -> Result<Loads, ModelError> {
+    if loads
+        .force_n
+        .iter()
+        .chain(loads.moment_nm.iter())
+        .any(|v| !v.is_finite())
+    {
+        return Err(ModelError::NonFinite {
+            model: NAME.to_owned(),
+            quantity: "root load".to_owned(),
+            location: String::new(),
+        });
+    }
+    Ok(loads)
 }
 
 /// Names free-vibration mode shapes by their dominant content along the span: mean deflection
@@ -420,7 +502,8 @@ impl RitzPlate {
             ));
         }
         let plate = PlateModel::new(grid, material, supports).map_err(model_error)?;
-        let requested = n_modes + settings.static_shapes;
+        let requested =
+            n_modes + settings.static_shapes + usize::from(settings.thermal_moment_shape);
         if requested > plate.bending_map.n_equations / 4 {
             return Err(model_error(PlateError::TooFewDofs {
                 requested,
@@ -429,22 +512,28 @@ impl RitzPlate {
         }
         let (_, modes) = plate.modes(None, n_modes).map_err(model_error)?;
         let mut names = classify_modes(&plate, &modes);
-        let (basis, eigenvalues, static_names) =
-            Self::augment(&plate, modes, settings.static_shapes)?;
+        let (basis, eigenvalues, static_names) = Self::augment(
+            &plate,
+            modes,
+            settings.static_shapes,
+            settings.thermal_moment_shape,
+        )?;
         names.extend(static_names);
         let mut model = Self::from_basis(plate, basis, eigenvalues, names, zeta);
-        model.reset_reference();
+        model.reset_reference()?;
         Ok(model)
     }
 
-    /// Adds the static load shapes: K⁻¹ f, M-orthogonalized (twice, modified Gram-Schmidt)
-    /// against the modes and each other, then rotated so the static block of K_r is diagonal.
+    /// Adds the static load shapes (and, with `thermal_shape`, the uniform thermal-moment
+    /// shape): K⁻¹ f, M-orthogonalized (twice, modified Gram-Schmidt) against the modes and
+    /// each other, then rotated so the static block of K_r is diagonal.
     fn augment(
         plate: &PlateModel,
         modes: DMatrix<f64>,
         n_static: usize,
+        thermal_shape: bool,
     ) -> Result<AugmentedBasis, ModelError> {
-        if n_static == 0 {
+        if n_static == 0 && !thermal_shape {
             let (b, eigenvalues) = Self::rayleigh_ritz(plate, modes)?;
             return Ok((b, eigenvalues, Vec::new()));
         }
@@ -452,7 +541,7 @@ impl RitzPlate {
         let (nc, ns) = (g.nodes_chordwise(), g.nodes_spanwise());
         let tip = g.edge_nodes(GridEdge::Tip);
         let tip_mid_x = 0.5 * (g.positions_m[tip[0]].x + g.positions_m[tip[nc - 1]].x);
-        let loads: Vec<Vec<f64>> = (0..n_static)
+        let mut loads: Vec<Vec<f64>> = (0..n_static)
             .map(|k| {
                 plate.to_equations(|n| {
                     let (i, j) = (n % nc, n / nc);
@@ -476,7 +565,16 @@ impl RitzPlate {
                 })
             })
             .collect();
-        let f = DMatrix::from_fn(plate.bending_map.n_equations, n_static, |r, c| loads[c][r]);
+        if thermal_shape {
+            let uniform = ElementState {
+                thermal_strain_difference: 1e-3,
+                ..ElementState::REFERENCE
+            };
+            loads.push(plate.thermal_moment_load(&vec![uniform; plate.n_elements()]));
+        }
+        let f = DMatrix::from_fn(plate.bending_map.n_equations, loads.len(), |r, c| {
+            loads[c][r]
+        });
         let shapes = plate.static_solve(&f).map_err(model_error)?;
         let m = plate.assemble_mass();
         let m_times = |v: &[f64]| {
@@ -538,11 +636,13 @@ impl RitzPlate {
             m.mul_vec(&v, &mut out);
             mb.column_mut(c).copy_from_slice(&out);
         }
-        let (values, q) = small_generalized(&(basis.transpose() * kb), &(basis.transpose() * mb))
-            .map_err(|_| {
-            ModelError::inconsistent(NAME, "the Ritz basis is linearly dependent")
-        })?;
-        Ok((basis * q, values))
+        let ritz = generalized_symmetric_eigen(
+            &(basis.transpose() * kb),
+            &(basis.transpose() * mb),
+            basis.ncols(),
+        )
+        .map_err(|_| ModelError::inconsistent(NAME, "the Ritz basis is linearly dependent"))?;
+        Ok((basis * ritz.vectors, ritz.values))
     }
 
     /// Precomputes the reduced element matrices, root-load and rigid-body couplings.
@@ -562,6 +662,8 @@ impl RitzPlate {
         let pivot = plate.grid.pivot_m;
         let mut rigid_coupling = DMatrix::<f64>::zeros(r, 3);
         let mut rigid_mass = Matrix3::<f64>::zeros();
+        let mut thermal = vec![0.0; n_e * r];
+        let mut root_inertia = DMatrix::<f64>::zeros(6, r);
         for e in 0..n_e {
             let be = plate.element_rows(&basis, e);
             let ke = DMatrix::from_fn(12, 12, |a, b| plate.bending_stiffness[e][(a, b)]);
@@ -607,6 +709,9 @@ impl RitzPlate {
                 rz[(3 * k + 1, 2)] = 1.0;
             }
             rigid_coupling += be.transpose() * &me * &rz;
+            root_inertia += tube_rigid_motions(&plate, e).transpose() * &me * &be;
+            let fe = DVector::from_column_slice(plate.bending_thermal[e].as_slice());
+            thermal[e * r..(e + 1) * r].copy_from_slice((be.transpose() * fe).as_slice());
             let mrr = rz.transpose() * &me * &rz;
             for a in 1..3 {
                 for b in 1..3 {
@@ -630,13 +735,7 @@ impl RitzPlate {
         Self {
             membrane_k: plate.membrane_matrix(),
             membrane_rhs: vec![0.0; n_eq_m],
-            states: vec![
-                ElementState {
-                    stiffness_scale: 1.0,
-                    thermal_strain: 0.0
-                };
-                n_e
-            ],
+            states: vec![ElementState::REFERENCE; n_e],
             resultants: vec![[0.0; 3]; n_e],
             side: plate.grid.side,
             plate,
@@ -647,29 +746,29 @@ impl RitzPlate {
                 size: r,
                 stiffness,
                 geometric,
+                thermal,
             },
             root_elements,
             root_mass,
             root_stiffness: DMatrix::zeros(6, r),
+            root_inertia,
+            thermal_forces: DVector::zeros(r),
             rigid_coupling,
             rigid_mass,
             modal,
             eigenvalues,
             eigenvectors: DMatrix::identity(r, r),
-            jacobi: DMatrix::zeros(r, r),
+            symmetric_eigen: SymmetricEigenSolver::new(r),
         }
     }
 
     /// The reference (293 K, stress-free) state: K_r from the reduced element sums.
-    fn reset_reference(&mut self) {
+    fn reset_reference(&mut self) -> Result<(), ModelError> {
         for s in &mut self.states {
-            *s = ElementState {
-                stiffness_scale: 1.0,
-                thermal_strain: 0.0,
-            };
+            *s = ElementState::REFERENCE;
         }
         self.resultants.iter_mut().for_each(|r| *r = [0.0; 3]);
-        self.update_reduced();
+        self.update_reduced()
     }
 
     /// The selected side (mode shapes and root loads mirror for `Left`).
@@ -726,9 +825,168 @@ impl RitzPlate {
         &self.rigid_mass
     }
 
+    /// Updates stiffness and the thermal-moment load from mid-plane node temperatures (K) and
+    /// node through-thickness differences ΔT = T(lower face, z = +t/2) − T(upper face) (K,
+    /// linear in z; node order of [`RitzPlate::grid`]). [`StructureModel::set_temperatures`] is
+    /// this with ΔT = 0. Allocation-free.
+    pub fn set_temperature_field(
+        &mut self,
+        mean_k: &[f64],
+        difference_k: &[f64],
+    ) -> Result<(), ModelError> {
+        self.update_temperatures(mean_k, Some(difference_k))
+    }
+
+    /// Generalized thermal-moment force Q_T = Φᵀ f_T of the latest temperature field (one per
+    /// Ritz coordinate; N m per unit modal coordinate): add it to the applied generalized forces,
+    /// M_r q̈ + C_r q̇ + K_r q = Q_applied + Q_T. Zero without a through-thickness difference.
+    pub fn thermal_generalized_forces(&self) -> &DVector<f64> {
+        &self.thermal_forces
+    }
+
+    /// Reference point of the root loads: the pivot of the torque tube on the selected side,
+    /// body axes, m.
+    pub fn root_reference_m(&self) -> Point3<f64> {
+        let p = self.plate.grid.pivot_m;
+        if self.side == self.plate.grid.side {
+            p
+        } else {
+            Point3::new(p.x, -p.y, p.z)
+        }
+    }
+
+    /// Checks nodal bending loads: one (F_z N, moment conjugate to βx N m, to βy N m) per grid
+    /// node, all finite.
+    fn check_nodal_loads(&self, nodal_loads: &[[f64; 3]]) -> Result<(), ModelError> {
+        let n = self.plate.grid.n_nodes();
+        if nodal_loads.len() != n {
+            return Err(ModelError::inconsistent(
+                NAME,
+                format!(
+                    "{} nodal loads given, the structural grid has {n} nodes",
+                    nodal_loads.len()
+                ),
+            ));
+        }
+        if let Some(i) = nodal_loads
+            .iter()
+            .position(|f| f.iter().any(|v| !v.is_finite()))
+        {
+            return Err(ModelError::NonFinite {
+                model: NAME.to_owned(),
+                quantity: "nodal load".to_owned(),
+                location: format!(" at structural node {i}"),
+            });
+        }
+        Ok(())
+    }
+
+    /// Generalized forces Q = Φᵀ f of nodal bending loads on the structural grid (this grid's
+    /// side; per node F_z along body z in N, then the moments conjugate to βx and βy in N m;
+    /// loads on held dofs go straight to the support and do not enter).
+    pub fn generalized_forces(&self, nodal_loads: &[[f64; 3]]) -> Result<DVector<f64>, ModelError> {
+        self.check_nodal_loads(nodal_loads)?;
+        let f = self.plate.to_equations(|n| nodal_loads[n]);
+        Ok(self.basis.tr_mul(&DVector::from_vec(f)))
+    }
+
+    /// Resultant about [`RitzPlate::root_reference_m`] of nodal bending loads on the structural
+    /// grid (as [`RitzPlate::generalized_forces`]), every node included: F_z = Σ F, M_x =
+    /// Σ (y − y_p) F − m_βy, M_y = Σ −(x − x_p) F + m_βx; the applied load for
+    /// [`RitzPlate::root_loads_by_force_summation`] when the loads are nodal.
+    pub fn nodal_load_resultant(&self, nodal_loads: &[[f64; 3]]) -> Result<Loads, ModelError> {
+        self.check_nodal_loads(nodal_loads)?;
+        let g = &self.plate.grid;
+        let mut l = Loads::default();
+        for (p, f) in g.positions_m.iter().zip(nodal_loads) {
+            l.force_n.z += f[0];
+            l.moment_nm.x += (p.y - g.pivot_m.y) * f[0] - f[2];
+            l.moment_nm.y += -(p.x - g.pivot_m.x) * f[0] + f[1];
+        }
+        finite_root_load(self.on_model_side(l))
+    }
+
+    /// The load the surface exerts on the tube by force summation (module docs): the applied
+    /// load minus the inertia of the elastic motion, L = F_applied − Rᵀ M Φ q̈, force (N) and
+    /// moment about [`RitzPlate::root_reference_m`] (N m), body axes of the selected side.
+    /// `applied` is the resultant of every external load on the surface about that point (the
+    /// root row's included: e.g. `integrate_pressure` over the surface's panels, or
+    /// [`RitzPlate::nodal_load_resultant`]). Velocities enter no term (damping is internal)
+    /// but are checked like the rest. The tube's own rigid acceleration is the coordinator's
+    /// ([`RitzPlate::rigid_body_mass`], [`RitzPlate::rigid_body_coupling`]).
+    pub fn root_loads_by_force_summation(
+        &self,
+        modal_coordinates: &DVector<f64>,
+        modal_velocities: &DVector<f64>,
+        modal_accelerations: &DVector<f64>,
+        applied: &Loads,
+    ) -> Result<Loads, ModelError> {
+        check_modal_lengths(
+            self.basis.ncols(),
+            [
+                ("modal coordinates", modal_coordinates),
+                ("modal velocities", modal_velocities),
+                ("modal accelerations", modal_accelerations),
+            ],
+        )?;
+        let mut inertia = Loads::default();
+        for c in 0..self.basis.ncols() {
+            let a = modal_accelerations[c];
+            for k in 0..3 {
+                inertia.force_n[k] += self.root_inertia[(k, c)] * a;
+                inertia.moment_nm[k] += self.root_inertia[(k + 3, c)] * a;
+            }
+        }
+        let inertia = self.on_model_side(inertia);
+        finite_root_load(Loads {
+            force_n: applied.force_n - inertia.force_n,
+            moment_nm: applied.moment_nm - inertia.moment_nm,
+        })
+    }
+
+    /// A load computed on the grid's side, as seen on the selected side.
+    fn on_model_side(&self, loads: Loads) -> Loads {
+        if self.side == self.plate.grid.side {
+            loads
+        } else {
+            mirror_in_y(loads)
+        }
+    }
+
+    /// Element states, membrane solve and reduced update for a temperature field.
+    fn update_temperatures(
+        &mut self,
+        mean_k: &[f64],
+        difference_k: Option<&[f64]>,
+    ) -> Result<(), ModelError> {
+        self.plate
+            .element_states(mean_k, difference_k, &mut self.states)
+            .map_err(model_error)?;
+        self.plate
+            .membrane_resultants_into(
+                &self.states,
+                &mut self.membrane_k,
+                &mut self.membrane_rhs,
+                &mut self.resultants,
+            )
+            .map_err(model_error)?;
+        if let Some(e) = self
+            .resultants
+            .iter()
+            .position(|n| n.iter().any(|v| !v.is_finite()))
+        {
+            return Err(ModelError::NonFinite {
+                model: NAME.to_owned(),
+                quantity: "membrane stress resultant".to_owned(),
+                location: format!(" in element {e}"),
+            });
+        }
+        self.update_reduced()
+    }
+
     /// Recomputes K_r, root-load matrices, eigen-decomposition and damping from the current
     /// element states and resultants (allocation-free).
-    fn update_reduced(&mut self) {
+    fn update_reduced(&mut self) -> Result<(), ModelError> {
         let r = self.reduced.size;
         let rr = r * r;
         let k = self.modal.stiffness.as_mut_slice();
@@ -761,12 +1019,23 @@ impl RitzPlate {
                     + n[2] * re.geometric[2].as_slice()[idx];
             }
         }
-        self.jacobi.copy_from(&self.modal.stiffness);
-        jacobi_eigen(
-            &mut self.jacobi,
-            &mut self.eigenvalues,
-            &mut self.eigenvectors,
-        );
+        self.thermal_forces.fill(0.0);
+        for (e, state) in self.states.iter().enumerate() {
+            let scale = state.stiffness_scale * state.thermal_strain_difference;
+            if scale != 0.0 {
+                let fe = &self.reduced.thermal[e * r..(e + 1) * r];
+                for (q, f) in self.thermal_forces.iter_mut().zip(fe) {
+                    *q += scale * f;
+                }
+            }
+        }
+        self.symmetric_eigen
+            .decompose(
+                &self.modal.stiffness,
+                &mut self.eigenvalues,
+                &mut self.eigenvectors,
+            )
+            .map_err(|e| ModelError::inconsistent(NAME, format!("reduced stiffness: {e}")))?;
         // C = Ψ diag(2 ζ ω) Ψᵀ (M_r = I); a buckled (λ < 0) mode gets none.
         let c = &mut self.modal.damping;
         c.fill(0.0);
@@ -783,6 +1052,7 @@ impl RitzPlate {
                 }
             }
         }
+        Ok(())
     }
 
     /// Displacement (m) at a mid-plane offset `z_offset_m` of a Ritz vector at a grid point:
@@ -810,8 +1080,24 @@ impl StructureModel for RitzPlate {
         NAME
     }
 
-    fn temperature_nodes(&self) -> usize {
-        self.plate.grid.n_nodes()
+    fn thermal_stiffness(&self) -> Option<&dyn ThermalStiffness> {
+        Some(self)
+    }
+
+    fn thermal_stiffness_mut(&mut self) -> Option<&mut dyn ThermalStiffness> {
+        Some(self)
+    }
+
+    fn root_loads(&self) -> Option<&dyn RootLoads> {
+        Some(self)
+    }
+
+    fn mass_properties(&self) -> Option<&dyn MassDistribution> {
+        Some(self)
+    }
+
+    fn rigid_body_coupling(&self) -> Option<&dyn RigidBodyCoupling> {
+        Some(self)
     }
 
     fn modal_model(&self) -> &ModalModel {
@@ -888,79 +1174,91 @@ impl StructureModel for RitzPlate {
             vertex_displacement: shapes,
         })
     }
+}
 
-    fn set_temperatures(&mut self, node_temperatures_k: &[f64]) -> Result<(), ModelError> {
-        self.plate
-            .element_states(node_temperatures_k, &mut self.states)
-            .map_err(model_error)?;
-        self.plate
-            .membrane_resultants_into(
-                &self.states,
-                &mut self.membrane_k,
-                &mut self.membrane_rhs,
-                &mut self.resultants,
-            )
-            .map_err(model_error)?;
-        if let Some(e) = self
-            .resultants
-            .iter()
-            .position(|n| n.iter().any(|v| !v.is_finite()))
-        {
-            return Err(ModelError::NonFinite {
-                model: NAME.to_owned(),
-                quantity: "membrane stress resultant".to_owned(),
-                location: format!(" in element {e}"),
-            });
-        }
-        self.update_reduced();
-        Ok(())
+impl ThermalStiffness for RitzPlate {
+    fn temperature_nodes(&self) -> usize {
+        self.plate.grid.n_nodes()
     }
 
+    fn set_temperatures(&mut self, node_temperatures_k: &[f64]) -> Result<(), ModelError> {
+        self.update_temperatures(node_temperatures_k, None)
+    }
+}
+
+impl RootLoads for RitzPlate {
     fn root_loads(
         &self,
         modal_coordinates: &DVector<f64>,
         modal_velocities: &DVector<f64>,
         modal_accelerations: &DVector<f64>,
     ) -> Result<Loads, ModelError> {
-        let r = self.basis.ncols();
-        for (what, v) in [
-            ("modal coordinates", modal_coordinates),
-            ("modal velocities", modal_velocities),
-            ("modal accelerations", modal_accelerations),
-        ] {
-            if v.len() != r {
-                return Err(ModelError::inconsistent(
-                    NAME,
-                    format!(
-                        "{} {what} given, the model has {r} Ritz coordinates",
-                        v.len()
-                    ),
-                ));
-            }
-        }
+        check_modal_lengths(
+            self.basis.ncols(),
+            [
+                ("modal coordinates", modal_coordinates),
+                ("modal velocities", modal_velocities),
+                ("modal accelerations", modal_accelerations),
+            ],
+        )?;
         let l = &self.root_stiffness * modal_coordinates + &self.root_mass * modal_accelerations;
-        let mut loads = Loads {
+        finite_root_load(self.on_model_side(Loads {
             force_n: Vector3::new(l[0], l[1], l[2]),
             moment_nm: Vector3::new(l[3], l[4], l[5]),
+        }))
+    }
+}
+
+impl MassDistribution for RitzPlate {
+    /// Node masses ρ ∫ N_i t dA at the mid-plane nodes (exact mass and first moment for the
+    /// bilinear thickness; inertia of the lumped masses, omitting each section's own ρ t³/12),
+    /// mirrored for the left surface.
+    fn mass_properties(&self) -> MassProperties {
+        let grid = &self.plate.grid;
+        let rho = self.plate.material.density_kg_m3;
+        let mirror = if self.side == grid.side { 1.0 } else { -1.0 };
+        let at = |p: &Point3<f64>| Point3::new(p.x, mirror * p.y, p.z);
+        let masses = grid.node_volumes_m3.iter().map(|v| rho * v);
+        let mass_kg: f64 = masses.clone().sum();
+        let first: Vector3<f64> = masses
+            .clone()
+            .zip(&grid.positions_m)
+            .map(|(m, p)| at(p).coords * m)
+            .sum();
+        let center = Point3::from(first / mass_kg);
+        let mut inertia = Matrix3::zeros();
+        for (m, p) in masses.zip(&grid.positions_m) {
+            let d = at(p) - center;
+            inertia += m * (Matrix3::identity() * d.norm_squared() - d * d.transpose());
+        }
+        MassProperties {
+            mass_kg,
+            center_of_mass_m: center,
+            inertia_kg_m2: inertia,
+        }
+    }
+}
+
+impl RigidBodyCoupling for RitzPlate {
+    fn rigid_dofs(&self) -> &[RigidDof] {
+        &[
+            RigidDof::TranslationX,
+            RigidDof::TranslationZ,
+            RigidDof::RotationY,
+        ]
+    }
+
+    fn rigid_reference_point_m(&self) -> Point3<f64> {
+        let p = self.plate.grid.pivot_m;
+        let mirror = if self.side == self.plate.grid.side {
+            1.0
+        } else {
+            -1.0
         };
-        if self.side != self.plate.grid.side {
-            // Mirror image in y: a polar force flips y, an axial moment flips x and z.
-            loads.force_n.y = -loads.force_n.y;
-            loads.moment_nm.x = -loads.moment_nm.x;
-            loads.moment_nm.z = -loads.moment_nm.z;
-        }
-        if loads
-            .force_n
-            .iter()
-            .chain(loads.moment_nm.iter())
-            .any(|v| !v.is_finite())
-        {
-            return Err(ModelError::NonFinite {
-                model: NAME.to_owned(),
-                quantity: "root load".to_owned(),
-                location: String::new(),
-            });
-        }
-        Ok(loads)
+        Point3::new(p.x, mirror * p.y, p.z)
+    }
+
+    fn rigid_coupling(&self) -> &DMatrix<f64> {
+        &self.rigid_coupling
     }
 }

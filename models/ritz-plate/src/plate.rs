@@ -4,14 +4,16 @@
 //!
 //! Every element takes the mean temperature T_e of its four nodes: modulus E(T_e), free strain
 //! ε_e = α_sec(T_e) (T_e − 293 K). Element stiffnesses scale with s_e = E(T_e)/E(293 K)
-//! (Poisson's ratio is constant), so reference element matrices are computed once.
+//! (Poisson's ratio is constant), so reference element matrices are computed once. A
+//! through-thickness temperature difference ΔT (lower face minus upper, linear in z) adds the
+//! face free-strain difference Δε_e = ε_th(T_e + ΔT_e/2) − ε_th(T_e − ΔT_e/2), whose thermal
+//! moment loads the bending block ([`fe::bending_thermal`]).
 
+use hsv_core::linalg::{BandedMatrix, EigenError, NotPositiveDefinite, lowest_banded_eigenpairs};
 use hsv_core::material::{Material, MaterialError, SECANT_REFERENCE_TEMPERATURE_K};
 use hsv_core::surface_grid::{GridEdge, SurfaceGrid};
 use nalgebra::{DMatrix, SVector};
 
-use crate::banded::{BandedMatrix, NotPositiveDefinite};
-use crate::eigen::{EigenError, subspace_iteration};
 use crate::fe::{self, Mat4, Mat8, Mat12, MembraneThermal, Quad};
 
 /// Bending dofs per node: w, βx, βy.
@@ -162,13 +164,15 @@ impl DofMap {
 #[derive(Debug, Clone, PartialEq)]
 pub enum PlateError {
     Material(MaterialError),
-    /// A node temperature that is not finite.
+    /// A node temperature (or through-thickness difference, `what`) that is not finite.
     NonFiniteTemperature {
+        what: &'static str,
         node: usize,
         value: f64,
     },
-    /// Wrong number of node temperatures.
+    /// Wrong number of node temperatures (or through-thickness differences, `what`).
     TemperatureCount {
+        what: &'static str,
         got: usize,
         expected: usize,
     },
@@ -190,15 +194,19 @@ impl std::fmt::Display for PlateError {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         match self {
             PlateError::Material(e) => write!(f, "{e}"),
-            PlateError::NonFiniteTemperature { node, value } => {
+            PlateError::NonFiniteTemperature { what, node, value } => {
                 write!(
                     f,
-                    "node temperature {value} K at structural node {node} is not finite"
+                    "{what} {value} K at structural node {node} is not finite"
                 )
             }
-            PlateError::TemperatureCount { got, expected } => write!(
+            PlateError::TemperatureCount {
+                what,
+                got,
+                expected,
+            } => write!(
                 f,
-                "{got} node temperatures given, the structural grid has {expected} nodes"
+                "{got} {what} given, the structural grid has {expected} nodes"
             ),
             PlateError::NotPositiveDefinite {
                 what,
@@ -217,16 +225,7 @@ impl std::fmt::Display for PlateError {
                 "the structural grid has {available} free bending dofs, too coarse for \
                  {requested} modes and shapes; refine the grid"
             ),
-            PlateError::Eigen(EigenError::SingularSubspace) => {
-                write!(f, "mode solve: the trial subspace became singular")
-            }
-            PlateError::Eigen(EigenError::NotConverged {
-                iterations,
-                residual,
-            }) => write!(
-                f,
-                "mode solve did not converge in {iterations} iterations (relative change {residual:.1e})"
-            ),
+            PlateError::Eigen(e) => write!(f, "mode solve: {e}"),
         }
     }
 }
@@ -237,11 +236,22 @@ impl From<MaterialError> for PlateError {
     }
 }
 
-/// Per-element temperature state: stiffness scale s_e = E(T_e)/E_ref and free strain ε_e.
+/// Per-element temperature state: stiffness scale s_e = E(T_e)/E_ref, mid-plane free strain ε_e
+/// and the free-strain difference Δε_e between the lower (z = +t/2) and upper faces.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct ElementState {
     pub stiffness_scale: f64,
     pub thermal_strain: f64,
+    pub thermal_strain_difference: f64,
+}
+
+impl ElementState {
+    /// 293 K, no through-thickness difference.
+    pub const REFERENCE: ElementState = ElementState {
+        stiffness_scale: 1.0,
+        thermal_strain: 0.0,
+        thermal_strain_difference: 0.0,
+    };
 }
 
 /// The full-order plate (module docs).
@@ -260,6 +270,8 @@ pub struct PlateModel {
     pub membrane_stiffness: Vec<Mat8>,
     pub membrane_mass: Vec<Mat8>,
     pub membrane_thermal: Vec<MembraneThermal>,
+    /// Bending load of a unit face free-strain difference at E_ref ([`fe::bending_thermal`]).
+    pub bending_thermal: Vec<SVector<f64, 12>>,
     /// Geometric stiffness patterns (xx, yy, xy) on w.
     pub geometric: Vec<[Mat4; 3]>,
 }
@@ -300,6 +312,10 @@ impl PlateModel {
                 .iter()
                 .map(|q| fe::membrane_thermal(q, e_ref, nu))
                 .collect(),
+            bending_thermal: quads
+                .iter()
+                .map(|q| fe::bending_thermal(q, e_ref, nu))
+                .collect(),
             geometric: quads.iter().map(fe::geometric_patterns).collect(),
             grid,
             material,
@@ -314,34 +330,87 @@ impl PlateModel {
         self.grid.n_elements()
     }
 
-    /// Element states from node temperatures (K), into `out` (one per element).
-    pub fn element_states(
+    /// Checks one value per grid node (`what`: singular and plural names), all finite.
+    fn check_node_values(
         &self,
-        node_temperatures_k: &[f64],
-        out: &mut [ElementState],
+        values: &[f64],
+        what: (&'static str, &'static str),
     ) -> Result<(), PlateError> {
-        if node_temperatures_k.len() != self.grid.n_nodes() {
+        if values.len() != self.grid.n_nodes() {
             return Err(PlateError::TemperatureCount {
-                got: node_temperatures_k.len(),
+                what: what.1,
+                got: values.len(),
                 expected: self.grid.n_nodes(),
             });
         }
-        if let Some((node, &value)) = node_temperatures_k
-            .iter()
-            .enumerate()
-            .find(|(_, t)| !t.is_finite())
-        {
-            return Err(PlateError::NonFiniteTemperature { node, value });
+        if let Some((node, &value)) = values.iter().enumerate().find(|(_, t)| !t.is_finite()) {
+            return Err(PlateError::NonFiniteTemperature {
+                what: what.0,
+                node,
+                value,
+            });
         }
+        Ok(())
+    }
+
+    /// Element states from mid-plane node temperatures (K) and, optionally, node
+    /// through-thickness differences ΔT = T(lower face) − T(upper face) (K, linear in z), into
+    /// `out` (one per element). Allocation-free.
+    pub fn element_states(
+        &self,
+        node_temperatures_k: &[f64],
+        node_differences_k: Option<&[f64]>,
+        out: &mut [ElementState],
+    ) -> Result<(), PlateError> {
+        self.check_node_values(
+            node_temperatures_k,
+            ("node temperature", "node temperatures"),
+        )?;
+        if let Some(d) = node_differences_k {
+            self.check_node_values(
+                d,
+                (
+                    "through-thickness temperature difference",
+                    "through-thickness temperature differences",
+                ),
+            )?;
+        }
+        let mean =
+            |values: &[f64], el: &[usize; 4]| 0.25 * el.iter().map(|&n| values[n]).sum::<f64>();
         for (e, el) in self.grid.elements.iter().enumerate() {
-            let t = 0.25 * el.iter().map(|&n| node_temperatures_k[n]).sum::<f64>();
+            let t = mean(node_temperatures_k, el);
             let p = self.material.at(t)?;
+            let dt = node_differences_k.map_or(0.0, |d| mean(d, el));
+            let thermal_strain_difference = if dt == 0.0 {
+                0.0
+            } else {
+                self.material.thermal_strain(t + 0.5 * dt)?
+                    - self.material.thermal_strain(t - 0.5 * dt)?
+            };
             out[e] = ElementState {
                 stiffness_scale: p.youngs_modulus_pa / self.reference_modulus_pa,
                 thermal_strain: p.thermal_expansion_per_k * (t - SECANT_REFERENCE_TEMPERATURE_K),
+                thermal_strain_difference,
             };
         }
         Ok(())
+    }
+
+    /// Thermal-moment load over the free bending equations, f_T = Σ_e s_e Δε_e f_e
+    /// ([`fe::bending_thermal`]): what a through-thickness temperature difference bends the
+    /// plate with.
+    pub fn thermal_moment_load(&self, states: &[ElementState]) -> Vec<f64> {
+        let mut f = vec![0.0; self.bending_map.n_equations];
+        for (e, el) in self.grid.elements.iter().enumerate() {
+            let scale = states[e].stiffness_scale * states[e].thermal_strain_difference;
+            let eqs: [Option<usize>; 12] = self.bending_map.element_equations(el);
+            for (a, eq) in eqs.iter().enumerate() {
+                if let Some(i) = eq {
+                    f[*i] += scale * self.bending_thermal[e][a];
+                }
+            }
+        }
+        f
     }
 
     /// A banded matrix sized for the membrane problem.
@@ -375,21 +444,21 @@ impl PlateModel {
                     if let Some(j) = eqs[b]
                         && j <= i
                     {
-                        k.add_lower(i, j, s * ke[(a, b)]);
+                        k.add(i, j, s * ke[(a, b)]);
                     }
                 }
             }
         }
         if map.n_equations > 0 {
-            k.cholesky_in_place()
-                .map_err(|NotPositiveDefinite { equation, pivot }| {
-                    PlateError::NotPositiveDefinite {
+            k.factorize()
+                .map_err(
+                    |NotPositiveDefinite { row, pivot }| PlateError::NotPositiveDefinite {
                         what: "the membrane stiffness",
-                        equation,
+                        equation: row,
                         pivot,
-                    }
-                })?;
-            k.cholesky_solve(rhs);
+                    },
+                )?;
+            k.solve_in_place(rhs);
         }
         for (e, el) in self.grid.elements.iter().enumerate() {
             let eqs: [Option<usize>; 8] = map.element_equations(el);
@@ -407,14 +476,8 @@ impl PlateModel {
         &self,
         node_temperatures_k: &[f64],
     ) -> Result<(Vec<ElementState>, Vec<[f64; 3]>), PlateError> {
-        let mut states = vec![
-            ElementState {
-                stiffness_scale: 1.0,
-                thermal_strain: 0.0
-            };
-            self.n_elements()
-        ];
-        self.element_states(node_temperatures_k, &mut states)?;
+        let mut states = vec![ElementState::REFERENCE; self.n_elements()];
+        self.element_states(node_temperatures_k, None, &mut states)?;
         let mut k = self.membrane_matrix();
         let mut rhs = vec![0.0; self.membrane_map.n_equations];
         let mut res = vec![[0.0; 3]; self.n_elements()];
@@ -448,7 +511,7 @@ impl PlateModel {
                     if let Some(j) = eqs[b]
                         && j <= i
                     {
-                        k.add_lower(i, j, ke[(a, b)]);
+                        k.add(i, j, ke[(a, b)]);
                     }
                 }
             }
@@ -494,16 +557,18 @@ impl PlateModel {
         };
         let mut k =
             self.assemble_stiffness(thermal.as_ref().map(|(s, r)| (s.as_slice(), r.as_slice())));
-        k.cholesky_in_place()
+        k.factorize()
             .map_err(
-                |NotPositiveDefinite { equation, pivot }| PlateError::NotPositiveDefinite {
+                |NotPositiveDefinite { row, pivot }| PlateError::NotPositiveDefinite {
                     what: "the bending stiffness K + K_G",
-                    equation,
+                    equation: row,
                     pivot,
                 },
             )?;
         let m = self.assemble_mass();
-        subspace_iteration(&k, &m, n, 1e-12).map_err(PlateError::Eigen)
+        lowest_banded_eigenpairs(&k, &m, n, 1e-12)
+            .map(|modes| (modes.values, modes.vectors))
+            .map_err(PlateError::Eigen)
     }
 
     /// Natural frequencies, Hz, from [`Self::modes`].
@@ -522,18 +587,18 @@ impl PlateModel {
     /// Static deflection K⁻¹ f at 293 K for loads given per free bending equation.
     pub fn static_solve(&self, loads: &DMatrix<f64>) -> Result<DMatrix<f64>, PlateError> {
         let mut k = self.assemble_stiffness(None);
-        k.cholesky_in_place()
+        k.factorize()
             .map_err(
-                |NotPositiveDefinite { equation, pivot }| PlateError::NotPositiveDefinite {
+                |NotPositiveDefinite { row, pivot }| PlateError::NotPositiveDefinite {
                     what: "the bending stiffness",
-                    equation,
+                    equation: row,
                     pivot,
                 },
             )?;
         let mut out = loads.clone();
         for mut c in out.column_iter_mut() {
             let mut v: Vec<f64> = c.iter().copied().collect();
-            k.cholesky_solve(&mut v);
+            k.solve_in_place(&mut v);
             c.copy_from_slice(&v);
         }
         Ok(out)

@@ -2,6 +2,7 @@
 
 use approx::assert_relative_eq;
 use hsv_core::config::LoadedConfig;
+use hsv_core::structure::RootLoads;
 use hsv_core::registry::{Constructor, ModelContext, ModelDescriptor};
 use hsv_core::structure::StructureModel;
 use hsv_core::surface_grid::SurfaceGrid;
@@ -24,7 +25,8 @@ fn build(settings_toml: &str) -> Result<Box<dyn StructureModel>, hsv_core::Model
         settings: &settings,
         key_path: "models.ritz-plate",
         file: "test.toml",
-        config: &loaded.raw,
+        region: hsv_core::testing::sample_region("right_surface"),
+        registry: hsv_core::testing::empty_registry(),
     };
     match descriptor().constructor {
         Constructor::Structure(f) => f(&ctx),
@@ -47,7 +49,8 @@ fn sample_config_table_builds_the_vehicle_surface() {
         settings: &settings,
         key_path: "models.ritz-plate",
         file: "sample",
-        config: &loaded.raw,
+        region: hsv_core::testing::sample_region("right_surface"),
+        registry: hsv_core::testing::empty_registry(),
     };
     let Constructor::Structure(f) = descriptor().constructor else {
         panic!("structure")
@@ -113,7 +116,8 @@ fn bad_settings_name_the_key() {
 fn bad_temperatures_are_errors_naming_the_quantity() {
     let mut model = build(SMALL).expect("model");
     let n = 9 * 7;
-    let e = model
+    let thermal = model.thermal_stiffness_mut().expect("thermal stiffness");
+    let e = thermal
         .set_temperatures(&vec![300.0; n - 1])
         .unwrap_err()
         .to_string();
@@ -123,13 +127,13 @@ fn bad_temperatures_are_errors_naming_the_quantity() {
     );
     let mut t = vec![300.0; n];
     t[5] = f64::NAN;
-    let e = model.set_temperatures(&t).unwrap_err().to_string();
+    let e = thermal.set_temperatures(&t).unwrap_err().to_string();
     assert!(e.contains("node 5") && e.contains("not finite"), "{e}");
     // Above the end of the material's E data (whatever it is) and below the melting point.
     let ti = hsv_core::material::Material::ti_6al_4v();
     let (_, top) = ti.mechanical_temperature_range_k();
     let hot = 0.5 * (top + ti.melting_point_k);
-    let e = model
+    let e = thermal
         .set_temperatures(&vec![hot; n])
         .unwrap_err()
         .to_string();
@@ -138,6 +142,8 @@ fn bad_temperatures_are_errors_naming_the_quantity() {
         "{e}"
     );
     let e = model
+        .root_loads()
+        .expect("root loads")
         .root_loads(&DVector::zeros(3), &DVector::zeros(15), &DVector::zeros(15))
         .unwrap_err()
         .to_string();
@@ -198,7 +204,9 @@ fn mode_shapes_map_to_both_aero_meshes_as_mirror_images() {
     }
     assert!(pairs > 50, "{pairs} upper/lower vertex pairs");
     // A mesh of another body does not fit.
-    let body = hsv_core::vehicle::build_sample_vehicle()
+    let body = LoadedConfig::sample()
+        .expect("sample")
+        .vehicle()
         .expect("vehicle")
         .body;
     assert!(model.mode_shapes_on(&body).is_err());
@@ -224,8 +232,8 @@ fn left_side_root_loads_mirror_the_right() {
     let left = right.clone().with_side(Side::Left);
     let q = DVector::from_fn(15, |i, _| 1e-3 * (i as f64 + 1.0));
     let z = DVector::zeros(15);
-    let a = right.root_loads(&q, &z, &q).unwrap();
-    let b = left.root_loads(&q, &z, &q).unwrap();
+    let a = RootLoads::root_loads(&right, &q, &z, &q).unwrap();
+    let b = RootLoads::root_loads(&left, &q, &z, &q).unwrap();
     assert_relative_eq!(a.force_n.z, b.force_n.z);
     assert_relative_eq!(a.moment_nm.x, -b.moment_nm.x);
     assert_relative_eq!(a.moment_nm.y, b.moment_nm.y);

@@ -1,6 +1,7 @@
 //! `scramjet-1d` on one section, after Bolender & Doman (2007): ramp shock, spillage, isentropic
 //! diffuser, constant-area combustor with Rayleigh heat (and fuel mass) addition, isentropic
-//! internal nozzle, and Chavez & Schmidt's pressure distribution on the external nozzle.
+//! internal nozzle, and the quasi-one-dimensional plume expansion along the external nozzle
+//! (shared with `scramjet-q1d`).
 
 use hsv_core::error::ModelError;
 use hsv_core::propulsion::EngineStatus;
@@ -12,7 +13,7 @@ use crate::flow::{
 use crate::geometry::SectionGeometry;
 use crate::section::{
     COMBUSTOR_ENTRY, COMBUSTOR_EXIT, Fuel, INLET, NOZZLE_EXIT, SectionConditions, SectionSolution,
-    Station, add_flow_path_force, capture, check_finite, ramp_flow, unstarted,
+    Station, add_flow_path_force, capture, check_finite, plume_pressures, ramp_flow, unstarted,
 };
 
 /// Registered name.
@@ -111,24 +112,15 @@ impl OneDEngine {
             station(NOZZLE_EXIT, nozzle_exit, nozzle_area, exit_air_fuel),
         ]);
 
-        // External nozzle: the aftbody pressure decays from the internal nozzle exit pressure
-        // to the freestream pressure at the tail (Chavez & Schmidt's distribution; B&D's own
-        // plume-matching aftbody is not modelled); each segment carries its exact mean.
-        let total: f64 = geometry
-            .nozzle_m
-            .windows(2)
-            .map(|w| (w[1] - w[0]).norm())
-            .sum();
-        let mut s = 0.0;
-        for (w, p) in geometry
-            .nozzle_m
-            .windows(2)
-            .zip(out.nozzle_pressure_pa.iter_mut())
-        {
-            let length = (w[1] - w[0]).norm();
-            *p = aftbody_mean_pressure_pa(nozzle_exit.pressure_pa, p_inf, total, s, s + length);
-            s += length;
-        }
+        // External nozzle: the plume between the aftbody and its pressure-matched lower
+        // boundary, quasi-one-dimensional (`plume_pressures`, shared with `scramjet-q1d`).
+        plume_pressures(
+            geometry,
+            conditions,
+            &nozzle_exit,
+            nozzle_area,
+            &mut out.nozzle_pressure_pa,
+        )?;
 
         let reference = conditions.reference_m;
         let ramp_p = std::mem::take(&mut out.ramp_pressure_pa);

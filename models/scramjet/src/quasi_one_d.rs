@@ -2,7 +2,8 @@
 //! shocks/expansions panel by panel, cowl shock, reflections between the duct walls up to the
 //! isolator exit), a quasi-one-dimensional combustor integrated along its length (area change,
 //! wall friction, fuel mass addition and heat release following a mixing-efficiency curve), an
-//! isentropic internal nozzle and simple-wave (Prandtl-Meyer) expansion along the aftbody.
+//! isentropic internal nozzle and a quasi-one-dimensional plume expansion along the aftbody,
+//! bounded below by a pressure-matched shear layer.
 
 use hsv_core::error::ModelError;
 use hsv_core::gas::{GasError, PerfectGas};
@@ -12,7 +13,7 @@ use crate::flow::{Compression, FlowState, supersonic_area_change, turn};
 use crate::geometry::{SectionGeometry, slope_rad};
 use crate::section::{
     COMBUSTOR_ENTRY, COMBUSTOR_EXIT, Fuel, INLET, NOZZLE_EXIT, SectionConditions, SectionSolution,
-    Station, add_flow_path_force, capture, check_finite, ramp_flow, unstarted,
+    Station, add_flow_path_force, capture, check_finite, plume_pressures, ramp_flow, unstarted,
 };
 
 /// Registered name.
@@ -315,26 +316,15 @@ impl QuasiOneDEngine {
             station(NOZZLE_EXIT, nozzle_exit, nozzle_area, exit_mass),
         ]);
 
-        // External nozzle: simple wave from the exit state; each segment's pressure from the
-        // turn between the exhaust direction and the segment (above the flow: turning up
-        // expands). Expansion to vacuum is clipped at zero pressure.
-        let exhaust_slope = {
-            let n = geometry.cowl_m.len();
-            slope_rad(&geometry.cowl_m[n - 2], &geometry.cowl_m[n - 1])
-        };
-        for (w, p) in geometry
-            .nozzle_m
-            .windows(2)
-            .zip(out.nozzle_pressure_pa.iter_mut())
-        {
-            let compression = slope_rad(&w[0], &w[1]) - exhaust_slope;
-            *p = match turn(&nozzle_exit, compression, gas, Compression::Isentropic) {
-                Ok(t) => t.state.pressure_pa,
-                Err(GasError::VacuumExpansion { .. }) => 0.0,
-                Err(GasError::Subsonic { .. }) => nozzle_exit.total_pressure_pa(gas),
-                Err(e) => return Err(e.into()),
-            };
-        }
+        // External nozzle: the plume between the aftbody and its pressure-matched lower
+        // boundary, quasi-one-dimensional (see `plume_pressures`).
+        plume_pressures(
+            geometry,
+            conditions,
+            &nozzle_exit,
+            nozzle_area,
+            &mut out.nozzle_pressure_pa,
+        )?;
 
         let reference = conditions.reference_m;
         let ramp_p = std::mem::take(&mut out.ramp_pressure_pa);

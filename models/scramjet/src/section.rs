@@ -4,11 +4,14 @@
 
 use hsv_core::error::ModelError;
 use hsv_core::flow::Freestream;
-use hsv_core::gas::{GasError, PerfectGas, rayleigh_pitot_pressure_ratio};
+use hsv_core::gas::{
+    self, GasError, PerfectGas, detached_surface, mach_from_total_pressure_ratio,
+    total_temperature_ratio,
+};
 use hsv_core::propulsion::EngineStatus;
 use nalgebra::{Point2, Vector2};
 
-use crate::flow::{Compression, FlowState, turn};
+use crate::flow::{Compression, FlowState, supersonic_area_change, turn};
 use crate::geometry::{SectionGeometry, slope_rad};
 
 /// Flight and fuel conditions of one section evaluation.
@@ -302,10 +305,10 @@ pub fn add_flow_path_force(
 }
 
 /// The unstarted engine: no captured flow and no combustion; the ramp keeps its external
-/// pressure (pitot pressure behind a normal shock when the bow shock detaches, as the
-/// shock-expansion aero model does), the nozzle sees the freestream pressure. Only the ramp
-/// loads the vehicle. The inlet station is the flow on the last ramp segment (or behind the
-/// normal shock).
+/// pressure (panel by panel from the freestream when the bow shock detaches, see
+/// [`detached_ramp`], the same rule as the shock-expansion aero model), the nozzle sees the
+/// freestream pressure. Only the ramp loads the vehicle. The inlet station is the flow on the
+/// last ramp segment.
 pub fn unstarted(
     out: &mut SectionSolution,
     geometry: &SectionGeometry,
@@ -313,19 +316,11 @@ pub fn unstarted(
     ramp_inlet: Option<FlowState>,
 ) -> Result<(), ModelError> {
     let f = conditions.freestream;
-    let g = f.gas.gamma;
     let inlet = match ramp_inlet {
         Some(state) => state,
         None => {
-            let pitot = f.pressure_pa * rayleigh_pitot_pressure_ratio(f.mach, g)?;
-            out.ramp_pressure_pa.iter_mut().for_each(|p| *p = pitot);
             out.ramp_shock_wave_angle_rad = None;
-            let normal = hsv_core::gas::normal_shock(f.mach, g)?;
-            FlowState {
-                mach: normal.mach_downstream,
-                pressure_pa: f.pressure_pa * normal.pressure_ratio,
-                temperature_k: f.temperature_k * normal.temperature_ratio,
-            }
+            detached_ramp(geometry, conditions, &mut out.ramp_pressure_pa)?
         }
     };
     out.status = EngineStatus::Unstart;
@@ -353,6 +348,54 @@ pub fn unstarted(
     );
     out.ramp_pressure_pa = ramp;
     Ok(())
+}
+
+/// Ramp pressures when the bow shock detaches: each segment turns the freestream by its own
+/// inclination θ = slope + α (tangent wedge): a weak oblique shock up to θ_max, beyond it the
+/// modified-Newtonian pressure matched to the weak shock at θ_max and reaching the pitot
+/// pressure at 90° (`hsv_core::gas::detached_surface`; Anderson, Hypersonic and
+/// High-Temperature Gas Dynamics, eq. 3.15), so the ramp pressure is continuous in the turning
+/// angle across detachment; a segment facing away from the flow expands (Prandtl-Meyer), to
+/// zero pressure past ν_max. Returns the state on the last segment with gas (M from the blended
+/// total pressure, T0 kept).
+pub fn detached_ramp(
+    geometry: &SectionGeometry,
+    conditions: &SectionConditions<'_>,
+    pressure_pa: &mut [f64],
+) -> Result<FlowState, ModelError> {
+    let f = conditions.freestream;
+    let gas = &f.gas;
+    let free = FlowState {
+        mach: f.mach,
+        pressure_pa: f.pressure_pa,
+        temperature_k: f.temperature_k,
+    };
+    let mut state = free;
+    for (w, p) in geometry.ramp_m.windows(2).zip(pressure_pa.iter_mut()) {
+        let theta = slope_rad(&w[0], &w[1]) + conditions.alpha_rad;
+        state = match turn(&free, theta, gas, Compression::Shock) {
+            Ok(t) => t.state,
+            Err(GasError::Detached { .. }) => {
+                let surface = detached_surface(f.mach, theta, gas.gamma)?;
+                let total = surface.total_pressure_ratio / surface.pressure_ratio;
+                let mach = mach_from_total_pressure_ratio(total.max(1.0), gas.gamma)?;
+                FlowState {
+                    mach,
+                    pressure_pa: f.pressure_pa * surface.pressure_ratio,
+                    temperature_k: free.total_temperature_k(gas)
+                        / total_temperature_ratio(mach, gas.gamma),
+                }
+            }
+            Err(GasError::VacuumExpansion { .. }) => {
+                // No gas on the segment; the station keeps the last physical state.
+                *p = 0.0;
+                continue;
+            }
+            Err(e) => return Err(e.into()),
+        };
+        *p = state.pressure_pa;
+    }
+    Ok(state)
 }
 
 /// Checks a finished section for non-finite numbers, naming the first.
@@ -395,6 +438,113 @@ pub fn check_finite(model: &str, out: &SectionSolution, y_m: f64) -> Result<(), 
             quantity: "surface pressure".to_owned(),
             location: format!(" on the engine section at y = {y_m} m"),
         });
+    }
+    Ok(())
+}
+
+/// Angle δ, rad, by which the exhaust plume's lower boundary (the shear layer leaving the cowl
+/// trailing edge) turns down into the external flow: the plume expanding by δ (Prandtl-Meyer)
+/// and the external flow under the cowl compressed by δ (weak oblique shock) reach the same
+/// pressure (pressure matching across a free boundary; Anderson MCF §4.13, the free-boundary
+/// condition, as used for the exhaust plume by Bolender & Doman 2007). Zero when the exhaust
+/// is not under-expanded; the largest admissible δ when no match exists before detachment or
+/// vacuum. Bisection to 1e-10 rad.
+pub fn shear_layer_angle_rad(exhaust: &FlowState, external: &FlowState, gas: &PerfectGas) -> f64 {
+    if exhaust.pressure_pa <= external.pressure_pa || exhaust.mach < 1.0 || external.mach <= 1.0 {
+        return 0.0;
+    }
+    let g = gas.gamma;
+    let limit = |m: f64| match (
+        gas::max_deflection(m, g),
+        gas::prandtl_meyer(exhaust.mach, g),
+    ) {
+        (Ok((theta_max, _)), Ok(nu)) => theta_max.min(gas::max_prandtl_meyer(g) - nu),
+        _ => 0.0,
+    };
+    let mut hi = limit(external.mach) * (1.0 - 1e-9);
+    let mismatch = |delta: f64| -> Option<f64> {
+        let plume = turn(exhaust, -delta, gas, Compression::Shock).ok()?;
+        let outer = turn(external, delta, gas, Compression::Shock).ok()?;
+        Some(plume.state.pressure_pa - outer.state.pressure_pa)
+    };
+    match mismatch(hi) {
+        Some(m) if m < 0.0 => {}
+        _ => return hi.max(0.0),
+    }
+    let mut lo = 0.0;
+    while hi - lo > 1e-10 {
+        let mid = 0.5 * (lo + hi);
+        match mismatch(mid) {
+            Some(m) if m > 0.0 => lo = mid,
+            _ => hi = mid,
+        }
+    }
+    0.5 * (lo + hi)
+}
+
+/// Aftbody (external nozzle) pressures of both engines: the exhaust leaves the engine exit
+/// (height h_e, direction of the cowl's last segment) and expands as a quasi-one-dimensional
+/// isentropic stream tube (NACA 1135 eq. 80, supersonic branch) between the aftbody and its
+/// lower boundary, a straight shear layer from the cowl trailing edge turned down by the
+/// pressure-matching angle δ ([`shear_layer_angle_rad`]); at distance ξ downstream of the exit
+/// with the wall risen by r above the exhaust direction, A/A_e = (h_e + r + ξ tan δ)/h_e. The
+/// external flow under the cowl is the freestream turned by the cowl (deflection = α plus the
+/// cowl slope). Each segment takes the plume pressure at its midpoint, but not below the external
+/// pressure under the cowl (a free boundary carries the same pressure on both sides, Anderson
+/// MCF §4.13, so a plume that has expanded to the external pressure stops expanding instead of
+/// over-expanding behind a straight boundary; capped at p_e for an over-expanded exit); a wall
+/// that closes the plume below the sonic area gets the sonic pressure. Our simplifications: a
+/// straight boundary at the initial matching angle (the real one curves back as the plume
+/// pressure falls, so the far-field area is overstated and the aftbody pressure understated).
+/// Trustworthy for the integrated aftbody force of an under-expanded exhaust to the accuracy of
+/// a 1-D nozzle analysis; the pressure distribution is not a method-of-characteristics
+/// solution.
+///
+/// Why not a simple wave (the former `scramjet-q1d` aftbody): a Prandtl-Meyer turn at the
+/// nozzle corner is the wall pressure only until the expansion from the cowl trailing edge
+/// (where the plume meets the lower external pressure) reaches the wall, about one exit height
+/// downstream; applied to the whole aftbody it kept the corner pressure over ten exit heights
+/// and overstated the nozzle force severalfold. Why not Chavez & Schmidt's law
+/// p_e/(1 + (s/L)(p_e/p∞ - 1)) (the former `scramjet-1d` aftbody, [`crate::aftbody_pressure_pa`]):
+/// its mean grows only as p∞ ln(p_e/p∞) for a strongly under-expanded exhaust, so more
+/// combustor pressure barely reached the aftbody (issue 10, item 8).
+pub fn plume_pressures(
+    geometry: &SectionGeometry,
+    conditions: &SectionConditions<'_>,
+    exit: &FlowState,
+    exit_height_m: f64,
+    pressure_pa: &mut [f64],
+) -> Result<(), ModelError> {
+    let f = conditions.freestream;
+    let gas = &f.gas;
+    let free = FlowState {
+        mach: f.mach,
+        pressure_pa: f.pressure_pa,
+        temperature_k: f.temperature_k,
+    };
+    let n = geometry.cowl_m.len();
+    let cowl_deflection =
+        slope_rad(&geometry.cowl_m[n - 2], &geometry.cowl_m[n - 1]) + conditions.alpha_rad;
+    let external = turn(&free, cowl_deflection, gas, Compression::Shock)
+        .map(|t| t.state)
+        .unwrap_or(free);
+    let delta = shear_layer_angle_rad(exit, &external, gas);
+    // The plume does not expand below the undisturbed external pressure: where the straight
+    // boundary would over-expand the stream tube, the free boundary turns back instead.
+    let boundary_pa = external.pressure_pa;
+    let e = geometry.exit_direction();
+    // Unit normal from the exhaust direction toward the body (up for a level exit).
+    let up = nalgebra::Vector2::new(-e.y, e.x);
+    let start = geometry.nozzle_start();
+    for (w, p) in geometry.nozzle_m.windows(2).zip(pressure_pa.iter_mut()) {
+        let mid = nalgebra::Point2::from((w[0].coords + w[1].coords) * 0.5);
+        let r = mid - start;
+        let height = exit_height_m + r.dot(&up) + r.dot(&e).max(0.0) * delta.tan();
+        let plume = match supersonic_area_change(exit, exit_height_m, height, gas)? {
+            Some(state) => state.pressure_pa,
+            None => exit.isentropic_to_mach(1.0, gas).pressure_pa,
+        };
+        *p = plume.max(boundary_pa.min(exit.pressure_pa));
     }
     Ok(())
 }

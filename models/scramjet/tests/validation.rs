@@ -49,11 +49,12 @@ fn model(name: &str) -> Box<dyn PropulsionModel> {
         settings: loaded.model_settings(name),
         key_path: &key,
         file: &loaded.file,
-        config: &loaded.raw,
+        region: hsv_core::testing::sample_region("propulsion"),
+        registry: hsv_core::testing::empty_registry(),
     };
     Registry::builtin()
         .expect("registry")
-        .create_propulsion(name, &ctx)
+        .create::<dyn hsv_core::propulsion::PropulsionModel>(name, &ctx)
         .expect("model builds")
 }
 
@@ -469,17 +470,17 @@ fn positive_net_thrust_at_the_paper_condition() {
 
 /// Comparison with Bolender & Doman's model at Mach 8, 85,000 ft (25,908 m), α = 0: Parker et
 /// al. (2007) fit its thrust per unit span as T = β7 φ + β8 with β7 = 6.3785e3 lbf/ft = 93.09
-/// kN/m per unit φ. The quasi-1-D engine, whose simple-wave aftbody is closest to B&D's
-/// plume treatment, must be within a factor of two (measured: 0.95×). The 1-D engine's
-/// Chavez & Schmidt aftbody decays faster than B&D's plume-matched one, so it must fall below
-/// B&D but stay the same order (between 0.3× and 1×; measured: 0.41×).
+/// kN/m per unit φ. Both engines now share a plume-bounded quasi-1-D aftbody (B&D also match
+/// the plume to the external flow), so both must be within a factor of two of B&D (band set
+/// before measuring, for issue 10 item 8: the models differ from B&D in inlet and combustor
+/// detail, not in kind).
 #[test]
 fn thrust_slope_at_mach_8_is_the_order_of_bolender_and_doman() {
     let body = body();
     let fl = flight(8.0, 25_908.0, 0.0);
     let width = 3.0;
     let bd_slope = 6.3785e3 * 4.448_221_615_260_5 / 0.3048;
-    for (name, lowest, highest) in [(SCRAMJET_1D, 0.3, 1.0), (SCRAMJET_Q1D, 0.5, 2.0)] {
+    for (name, lowest, highest) in [(SCRAMJET_1D, 0.5, 2.0), (SCRAMJET_Q1D, 0.5, 2.0)] {
         let mut m = model(name);
         let t0 = evaluate(m.as_mut(), &body, &fl, 0.0)
             .expect("runs")
@@ -492,6 +493,7 @@ fn thrust_slope_at_mach_8_is_the_order_of_bolender_and_doman() {
             .force_n
             .x;
         let ratio = (t1 - t0) / 0.2 / width / bd_slope;
+        eprintln!("{name}: dT/dphi / B&D = {ratio}");
         assert!(
             ratio > lowest && ratio < highest,
             "{name}: dT/dphi is {ratio} times B&D's {bd_slope} N/m"
@@ -503,10 +505,10 @@ fn thrust_slope_at_mach_8_is_the_order_of_bolender_and_doman() {
 /// p(s) = p_e / (1 + (s/L)(p_e/p∞ − 1)): p_e at the engine exit, p∞ at the tail, and halfway
 /// the harmonic mean 2 p_e p∞ / (p_e + p∞) (3869.5 Pa for 16.6 and 2.19 kPa, where a linear
 /// decay would give 9395 Pa). A segment's mean must match composite Simpson quadrature of the
-/// point law (1e-10), and the 1-d engine's segment pressures times their lengths must sum to
-/// the closed-form force per unit span ∫₀ᴸ p ds = p_e L ln(p_e/p∞) / (p_e/p∞ − 1) (1e-12).
+/// point law (1e-10). (The engines no longer use this law for their aftbody, see
+/// tests/plume.rs; it stays available as a published reference distribution.)
 #[test]
-fn one_d_aftbody_pressure_follows_chavez_and_schmidt() {
+fn chavez_and_schmidt_aftbody_pressure_law() {
     let (pe, p_inf, l) = (16.6e3, 2.19e3, 10.0);
     let p = |s| aftbody_pressure_pa(pe, p_inf, l, s);
     assert_relative_eq!(p(0.0), pe, max_relative = 1e-15);
@@ -541,33 +543,6 @@ fn one_d_aftbody_pressure_follows_chavez_and_schmidt() {
     );
     // Equal exit and freestream pressures: the uniform limit.
     assert_relative_eq!(aftbody_mean_pressure_pa(p_inf, p_inf, l, s0, s1), p_inf);
-
-    let f = Freestream::standard(6.0, 26_000.0, PerfectGas::AIR).expect("atmosphere");
-    let out = solve_1d(&f, 0.0, 0.13);
-    let geometry = section();
-    let exit = out
-        .station(NOZZLE_EXIT)
-        .expect("nozzle exit")
-        .state
-        .pressure_pa;
-    let lengths: Vec<f64> = geometry
-        .nozzle_m
-        .windows(2)
-        .map(|w| (w[1] - w[0]).norm())
-        .collect();
-    let total: f64 = lengths.iter().sum();
-    let integral: f64 = lengths
-        .iter()
-        .zip(&out.nozzle_pressure_pa)
-        .map(|(l, p)| l * p)
-        .sum();
-    let r = exit / f.pressure_pa;
-    assert!(
-        r > 2.0,
-        "an underexpanded exit makes the check meaningful: {r}"
-    );
-    let closed_form = exit * total * r.ln() / (r - 1.0);
-    assert_relative_eq!(integral, closed_form, max_relative = 1e-12);
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -629,7 +604,15 @@ fn engine_panels_carry_engine_pressures_and_others_the_freestream() {
         let region = body.surfaces[usize::from(panel.surface)].region;
         if region == RegionKind::Propulsion {
             assert!(panel.surface == ramp || panel.surface == nozzle);
-            assert!(out.panel_pressure_pa[i] > p_inf, "panel {i}");
+            // The plume never expands below the external pressure (p∞ at α = 0); the
+            // spanwise fit of equal sections reproduces it to rounding.
+            assert!(
+                out.panel_pressure_pa[i] >= p_inf * (1.0 - 1e-12),
+                "panel {i}"
+            );
+            if panel.surface == ramp {
+                assert!(out.panel_pressure_pa[i] > p_inf, "panel {i}");
+            }
         } else {
             assert_eq!(out.panel_pressure_pa[i], p_inf, "panel {i}");
         }
@@ -785,9 +768,10 @@ fn both_models_are_registered_as_propulsion_with_checked_settings() {
             settings: &settings,
             key_path: &key_path,
             file: "my.toml",
-            config: &loaded.raw,
+            region: hsv_core::testing::sample_region("propulsion"),
+            registry: hsv_core::testing::empty_registry(),
         };
-        let err = match registry.create_propulsion(name, &ctx) {
+        let err = match registry.create::<dyn hsv_core::propulsion::PropulsionModel>(name, &ctx) {
             Err(RegistryError::Model(e)) => e.to_string(),
             Err(e) => panic!("{name}.{key}: unexpected {e}"),
             Ok(_) => panic!("{name}.{key}: accepted"),

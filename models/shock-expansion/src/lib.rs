@@ -46,7 +46,9 @@ hsv_core::register_model!(ModelDescriptor {
     origin: env!("CARGO_PKG_NAME"),
     fidelity: 3,
     summary: "Steady shock-expansion: oblique shock / Prandtl-Meyer from the freestream, then \
-              panel to panel along strips (tangent wedge on unstructured meshes)",
+              panel to panel along strips (tangent wedge on unstructured meshes); beyond shock \
+              detachment a modified-Newtonian pressure matched to the weak shock at theta_max, \
+              continuous and monotone up to the pitot pressure at 90 deg",
     settings_doc: "",
     constructor: Constructor::Aero(build_shock_expansion),
 });
@@ -55,8 +57,9 @@ hsv_core::register_model!(ModelDescriptor {
     name: piston::NAME,
     origin: env!("CARGO_PKG_NAME"),
     fidelity: 4,
-    summary: "Shock-expansion mean flow plus local third-order piston theory for body rates and \
-              elastic panel velocities",
+    summary: "Shock-expansion mean flow (modified Newtonian matched at theta_max past shock \
+              detachment) plus local third-order piston theory for body rates and elastic panel \
+              velocities",
     settings_doc: "",
     constructor: Constructor::Aero(build_shock_expansion_piston),
 });

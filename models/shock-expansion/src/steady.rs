@@ -23,10 +23,17 @@ pub const NAME: &str = "shock-expansion";
 /// Panels in no strip (all panels of an unstructured mesh) turn the freestream by their own θ
 /// (tangent wedge / Prandtl-Meyer).
 ///
-/// Beyond the maximum deflection the shock detaches and the panel gets the stagnation state
-/// behind a normal shock (pressure from the Rayleigh pitot formula, M = 0, T = T0); a
-/// compression of subsonic local flow does the same with the isentropic stagnation state.
-/// Downstream of a subsonic panel the flow keeps its state while Δθ = 0, stagnates further
+/// Beyond the maximum deflection θ_max the shock detaches. The panel then gets a modified
+/// Newtonian pressure matched to the attached shock: Cp(θ) = Cp_d + (Cp_max - Cp_d)(sin²θ -
+/// sin²θ_max)/(1 - sin²θ_max), with Cp_d the weak-shock value at θ_max and Cp_max from the
+/// Rayleigh pitot formula (Anderson, Hypersonic and High-Temperature Gas Dynamics, eq. 3.15;
+/// the matching at θ_max is our choice), so the pressure is continuous and monotone in θ and
+/// equals the pitot pressure at 90° (`hsv_core::gas::detached_surface`). The edge state keeps
+/// T0 and a total pressure blended the same way between the oblique shock's at θ_max and the
+/// normal shock's, so M and T are continuous too (M2 of the shock at θ_max, M = 0 and T = T0
+/// at 90°). A compression of subsonic local flow by Δθ > 0 uses the same rule in the local
+/// flow, p + (p0 - p) sin²Δθ with total pressure kept.
+/// Downstream of a subsonic panel the flow keeps its state while Δθ = 0, compresses further
 /// while Δθ > 0, and at the first expansion corner accelerates isentropically to sonic and then
 /// expands by the turn from M = 1 (the sonic-shoulder assumption of blunt-body flows).
 /// Expansions past ν_max give vacuum: p = ρ = 0 (see [`wave::VACUUM_EDGE_MACH`]); downstream

@@ -1,10 +1,12 @@
 //! Local inviscid flow states and how one turn changes them: oblique shock, Prandtl-Meyer
-//! expansion, detached-shock stagnation, sonic re-expansion and vacuum.
+//! expansion, detached shock (modified Newtonian matched at θ_max), sonic re-expansion and vacuum.
 //!
 //! Every change is written as ratios of the local state, so the total temperature is carried
 //! exactly from the freestream (adiabatic flow) and only the edge velocity needs the gas constant.
 
 use hsv_core::aero::EdgeState;
+use std::f64::consts::FRAC_PI_2;
+
 use hsv_core::gas::{self, GasError, PerfectGas, ShockBranch};
 
 /// Mach number that stands for "expanded to vacuum" in an edge state: large enough that the
@@ -21,7 +23,7 @@ pub enum Regime {
     Compression,
     /// Last changed by a Prandtl-Meyer expansion.
     Expansion,
-    /// Stagnation state behind a detached shock (or a compression of subsonic flow).
+    /// Behind a detached shock (or a compression of subsonic flow): modified Newtonian.
     Detached,
     /// Expanded past ν_max: pressure and density zero.
     Vacuum,
@@ -76,9 +78,9 @@ impl Flow {
 /// (Anderson, Modern Compressible Flow, 3rd ed., §4.15).
 ///
 /// - Supersonic, turn > 0: weak oblique shock; beyond θ_max the shock detaches and the panel
-///   sees the stagnation state behind a normal shock ([`stagnation`]).
-/// - Subsonic (behind a detached or a strong-ending weak shock), turn > 0: isentropic
-///   stagnation of the local flow, counted as detached.
+///   gets the modified-Newtonian pressure matched at θ_max ([`detached`]).
+/// - Subsonic (behind a detached or a strong-ending weak shock), turn > 0: modified-Newtonian
+///   impact of the local flow ([`subsonic_impact`]), counted as detached.
 /// - Supersonic, turn < 0: Prandtl-Meyer expansion; past ν_max: [`vacuum`].
 /// - Subsonic, turn < 0: the flow accelerates isentropically to sonic at the shoulder, then
 ///   expands by the turn from M = 1 ([`sonic`]).
@@ -90,7 +92,7 @@ pub fn turn(local: Local, turn_rad: f64, gamma: f64) -> Result<Local, GasError> 
     let flow = local.flow;
     if turn_rad > 0.0 {
         if flow.mach < 1.0 {
-            return stagnation(flow, gamma);
+            return subsonic_impact(flow, turn_rad, gamma);
         }
         return match gas::oblique_shock(flow.mach, turn_rad, gamma, ShockBranch::Weak) {
             Ok(shock) => Ok(Local {
@@ -102,7 +104,7 @@ pub fn turn(local: Local, turn_rad: f64, gamma: f64) -> Result<Local, GasError> 
                 ),
                 regime: Regime::Compression,
             }),
-            Err(GasError::Detached { .. }) => stagnation(flow, gamma),
+            Err(GasError::Detached { .. }) => detached(flow, turn_rad, gamma),
             Err(other) => Err(other),
         };
     }
@@ -126,13 +128,53 @@ pub fn turn(local: Local, turn_rad: f64, gamma: f64) -> Result<Local, GasError> 
     }
 }
 
-/// Stagnation state behind a normal shock: p = p02 = p (p02/p1) (Rayleigh pitot formula,
-/// NACA 1135 eq. 100; isentropic p0/p, eq. 44, for M < 1), T = T0, ρ = ρ (p02/p)/(T0/T), M = 0.
-pub fn stagnation(flow: Flow, gamma: f64) -> Result<Local, GasError> {
-    let pressure = gas::rayleigh_pitot_pressure_ratio(flow.mach, gamma)?;
-    let temperature = gas::total_temperature_ratio(flow.mach, gamma);
+/// Supersonic flow turned by θ beyond θ_max (detached shock): p from the modified-Newtonian
+/// pressure matched to the weak shock at θ_max and reaching the pitot pressure at 90°
+/// ([`gas::detached_surface`]; Anderson, Hypersonic and High-Temperature Gas Dynamics, eq.
+/// 3.15). The surface flow keeps T0 and has the blended total pressure p0, so
+/// M = M(p0/p) (NACA 1135 eq. 44), T = T0/(1 + (γ-1)/2 M²) (eq. 43), ρ ∝ p/T: continuous with
+/// the attached-shock state at θ_max and the stagnation state (M = 0, T = T0) at 90°.
+pub fn detached(flow: Flow, turn_rad: f64, gamma: f64) -> Result<Local, GasError> {
+    let surface = gas::detached_surface(flow.mach, turn_rad, gamma)?;
+    at_total_pressure(
+        flow,
+        surface.pressure_ratio,
+        surface.total_pressure_ratio,
+        gamma,
+    )
+}
+
+/// Subsonic flow (behind a detached shock) turned further by θ > 0: the same modified-Newtonian
+/// rule in the local flow, p = p + (p0 - p) sin²θ with the isentropic stagnation pressure p0 as
+/// the impact pressure (Anderson, Hypersonic and High-Temperature Gas Dynamics, eq. 3.15, with
+/// Cp_max from NACA 1135 eq. 44; our choice for a panel-to-panel turn of subsonic flow), total
+/// pressure and temperature kept: continuous from no turn (θ = 0) to stagnation (θ >= 90°).
+pub fn subsonic_impact(flow: Flow, turn_rad: f64, gamma: f64) -> Result<Local, GasError> {
+    let total = gas::total_pressure_ratio(flow.mach, gamma);
+    let weight = turn_rad.clamp(0.0, FRAC_PI_2).sin().powi(2);
+    at_total_pressure(flow, 1.0 + (total - 1.0) * weight, total, gamma)
+}
+
+/// The state at p = p_ratio p with total pressure p0 = total_ratio p (both over `flow`'s static
+/// pressure) and `flow`'s total temperature: M from p0/p (inverse of NACA 1135 eq. 44),
+/// T = T0/(1 + (γ-1)/2 M²), ρ = ρ (p/p_flow)/(T/T_flow); counted as detached.
+fn at_total_pressure(
+    flow: Flow,
+    pressure_ratio: f64,
+    total_ratio: f64,
+    gamma: f64,
+) -> Result<Local, GasError> {
+    // p0 >= p holds by construction; rounding may leave it a few ulp short.
+    let mach = gas::mach_from_total_pressure_ratio((total_ratio / pressure_ratio).max(1.0), gamma)?;
+    let temperature =
+        gas::total_temperature_ratio(flow.mach, gamma) / gas::total_temperature_ratio(mach, gamma);
     Ok(Local {
-        flow: flow.scaled(0.0, pressure, temperature, pressure / temperature),
+        flow: flow.scaled(
+            mach,
+            pressure_ratio,
+            temperature,
+            pressure_ratio / temperature,
+        ),
         regime: Regime::Detached,
     })
 }
@@ -208,7 +250,8 @@ mod tests {
         let detached = turn(freestream(3.0), 1.0, G).unwrap();
         assert_eq!(detached.regime, Regime::Detached);
         let turned = turn(detached, -0.1, G).unwrap();
-        let p_star = detached.flow.pressure_pa / gas::total_pressure_ratio(1.0, G);
+        let p_star = detached.flow.pressure_pa * gas::total_pressure_ratio(detached.flow.mach, G)
+            / gas::total_pressure_ratio(1.0, G);
         let fan = gas::prandtl_meyer_expansion(1.0, 0.1, G).unwrap();
         assert_relative_eq!(
             turned.flow.pressure_pa,

@@ -1,8 +1,9 @@
 //! Free-free vibration modes: the generalized eigenproblem K φ = ω² M φ, rigid-body modes
 //! identified and removed, elastic modes mass-normalized and classified by their DOF content.
 //!
-//! 1. Cholesky M = L Lᵀ and the symmetric standard problem L⁻¹ K L⁻ᵀ z = ω² z, φ = L⁻ᵀ z
-//!    (Bathe, Finite Element Procedures, §10.2.5), all eigenpairs by symmetric QR.
+//! 1. All eigenpairs of the dense problem ([`hsv_core::linalg::generalized_symmetric_eigen`]:
+//!    Cholesky M = L Lᵀ and the symmetric standard problem L⁻¹ K L⁻ᵀ z = ω² z, φ = L⁻ᵀ z;
+//!    Bathe, Finite Element Procedures, §10.2.5).
 //! 2. Rigid-body modes are the six eigenvectors that lie in the span of the analytic rigid-body
 //!    motions R (M-projection content ≈ 1, elastic modes ≈ 0), not the six lowest by index;
 //!    the split must be clean and their ω² negligible against the first elastic one.
@@ -13,7 +14,8 @@
 //!    with (numerically) equal frequencies are separated by their DOF-group energies.
 
 use hsv_core::error::ModelError;
-use nalgebra::{DMatrix, SymmetricEigen};
+use hsv_core::linalg::{EigenError, SymmetricEigenSolver, generalized_symmetric_eigen};
+use nalgebra::DMatrix;
 
 use crate::fe::ModeKind;
 
@@ -62,28 +64,9 @@ pub fn free_free_modes(
 ) -> Result<ElasticModes, ModelError> {
     let n = mass.nrows();
     let singular = || ModelError::inconsistent(model, "singular mass matrix factor");
-    let l = mass
-        .clone()
-        .cholesky()
-        .ok_or_else(|| ModelError::inconsistent(model, "the mass matrix is not positive definite"))?
-        .l();
-    let l_inv_k = l.solve_lower_triangular(stiffness).ok_or_else(singular)?;
-    let c = l
-        .solve_lower_triangular(&l_inv_k.transpose())
-        .ok_or_else(singular)?;
-    let c = (&c + c.transpose()) * 0.5;
-    if c.iter().any(|v| !v.is_finite()) {
-        return Err(non_finite(
-            model,
-            "mass-reduced stiffness matrix",
-            String::new(),
-        ));
-    }
-    let eigen = SymmetricEigen::new(c);
-    let all_shapes = l
-        .transpose()
-        .solve_upper_triangular(&eigen.eigenvectors)
-        .ok_or_else(singular)?;
+    let full =
+        generalized_symmetric_eigen(stiffness, mass, n).map_err(|e| eigen_error(model, e))?;
+    let (eigenvalues, all_shapes) = (&full.values, &full.vectors);
 
     // M-orthonormal rigid basis R̂ = R G⁻ᵀ with G Gᵀ = Rᵀ M R; content of φ = |R̂ᵀ M φ|².
     let gram = rigid_body.transpose() * mass * rigid_body;
@@ -98,7 +81,7 @@ pub fn free_free_modes(
         .ok_or_else(singular)?
         .transpose();
     let m_rigid = mass * &rigid_hat;
-    let content_matrix = m_rigid.transpose() * &all_shapes;
+    let content_matrix = m_rigid.transpose() * all_shapes;
     let content: Vec<f64> = (0..n)
         .map(|j| content_matrix.column(j).norm_squared())
         .collect();
@@ -116,14 +99,14 @@ pub fn free_free_modes(
             ),
         ));
     }
-    let rigid_body_omega2: Vec<f64> = rigid.iter().map(|&j| eigen.eigenvalues[j]).collect();
+    let rigid_body_omega2: Vec<f64> = rigid.iter().map(|&j| eigenvalues[j]).collect();
 
     // Elastic modes of the full solve, ascending.
     let mut elastic: Vec<usize> = by_content[RIGID_BODY_MODES..].to_vec();
-    elastic.sort_by(|&a, &b| eigen.eigenvalues[a].total_cmp(&eigen.eigenvalues[b]));
+    elastic.sort_by(|&a, &b| eigenvalues[a].total_cmp(&eigenvalues[b]));
     let first_elastic = elastic
         .first()
-        .map(|&j| eigen.eigenvalues[j])
+        .map(|&j| eigenvalues[j])
         .ok_or_else(|| ModelError::inconsistent(model, "the model has no elastic modes"))?;
     if first_elastic.is_nan() || first_elastic <= 0.0 {
         return Err(ModelError::inconsistent(
@@ -167,7 +150,7 @@ pub fn free_free_modes(
 
     let (omega2, shapes) = rayleigh_ritz(model, mass, stiffness, &basis)?;
     let mut shapes = shapes;
-    separate_degenerate_clusters(mass, dof_kinds, &omega2, &mut shapes);
+    separate_degenerate_clusters(model, mass, dof_kinds, &omega2, &mut shapes)?;
 
     let mut kinds = Vec::with_capacity(m);
     let mut fractions = Vec::with_capacity(m);
@@ -216,6 +199,14 @@ fn non_finite(model: &str, quantity: &str, location: String) -> ModelError {
     }
 }
 
+/// A linear-algebra failure as a model error.
+fn eigen_error(model: &str, e: EigenError) -> ModelError {
+    match e {
+        EigenError::NonFinite { matrix } => non_finite(model, matrix, String::new()),
+        e => ModelError::inconsistent(model, format!("free-free modes: {e}")),
+    }
+}
+
 /// Rayleigh-Ritz in the span of `basis`: (Vᵀ K V) y = ω² (Vᵀ M V) y, shapes V y ascending.
 fn rayleigh_ritz(
     model: &str,
@@ -225,25 +216,13 @@ fn rayleigh_ritz(
 ) -> Result<(Vec<f64>, DMatrix<f64>), ModelError> {
     let k_r = basis.transpose() * stiffness * basis;
     let m_r = basis.transpose() * mass * basis;
-    let l = m_r
-        .cholesky()
-        .ok_or_else(|| ModelError::inconsistent(model, "the Ritz basis is linearly dependent"))?
-        .l();
-    let singular = || ModelError::inconsistent(model, "singular Ritz mass factor");
-    let x = l.solve_lower_triangular(&k_r).ok_or_else(singular)?;
-    let c = l
-        .solve_lower_triangular(&x.transpose())
-        .ok_or_else(singular)?;
-    let eigen = SymmetricEigen::new((&c + c.transpose()) * 0.5);
-    let y = l
-        .transpose()
-        .solve_upper_triangular(&eigen.eigenvectors)
-        .ok_or_else(singular)?;
-    let mut order: Vec<usize> = (0..eigen.eigenvalues.len()).collect();
-    order.sort_by(|&a, &b| eigen.eigenvalues[a].total_cmp(&eigen.eigenvalues[b]));
-    let omega2 = order.iter().map(|&i| eigen.eigenvalues[i]).collect();
-    let shapes = basis * DMatrix::from_fn(y.nrows(), order.len(), |r, c| y[(r, order[c])]);
-    Ok((omega2, shapes))
+    let ritz = generalized_symmetric_eigen(&k_r, &m_r, basis.ncols()).map_err(|e| match e {
+        EigenError::NotPositiveDefinite { .. } => {
+            ModelError::inconsistent(model, "the Ritz basis is linearly dependent")
+        }
+        e => eigen_error(model, e),
+    })?;
+    Ok((ritz.values, basis * ritz.vectors))
 }
 
 /// The kind with the largest share.
@@ -278,11 +257,12 @@ fn group_fractions(
 /// choose the one that diagonalizes the DOF-group kinetic energies, so modes of different kinds
 /// that happen to share a frequency are not returned mixed.
 fn separate_degenerate_clusters(
+    model: &str,
     mass: &DMatrix<f64>,
     dof_kinds: &[ModeKind],
     omega2: &[f64],
     shapes: &mut DMatrix<f64>,
-) {
+) -> Result<(), ModelError> {
     let mut start = 0;
     while start < omega2.len() {
         let mut end = start + 1;
@@ -309,11 +289,16 @@ fn separate_degenerate_clusters(
                     })
                     .sum::<f64>()
             });
-            let rotation = SymmetricEigen::new(weighted).eigenvectors;
+            let mut weights = vec![0.0; k];
+            let mut rotation = DMatrix::zeros(k, k);
+            SymmetricEigenSolver::new(k)
+                .decompose(&weighted, &mut weights, &mut rotation)
+                .map_err(|e| eigen_error(model, e))?;
             shapes
                 .columns_mut(start, k)
                 .copy_from(&(cluster * rotation));
         }
         start = end;
     }
+    Ok(())
 }

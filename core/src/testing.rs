@@ -1,0 +1,38 @@
+//! Fixtures for tests and benches across the workspace: the embedded sample vehicle's regions and
+//! registries, built once per process.
+
+use std::collections::BTreeMap;
+use std::sync::{Mutex, OnceLock};
+
+use crate::config::LoadedConfig;
+use crate::region::RegionInfo;
+use crate::registry::Registry;
+
+/// Region `name` of the embedded sample vehicle (`main_body`, `left_surface`, `right_surface`,
+/// `propulsion`). Panics on an unknown name: fixtures are for tests.
+pub fn sample_region(name: &str) -> &'static RegionInfo {
+    static REGIONS: OnceLock<Mutex<BTreeMap<String, &'static RegionInfo>>> = OnceLock::new();
+    let mut regions = REGIONS
+        .get_or_init(|| Mutex::new(BTreeMap::new()))
+        .lock()
+        .unwrap_or_else(|poisoned| poisoned.into_inner());
+    regions.entry(name.to_owned()).or_insert_with(|| {
+        let loaded = LoadedConfig::sample().expect("the embedded sample config parses");
+        let region = loaded
+            .region(name)
+            .unwrap_or_else(|e| panic!("sample region `{name}`: {e}"));
+        Box::leak(Box::new(region))
+    })
+}
+
+/// An empty registry, for contexts of models that build no base models.
+pub fn empty_registry() -> &'static Registry {
+    static EMPTY: OnceLock<Registry> = OnceLock::new();
+    EMPTY.get_or_init(Registry::empty)
+}
+
+/// Every model linked into the calling binary.
+pub fn builtin_registry() -> &'static Registry {
+    static BUILTIN: OnceLock<Registry> = OnceLock::new();
+    BUILTIN.get_or_init(|| Registry::builtin().expect("built-in models register"))
+}

@@ -1,0 +1,244 @@
+//! Vehicle assembly: each region of `[regions.*]` built from named models through the registry,
+//! checked before t = 0 for the roles and capabilities an analysis needs, and regions wired
+//! together through the data manager.
+//!
+//! A [`Region`] owns its models and state and talks to other regions only through topics it
+//! declares at assembly ([`wire`] fails when a subscribed topic has no publisher).
+
+use hsv_core::aero::AeroModel;
+use hsv_core::config::{LoadedConfig, REGION_NAMES, RegionModels};
+use hsv_core::data::{DataError, DataManager, DataManagerBuilder};
+use hsv_core::propulsion::PropulsionModel;
+use hsv_core::region::RegionInfo;
+use hsv_core::registry::{ModelContext, Registry, Role, RoleModel};
+use hsv_core::structure::{Capability, StructureModel, require};
+use hsv_core::thermal::{ConductionModel, HeatFluxModel};
+
+/// Why a vehicle could not be assembled: always names the region, and the model, role or
+/// capability at fault.
+#[derive(Debug, thiserror::Error)]
+pub enum AssemblyError {
+    #[error("{file}: region `{region}` has no {role} model, which {analysis} needs (set `regions.{region}.{key}`)")]
+    MissingRole {
+        file: String,
+        region: String,
+        role: Role,
+        key: &'static str,
+        analysis: String,
+    },
+    #[error("{file}: region `{region}`: {source}")]
+    Model {
+        file: String,
+        region: String,
+        #[source]
+        source: Box<dyn std::error::Error + Send + Sync>,
+    },
+    #[error(transparent)]
+    Config(#[from] hsv_core::config::ConfigError),
+    #[error("wiring the regions: {0}")]
+    Data(#[from] DataError),
+}
+
+/// What an analysis needs of one kind of region: roles that must be present and capabilities
+/// its structure model must have.
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct RegionNeeds {
+    pub roles: Vec<Role>,
+    pub structure: Vec<Capability>,
+}
+
+/// What an analysis needs of every region, by region name.
+#[derive(Debug, Clone, PartialEq)]
+pub struct AnalysisNeeds {
+    /// The analysis, as messages name it ("trim", "the aerothermoelastic simulation").
+    pub analysis: String,
+    pub regions: Vec<(&'static str, RegionNeeds)>,
+}
+
+impl AnalysisNeeds {
+    /// The partitioned aerothermoelastic vehicle (paper §III): a flexible main body with mass
+    /// properties and rigid-body coupling, two heated lifting surfaces whose structures take
+    /// temperatures and give root loads, and an engine.
+    pub fn aerothermoelastic(analysis: &str) -> Self {
+        let surface = RegionNeeds {
+            roles: vec![Role::Aero, Role::HeatFlux, Role::Conduction, Role::Structure],
+            structure: vec![
+                Capability::ThermalStiffness,
+                Capability::RootLoads,
+                Capability::MassProperties,
+                Capability::RigidBodyCoupling,
+            ],
+        };
+        Self {
+            analysis: analysis.to_owned(),
+            regions: vec![
+                (
+                    "main_body",
+                    RegionNeeds {
+                        roles: vec![Role::Aero, Role::Structure],
+                        structure: vec![Capability::MassProperties, Capability::RigidBodyCoupling],
+                    },
+                ),
+                ("left_surface", surface.clone()),
+                ("right_surface", surface),
+                (
+                    "propulsion",
+                    RegionNeeds {
+                        roles: vec![Role::Propulsion],
+                        structure: Vec::new(),
+                    },
+                ),
+            ],
+        }
+    }
+}
+
+/// The models of one region, built by name, with the region they were built for.
+pub struct RegionModelSet {
+    pub info: RegionInfo,
+    /// The model names, as configured.
+    pub names: RegionModels,
+    pub aero: Option<Box<dyn AeroModel>>,
+    pub heat_flux: Option<Box<dyn HeatFluxModel>>,
+    pub conduction: Option<Box<dyn ConductionModel>>,
+    pub structure: Option<Box<dyn StructureModel>>,
+    pub propulsion: Option<Box<dyn PropulsionModel>>,
+}
+
+/// Builds model `name` of role `M` for `region`, naming the region on failure.
+fn build<M: ?Sized + RoleModel>(
+    region: &RegionInfo,
+    registry: &Registry,
+    name: Option<&str>,
+) -> Result<Option<Box<M>>, AssemblyError> {
+    let Some(name) = name else {
+        return Ok(None);
+    };
+    let settings = region.model_settings(name);
+    registry
+        .create::<M>(name, &ModelContext::new(region, registry, &settings))
+        .map(Some)
+        .map_err(|e| AssemblyError::Model {
+            file: region.file.clone(),
+            region: region.name.clone(),
+            source: Box::new(e),
+        })
+}
+
+/// The config key of a role in a `[regions.*]` table.
+fn role_key(role: Role) -> &'static str {
+    match role {
+        Role::Aero => "aero",
+        Role::HeatFlux => "heat_flux",
+        Role::Conduction => "conduction",
+        Role::Structure => "structure",
+        Role::Propulsion => "propulsion",
+    }
+}
+
+/// Builds every region's models by name and checks them against `needs` before anything runs.
+pub fn assemble(
+    loaded: &LoadedConfig,
+    registry: &Registry,
+    needs: &AnalysisNeeds,
+) -> Result<Vec<RegionModelSet>, AssemblyError> {
+    let mut sets = Vec::with_capacity(REGION_NAMES.len());
+    for name in REGION_NAMES {
+        let info = loaded.region(name)?;
+        let names = loaded.config.regions.region(name).unwrap_or_default();
+        let set = RegionModelSet {
+            aero: build(&info, registry, names.aero.as_deref())?,
+            heat_flux: build(&info, registry, names.heat_flux.as_deref())?,
+            conduction: build(&info, registry, names.conduction.as_deref())?,
+            structure: build(&info, registry, names.structure.as_deref())?,
+            propulsion: build(&info, registry, names.propulsion.as_deref())?,
+            info,
+            names,
+        };
+        if let Some((_, need)) = needs.regions.iter().find(|(r, _)| *r == name) {
+            check_needs(&set, need, &needs.analysis)?;
+        }
+        sets.push(set);
+    }
+    Ok(sets)
+}
+
+/// Checks one region's models against what the analysis needs.
+fn check_needs(
+    set: &RegionModelSet,
+    need: &RegionNeeds,
+    analysis: &str,
+) -> Result<(), AssemblyError> {
+    for &role in &need.roles {
+        let present = match role {
+            Role::Aero => set.aero.is_some(),
+            Role::HeatFlux => set.heat_flux.is_some(),
+            Role::Conduction => set.conduction.is_some(),
+            Role::Structure => set.structure.is_some(),
+            Role::Propulsion => set.propulsion.is_some(),
+        };
+        if !present {
+            return Err(AssemblyError::MissingRole {
+                file: set.info.file.clone(),
+                region: set.info.name.clone(),
+                role,
+                key: role_key(role),
+                analysis: analysis.to_owned(),
+            });
+        }
+    }
+    if let Some(structure) = &set.structure {
+        require(structure.as_ref(), &need.structure, analysis).map_err(|e| {
+            AssemblyError::Model {
+                file: set.info.file.clone(),
+                region: set.info.name.clone(),
+                source: Box::new(e),
+            }
+        })?;
+    }
+    Ok(())
+}
+
+/// Why a region could not advance: the time, the region and what went wrong.
+#[derive(Debug, thiserror::Error)]
+#[error("region `{region}` at t = {time_s} s: {message}")]
+pub struct RegionError {
+    pub region: String,
+    pub time_s: f64,
+    pub message: String,
+}
+
+/// Counters a region reports after a run (sub-steps taken, model evaluations, wall time).
+#[derive(Debug, Clone, Default, PartialEq, serde::Serialize)]
+pub struct RegionDiagnostics {
+    pub steps: usize,
+    pub evaluations: usize,
+    pub wall_time_s: f64,
+}
+
+/// One region of the partitioned vehicle (paper §III): it declares what it publishes and
+/// reads, then advances its own state on its own sub-step.
+pub trait Region: Send {
+    /// The region's config name.
+    fn name(&self) -> &str;
+
+    /// Declares the topics the region publishes and subscribes to, keeping the handles.
+    fn declare(&mut self, data: &mut DataManagerBuilder) -> Result<(), DataError>;
+
+    /// Advances the region's state to `time_s`, reading its inputs from and publishing its
+    /// outputs to `data`.
+    fn step_to(&mut self, time_s: f64, data: &mut DataManager) -> Result<(), RegionError>;
+
+    /// What the region did so far.
+    fn diagnostics(&self) -> RegionDiagnostics;
+}
+
+/// Lets every region declare its topics and builds the data manager; a topic someone reads
+/// and nobody publishes is an error naming topic and readers.
+pub fn wire(regions: &mut [Box<dyn Region>]) -> Result<DataManager, AssemblyError> {
+    let mut builder = DataManagerBuilder::new();
+    for region in regions.iter_mut() {
+        region.declare(&mut builder)?;
+    }
+    Ok(builder.build()?)
+}

@@ -40,7 +40,9 @@ fn aero_models(c: &mut Criterion) {
             region: hsv_core::testing::sample_region("right_surface"),
             registry: hsv_core::testing::builtin_registry(),
         };
-        let mut model = registry.create::<dyn hsv_core::aero::AeroModel>(name, &context).expect("model builds");
+        let mut model = registry
+            .create::<dyn hsv_core::aero::AeroModel>(name, &context)
+            .expect("model builds");
         let mut solution = AeroSolution::default();
         group.bench_function(name.as_str(), |b| {
             b.iter(|| {

@@ -14,7 +14,7 @@ use hsv_core::flow::{FlightCondition, Freestream};
 use hsv_core::registry::ModelContext;
 use hsv_core::surface_grid::SurfaceGrid;
 use hsv_core::thermal::ConductionModel;
-use hsv_core::vehicle::lifting_surface_mesh;
+use hsv_core::vehicle::{Side, lifting_surface_mesh};
 use hsv_model_conduction::{
     FullOrder, FullOrderSettings, Pod, PodBasis, PodSettings, collect_snapshots,
 };
@@ -26,12 +26,12 @@ fn conduction(c: &mut Criterion) {
     let cfg = &loaded.config.lifting_surface;
     let grid = SurfaceGrid::lifting_surface(
         cfg,
-        settings.side,
+        Side::Right,
         settings.elements_chordwise,
         settings.elements_spanwise,
     )
     .expect("grid");
-    let mesh = lifting_surface_mesh(cfg, settings.side).expect("mesh");
+    let mesh = lifting_surface_mesh(cfg, Side::Right).expect("mesh");
     let mut full = FullOrder::new(&grid, &mesh, settings.clone()).expect("full order");
     let key = "models.eckert".to_owned();
     let context = ModelContext {

@@ -3,7 +3,7 @@
 //! on shock-expansion edge states at Mach 6, 26 km and a 600 K wall.
 //!
 //! `cargo bench -p hsv-benches --bench heat_flux`. The surrogate is trained in the setup (default
-//! settings: 80 Latin-hypercube samples of `eckert`).
+//! settings: 150 Latin-hypercube samples of `eckert` per regime, laminar and turbulent).
 
 use std::hint::black_box;
 

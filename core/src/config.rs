@@ -215,8 +215,13 @@ impl LoadedConfig {
     /// A region around an arbitrary `mesh` (the whole vehicle, an STL file) that sees the global
     /// `[models.*]` settings.
     pub fn mesh_region(&self, name: &str, mesh: PanelMesh) -> RegionInfo {
-        let mut region =
-            RegionInfo::standalone(name, mesh, self.config.reference, self.config.gas, &self.file);
+        let mut region = RegionInfo::standalone(
+            name,
+            mesh,
+            self.config.reference,
+            self.config.gas,
+            &self.file,
+        );
         for (model, table) in &self.config.models {
             region.settings.insert(
                 model.clone(),
@@ -237,7 +242,10 @@ impl LoadedConfig {
             return Err(ConfigError {
                 file: self.file.clone(),
                 key_path: format!("regions.{name}"),
-                message: format!("unknown region; the regions are {}", REGION_NAMES.join(", ")),
+                message: format!(
+                    "unknown region; the regions are {}",
+                    REGION_NAMES.join(", ")
+                ),
             });
         };
         let mesh_error = |e: crate::vehicle::VehicleError| ConfigError {
@@ -247,7 +255,11 @@ impl LoadedConfig {
         };
         let (kind, side, geometry, mesh) = match name {
             "left_surface" | "right_surface" => {
-                let side = if name == "left_surface" { Side::Left } else { Side::Right };
+                let side = if name == "left_surface" {
+                    Side::Left
+                } else {
+                    Side::Right
+                };
                 let mesh = lifting_surface_mesh(&c.lifting_surface, side).map_err(mesh_error)?;
                 let geometry = RegionGeometry::LiftingSurface {
                     planform: c.lifting_surface.clone(),
@@ -383,6 +395,9 @@ mod tests {
         assert_eq!(left.side, Some(Side::Left));
         assert!(left.mesh.vertices.iter().all(|v| v.y < 0.0));
         let err = loaded.region("tail").unwrap_err().to_string();
-        assert!(err.contains("regions.tail") && err.contains("main_body"), "{err}");
+        assert!(
+            err.contains("regions.tail") && err.contains("main_body"),
+            "{err}"
+        );
     }
 }

@@ -14,11 +14,12 @@
 //!   back-substitution was ~15 % faster than the column-wise one, so both are combined here.
 //!   faer's sparse LLᵀ (AMD ordering) factored the same grids in 2.2 / 2.2 / 5.1 ms plus a
 //!   0.7–2 ms symbolic step, but needs a fixed sparsity pattern at assembly; not adopted yet.
-//! - Dense symmetric eigen: faer (tridiagonalization + tridiagonal QR / divide and conquer) with
-//!   a preallocated workspace beat cyclic Jacobi 2.8× at 15 × 15 (17 vs 48 µs) and 3.8× at
+//! - Dense symmetric eigen: faer (Householder tridiagonalization + tridiagonal QR) with a
+//!   preallocated workspace beat cyclic Jacobi 2.8× at 15 × 15 (17 vs 48 µs) and 3.8× at
 //!   30 × 30, to the same 1e-14 accuracy, without allocating (nalgebra's 11 µs allocates per
-//!   call). Cholesky-reduced generalized problems: faer 1.7× / 4× / 6.8× faster than nalgebra
-//!   at n = 100 / 600 / 1446 (0.9 s against 6.2 s at 1446, the free-free beam's largest mesh).
+//!   call). Cholesky-reduced generalized problems: faer 1.8× / 2.1× faster than nalgebra at
+//!   n = 100 / 600. faer's divide and conquer would be faster still but is switched off
+//!   (see `symmetric_evd_params`).
 
 use faer::dyn_stack::{MemBuffer, MemStack};
 use faer::linalg::cholesky::llt::factor::LltError;

@@ -92,7 +92,10 @@ impl RegionInfo {
 
     /// The planform and side of a lifting-surface region; other regions are an error naming the
     /// region and what `model` needed.
-    pub fn lifting_surface(&self, model: &str) -> Result<(&LiftingSurfaceConfig, Side), ModelError> {
+    pub fn lifting_surface(
+        &self,
+        model: &str,
+    ) -> Result<(&LiftingSurfaceConfig, Side), ModelError> {
         match &self.geometry {
             RegionGeometry::LiftingSurface { planform, side } => Ok((planform, *side)),
             _ => Err(self.wrong_geometry(model, "a lifting-surface planform")),

@@ -99,7 +99,11 @@ pub struct ModelContext<'a> {
 
 impl<'a> ModelContext<'a> {
     /// The context of model `name` in `region`: its settings as the region sees them.
-    pub fn new(region: &'a RegionInfo, registry: &'a Registry, settings: &'a ModelSettings) -> Self {
+    pub fn new(
+        region: &'a RegionInfo,
+        registry: &'a Registry,
+        settings: &'a ModelSettings,
+    ) -> Self {
         Self {
             settings: &settings.table,
             key_path: &settings.key_path,

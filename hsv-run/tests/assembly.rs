@@ -4,9 +4,7 @@
 use hsv_core::config::{SAMPLE_CONFIG_TOML, parse_config};
 use hsv_core::data::{DataError, DataManager, DataManagerBuilder, Subscriber};
 use hsv_core::structure::RigidDof;
-use hsv_run::vehicle::{
-    AnalysisNeeds, Region, RegionDiagnostics, RegionError, assemble, wire,
-};
+use hsv_run::vehicle::{AnalysisNeeds, Region, RegionDiagnostics, RegionError, assemble, wire};
 
 /// The sample vehicle with full-order conduction (the POD basis file is a run artefact) and
 /// `edit` applied to its text.
@@ -22,7 +20,10 @@ fn the_sample_vehicle_assembles_for_the_aerothermoelastic_analysis() {
     let needs = AnalysisNeeds::aerothermoelastic("the aerothermoelastic simulation");
     let sets = assemble(&loaded, &registry, &needs).expect("assembles");
     let names: Vec<&str> = sets.iter().map(|s| s.info.name.as_str()).collect();
-    assert_eq!(names, ["main_body", "left_surface", "right_surface", "propulsion"]);
+    assert_eq!(
+        names,
+        ["main_body", "left_surface", "right_surface", "propulsion"]
+    );
     // Each surface is its own model instance, built for its own side: the left surface's
     // mass lies at y < 0, the right one's at y > 0, mirror images of each other.
     let mass = |i: usize| {
@@ -33,11 +34,18 @@ fn the_sample_vehicle_assembles_for_the_aerothermoelastic_analysis() {
     assert!(left.center_of_mass_m.y < 0.0 && right.center_of_mass_m.y > 0.0);
     assert!((left.mass_kg - right.mass_kg).abs() <= 1e-9 * right.mass_kg);
     assert!((left.center_of_mass_m.y + right.center_of_mass_m.y).abs() < 1e-9);
-    let coupling = sets[2].structure.as_ref().and_then(|s| s.rigid_body_coupling());
+    let coupling = sets[2]
+        .structure
+        .as_ref()
+        .and_then(|s| s.rigid_body_coupling());
     let dofs = coupling.expect("surface coupling").rigid_dofs();
     assert_eq!(
         dofs,
-        [RigidDof::TranslationX, RigidDof::TranslationZ, RigidDof::RotationY]
+        [
+            RigidDof::TranslationX,
+            RigidDof::TranslationZ,
+            RigidDof::RotationY
+        ]
     );
 }
 
@@ -111,7 +119,7 @@ impl Region for Reader {
 #[test]
 fn a_topic_without_a_publisher_is_refused_naming_topic_and_reader() {
     let mut regions: Vec<Box<dyn Region>> = vec![Box::new(Reader { root_loads: None })];
-    let err = wire(&mut regions).err().expect("refused").to_string();
+    let err = wire(&mut regions).expect_err("refused").to_string();
     assert!(
         err.contains("left_surface.root_loads") && err.contains("main_body"),
         "{err}"

@@ -99,6 +99,10 @@ fn sample_with_surface_structure(dir: &Path, structure: Option<&str>) -> PathBuf
             out.push_str(&format!("structure = \"{name}\"\n"));
         }
     }
+    if structure == Some("free-free-beam") {
+        // A surface region has no body profile to place a beam axis on: say where it is.
+        out.push_str("\n[regions.lifting_surfaces.models.free-free-beam]\naxis_z_m = 0.0\n");
+    }
     let path = dir.join("vehicle.toml");
     std::fs::write(&path, out).expect("write config");
     path

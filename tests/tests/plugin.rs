@@ -51,7 +51,7 @@ fn flat_plate() -> PanelMesh {
     .expect("valid plate")
 }
 
-fn context<'a>(settings: &'a toml::Table, empty: &'a toml::Table) -> ModelContext<'a> {
+fn context<'a>(settings: &'a toml::Table, _empty: &'a toml::Table) -> ModelContext<'a> {
     ModelContext {
         settings,
         key_path: "models.ackeret",

@@ -26,8 +26,8 @@ use serde::{Deserialize, Serialize};
 
 use crate::mesh::{PanelMesh, RegionKind};
 
+use super::checks::{VehicleError, check_count, check_range, invalid};
 use super::polygon_mesh::{Builder, distribute, lerp};
-use super::{VehicleError, check_count, check_range, invalid};
 
 /// The `[geometry]` table: the body profile after Bolender & Doman (2007) and its discretisation.
 /// Distances in m, angles in degrees (radians internally), all measured in the body frame
@@ -468,4 +468,3 @@ pub fn body_mesh(geometry: &GeometryConfig) -> Result<PanelMesh, VehicleError> {
     );
     b.finish("body")
 }
-

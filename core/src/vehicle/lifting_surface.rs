@@ -12,8 +12,8 @@ use serde::{Deserialize, Serialize};
 
 use crate::mesh::{PanelMesh, RegionKind};
 
+use super::checks::{VehicleError, check_count, check_range};
 use super::polygon_mesh::{Builder, distribute, lerp};
-use super::{VehicleError, check_count, check_range};
 
 /// The `[lifting_surface]` table: one trapezoidal all-movable surface with a double-wedge
 /// section (after Falkiewicz & Cesnik), mirrored to the left side. Distances in m, angles in
@@ -249,4 +249,3 @@ pub fn pivot_point(cfg: &LiftingSurfaceConfig, side: Side) -> Point3<f64> {
         cfg.pivot_z_m,
     )
 }
-

@@ -7,40 +7,20 @@
 //! the nose (paper Table 1: the fore and aft beams join there), at `reference_z_m`.
 
 mod body;
+mod checks;
 mod lifting_surface;
 mod polygon_mesh;
 #[cfg(test)]
 mod tests;
 
 pub use body::{BodyProfile, GeometryConfig, body_mesh, body_profile};
+pub use checks::VehicleError;
+use checks::invalid;
 pub use lifting_surface::{LiftingSurfaceConfig, Side, lifting_surface_mesh, pivot_point};
 
 use nalgebra::Point3;
 
-use crate::mesh::{MeshError, PanelMesh};
-
-/// Why the vehicle geometry could not be read or built.
-#[derive(Debug, thiserror::Error)]
-pub enum VehicleError {
-    /// A config value is out of range or inconsistent with another.
-    #[error("[{table}] {key} = {value}: {message}")]
-    Invalid {
-        table: &'static str,
-        key: &'static str,
-        value: String,
-        message: String,
-    },
-    /// The config text could not be parsed.
-    #[error("{origin}: {message}")]
-    Parse { origin: String, message: String },
-    /// The generated mesh failed validation (a bug or an extreme config).
-    #[error("{what} mesh: {source}")]
-    Mesh {
-        what: &'static str,
-        source: MeshError,
-    },
-}
-
+use crate::mesh::PanelMesh;
 
 /// The vehicle's meshes and reference quantities, body frame (module docs).
 #[derive(Clone, Debug, PartialEq)]
@@ -64,67 +44,6 @@ pub struct VehicleGeometry {
     /// Side profile of the body.
     pub profile: BodyProfile,
 }
-
-pub(super) fn invalid(
-    table: &'static str,
-    key: &'static str,
-    value: impl ToString,
-    message: impl Into<String>,
-) -> VehicleError {
-    VehicleError::Invalid {
-        table,
-        key,
-        value: value.to_string(),
-        message: message.into(),
-    }
-}
-
-/// Checks that `v` is finite and inside (lo, hi) (open) or [lo, hi] (closed).
-pub(super) fn check_range(
-    table: &'static str,
-    key: &'static str,
-    v: f64,
-    lo: f64,
-    hi: f64,
-    closed: bool,
-) -> Result<(), VehicleError> {
-    let inside = if closed {
-        v >= lo && v <= hi
-    } else {
-        v > lo && v < hi
-    };
-    if v.is_finite() && inside {
-        Ok(())
-    } else {
-        let (l, r) = if closed { ("[", "]") } else { ("(", ")") };
-        Err(invalid(
-            table,
-            key,
-            v,
-            format!("must be finite and in {l}{lo}, {hi}{r}"),
-        ))
-    }
-}
-
-/// Checks a panel count is in [min, 10000].
-pub(super) fn check_count(
-    table: &'static str,
-    key: &'static str,
-    n: usize,
-    min: usize,
-) -> Result<(), VehicleError> {
-    if (min..=10_000).contains(&n) {
-        Ok(())
-    } else {
-        Err(invalid(
-            table,
-            key,
-            n,
-            format!("must be between {min} and 10000"),
-        ))
-    }
-}
-
 
 /// Builds the body and both lifting surfaces from the two config tables.
 pub fn build_vehicle(
@@ -153,4 +72,3 @@ pub fn build_vehicle(
         profile: body_profile(geometry)?,
     })
 }
-

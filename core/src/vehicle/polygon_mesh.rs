@@ -4,7 +4,7 @@ use nalgebra::{Point3, Vector3};
 
 use crate::mesh::{PanelMesh, PanelSpec, RegionKind, Strip, Surface, weld_vertices};
 
-use super::VehicleError;
+use super::checks::VehicleError;
 
 /// Splits `n` items over segments proportionally to `lengths` (largest remainder), ≥ 1 each.
 pub(super) fn distribute(n: usize, lengths: &[f64]) -> Vec<usize> {
@@ -135,4 +135,3 @@ impl Builder {
             .map_err(|source| VehicleError::Mesh { what, source })
     }
 }
-

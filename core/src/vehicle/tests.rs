@@ -20,7 +20,10 @@ fn err_of<T>(r: Result<T, VehicleError>, case: &str) -> String {
 fn sample() -> (GeometryConfig, LiftingSurfaceConfig) {
     let doc: toml::Table = toml::from_str(SAMPLE_TOML).expect("valid TOML");
     let g = doc["geometry"].clone().try_into().expect("[geometry]");
-    let l = doc["lifting_surface"].clone().try_into().expect("[lifting_surface]");
+    let l = doc["lifting_surface"]
+        .clone()
+        .try_into()
+        .expect("[lifting_surface]");
     (g, l)
 }
 
@@ -42,8 +45,7 @@ fn assert_strips_downstream(mesh: &PanelMesh) {
 #[test]
 fn sample_tables_parse_from_the_embedded_config() {
     // Other tables live in the same file; pick ours out of the whole document.
-    let doc: toml::Table =
-        toml::from_str(SAMPLE_TOML).expect("valid TOML");
+    let doc: toml::Table = toml::from_str(SAMPLE_TOML).expect("valid TOML");
     let g: GeometryConfig = doc["geometry"].clone().try_into().expect("[geometry]");
     let l: LiftingSurfaceConfig = doc["lifting_surface"]
         .clone()
@@ -370,4 +372,3 @@ fn sharp_tail_collapses_the_base() {
         max_relative = 1e-9
     );
 }
-

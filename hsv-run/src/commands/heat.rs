@@ -20,10 +20,10 @@ use std::time::Instant;
 use anyhow::{Context, Result, bail};
 use clap::Args;
 use hsv_core::aero::{AeroModel, AeroSolution, PanelMotion};
-use hsv_core::region::RegionInfo;
 use hsv_core::config::LoadedConfig;
 use hsv_core::flow::{FlightCondition, Freestream};
 use hsv_core::mesh::PanelMesh;
+use hsv_core::region::RegionInfo;
 use hsv_core::registry::{ModelContext, Registry};
 use hsv_core::surface_grid::SurfaceGrid;
 use hsv_core::thermal::{ConductionModel, HeatFluxModel};
@@ -301,11 +301,8 @@ fn build_pod_basis(
     };
     let region = loaded.region(HEATED_REGION)?;
     let pod_settings = region.model_settings("pod");
-    let mut full = hsv_model_conduction::full_order_for(&ModelContext::new(
-        &region,
-        registry,
-        &pod_settings,
-    ))?;
+    let mut full =
+        hsv_model_conduction::full_order_for(&ModelContext::new(&region, registry, &pod_settings))?;
     let steps = (args.duration_s / args.dt_s).round().max(1.0) as usize;
     let every = (steps / 100).max(1);
     let mut snapshots = Vec::new();
@@ -380,8 +377,10 @@ pub fn run(args: HeatArgs, registry: &Registry) -> Result<()> {
             }
         }
         let settings = s.region.model_settings(name);
-        let mut conduction = registry
-            .create::<dyn ConductionModel>(name, &ModelContext::new(&s.region, registry, &settings))?;
+        let mut conduction = registry.create::<dyn ConductionModel>(
+            name,
+            &ModelContext::new(&s.region, registry, &settings),
+        )?;
         let settings = s.region.model_settings(&s.heat_flux);
         let mut heat = registry.create::<dyn HeatFluxModel>(
             &s.heat_flux,
@@ -504,12 +503,9 @@ fn temperature_field_grids(
     if ritz.planform != hsv_model_ritz_plate::PlanformChoice::Vehicle {
         return Ok(None);
     }
-    let full: FullOrderSettings = ModelContext::new(
-        &region,
-        registry,
-        &region.model_settings("full-order"),
-    )
-    .parse_settings()?;
+    let full: FullOrderSettings =
+        ModelContext::new(&region, registry, &region.model_settings("full-order"))
+            .parse_settings()?;
     // Node order is the same on both sides; resample on the right-hand planform.
     let conduction = SurfaceGrid::lifting_surface(
         &loaded.config.lifting_surface,

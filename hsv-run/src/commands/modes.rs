@@ -14,9 +14,9 @@ use anyhow::{Context, Result, bail};
 use clap::Args;
 use hsv_core::config::LoadedConfig;
 use hsv_core::mesh::{ModeShapes, PanelMesh};
+use hsv_core::region::RegionInfo;
 use hsv_core::registry::{ModelContext, Registry};
 use hsv_core::structure::StructureModel;
-use hsv_core::region::RegionInfo;
 use hsv_core::vehicle::Side;
 use nalgebra::{DVector, Vector3};
 
@@ -231,7 +231,12 @@ fn build_structure(
     let settings = region.model_settings(name);
     registry
         .create::<dyn StructureModel>(name, &ModelContext::new(region, registry, &settings))
-        .with_context(|| format!("building structure model `{name}` for region `{}`", region.name))
+        .with_context(|| {
+            format!(
+                "building structure model `{name}` for region `{}`",
+                region.name
+            )
+        })
 }
 
 /// Frequencies paired with the model's mode names; an error from the model is a buckled state.
@@ -278,7 +283,12 @@ fn shapes_on(
     let shapes = model
         .mode_shapes_on(mesh)
         .map_err(|e| e.to_string())
-        .and_then(|shapes| shapes.check(mesh).map(|()| shapes).map_err(|e| e.to_string()));
+        .and_then(|shapes| {
+            shapes
+                .check(mesh)
+                .map(|()| shapes)
+                .map_err(|e| e.to_string())
+        });
     match shapes {
         Ok(shapes) => Some(shapes),
         Err(e) => {

@@ -18,7 +18,9 @@ use hsv_core::thermal::{ConductionModel, HeatFluxModel};
 /// capability at fault.
 #[derive(Debug, thiserror::Error)]
 pub enum AssemblyError {
-    #[error("{file}: region `{region}` has no {role} model, which {analysis} needs (set `regions.{region}.{key}`)")]
+    #[error(
+        "{file}: region `{region}` has no {role} model, which {analysis} needs (set `regions.{region}.{key}`)"
+    )]
     MissingRole {
         file: String,
         region: String,
@@ -61,7 +63,12 @@ impl AnalysisNeeds {
     /// temperatures and give root loads, and an engine.
     pub fn aerothermoelastic(analysis: &str) -> Self {
         let surface = RegionNeeds {
-            roles: vec![Role::Aero, Role::HeatFlux, Role::Conduction, Role::Structure],
+            roles: vec![
+                Role::Aero,
+                Role::HeatFlux,
+                Role::Conduction,
+                Role::Structure,
+            ],
             structure: vec![
                 Capability::ThermalStiffness,
                 Capability::RootLoads,

@@ -323,7 +323,7 @@ fn a_protection_layer_shields_the_structure() {
     );
 }
 
-fn sample_context<'a>(config: &'a toml::Table, settings: &'a toml::Table) -> ModelContext<'a> {
+fn sample_context<'a>(_config: &'a toml::Table, settings: &'a toml::Table) -> ModelContext<'a> {
     ModelContext {
         settings,
         key_path: "models.full-order",
@@ -342,7 +342,10 @@ fn registered_model_heats_the_sample_lifting_surface() {
     let settings = toml::Table::new();
     let registry = Registry::builtin().unwrap();
     let mut model = registry
-        .create::<dyn hsv_core::thermal::ConductionModel>("full-order", &sample_context(&config, &settings))
+        .create::<dyn hsv_core::thermal::ConductionModel>(
+            "full-order",
+            &sample_context(&config, &settings),
+        )
         .unwrap();
     let mut state = model.uniform_state(293.0).unwrap();
     let n = model.n_surface_panels();

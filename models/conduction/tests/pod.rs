@@ -216,19 +216,20 @@ fn basis_is_saved_and_reloaded_by_the_registered_model() {
     assert!(err.contains("modes") && err.contains("12"), "{err}");
     settings.insert("modes".into(), toml::Value::Integer(12));
 
-    // A basis for another grid.
-    let mut other = config.clone();
-    let models = other
-        .entry("models")
-        .or_insert(toml::Value::Table(toml::Table::new()));
-    let mut fo = toml::Table::new();
-    fo.insert("elements_spanwise".into(), toml::Value::Integer(6));
-    models
-        .as_table_mut()
-        .unwrap()
-        .insert("full-order".into(), toml::Value::Table(fo));
+    // A basis for another grid: this region's full-order grid is coarser.
+    let mut other = hsv_core::testing::sample_region("right_surface").clone();
+    let mut fo = other.model_settings("full-order");
+    fo.table
+        .insert("elements_spanwise".into(), toml::Value::Integer(6));
+    other.settings.insert("full-order".into(), fo);
     let err = registry
-        .create::<dyn hsv_core::thermal::ConductionModel>("pod", &context(&settings, &other))
+        .create::<dyn hsv_core::thermal::ConductionModel>(
+            "pod",
+            &ModelContext {
+                region: &other,
+                ..context(&settings, &config)
+            },
+        )
         .err()
         .unwrap()
         .to_string();
@@ -248,7 +249,7 @@ fn basis_is_saved_and_reloaded_by_the_registered_model() {
     let _ = std::fs::remove_dir_all(&dir);
 }
 
-fn context<'a>(settings: &'a toml::Table, config: &'a toml::Table) -> ModelContext<'a> {
+fn context<'a>(settings: &'a toml::Table, _config: &'a toml::Table) -> ModelContext<'a> {
     ModelContext {
         settings,
         key_path: "models.pod",

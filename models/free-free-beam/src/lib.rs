@@ -23,8 +23,8 @@ pub mod modes;
 
 use hsv_core::error::ModelError;
 use hsv_core::mesh::{ModeShapes, PanelMesh};
-use hsv_core::registry::{Constructor, ModelContext, ModelDescriptor};
 use hsv_core::region::RegionGeometry;
+use hsv_core::registry::{Constructor, ModelContext, ModelDescriptor};
 use hsv_core::structure::{
     MassDistribution, MassProperties, ModalModel, RigidBodyCoupling, RigidDof, StructureModel,
 };

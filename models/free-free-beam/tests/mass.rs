@@ -16,7 +16,10 @@ fn sample_beam() -> FreeFreeBeam {
 #[test]
 fn mass_centre_and_inertia_match_the_two_segment_rod() {
     let beam = sample_beam();
-    let props = beam.mass_properties().expect("capability").mass_properties();
+    let props = beam
+        .mass_properties()
+        .expect("capability")
+        .mass_properties();
     let (mu_f, mu_a, l_f, l_a, i_x) = (838.0, 1250.0, 15.2, 15.2, 3.28e3);
     // Closed form: m = Σ μ L; x_G = −Σ μ L s_c / m (s aft of the nose); I_yy = I_zz =
     // Σ (μ L³/12 + μ L (s_c − s_G)²); I_xx = I_x (L_f + L_a).
@@ -28,7 +31,11 @@ fn mass_centre_and_inertia_match_the_two_segment_rod() {
     // The consistent Hermite mass matrix integrates rigid motions exactly: 1e-9 relative.
     let close = |a: f64, b: f64| (a - b).abs() <= 1e-9 * b.abs().max(1.0);
     assert!(close(props.mass_kg, m), "{} vs {m}", props.mass_kg);
-    assert!(close(-props.center_of_mass_m.x, s_g), "{:?}", props.center_of_mass_m);
+    assert!(
+        close(-props.center_of_mass_m.x, s_g),
+        "{:?}",
+        props.center_of_mass_m
+    );
     let i = props.inertia_kg_m2;
     assert!(close(i[(1, 1)], i_yy), "I_yy {} vs {i_yy}", i[(1, 1)]);
     assert!(close(i[(2, 2)], i_yy), "I_zz {} vs {i_yy}", i[(2, 2)]);
@@ -44,6 +51,12 @@ fn free_free_modes_do_not_couple_with_rigid_motion() {
     let coupling = beam.rigid_body_coupling().expect("capability");
     let c = coupling.rigid_coupling();
     assert_eq!(c.ncols(), 6);
-    let scale = beam.mass_properties().expect("mass").mass_properties().mass_kg.sqrt() * 30.4;
+    let scale = beam
+        .mass_properties()
+        .expect("mass")
+        .mass_properties()
+        .mass_kg
+        .sqrt()
+        * 30.4;
     assert!(c.amax() < 1e-8 * scale, "max |Φᵀ M R| = {}", c.amax());
 }

@@ -436,7 +436,7 @@ fn sample_config_builds_the_paper_beam_with_three_named_modes() {
     let registry = Registry::builtin().expect("registry");
     let entry = registry.get(NAME).expect("registered");
     assert_eq!(entry.role(), Role::Structure);
-    let mut model = registry
+    let model = registry
         .create::<dyn hsv_core::structure::StructureModel>(NAME, &sample_context(&loaded))
         .expect("built from the sample config");
     let m = model.modal_model();

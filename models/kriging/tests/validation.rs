@@ -25,7 +25,7 @@ use nalgebra::{Point3, Vector3};
 
 const PR: f64 = 0.71;
 
-fn context<'a>(settings: &'a toml::Table, config: &'a toml::Table) -> ModelContext<'a> {
+fn context<'a>(settings: &'a toml::Table, _config: &'a toml::Table) -> ModelContext<'a> {
     ModelContext {
         settings,
         key_path: "models.kriging-stanton",
@@ -45,7 +45,23 @@ fn build_in(toml_text: &str, config_text: &str) -> Result<KrigingStanton, String
     let table: toml::Table = toml::from_str(toml_text).map_err(|e| e.to_string())?;
     let settings: Settings = table.clone().try_into().map_err(|e| e.to_string())?;
     let config: toml::Table = toml::from_str(config_text).map_err(|e| e.to_string())?;
-    KrigingStanton::new(settings, &context(&table, &config)).map_err(|e| e.to_string())
+    // The region sees the config's [models.*] tables (the base model's settings).
+    let mut region = hsv_core::testing::sample_region("right_surface").clone();
+    let models = config.get("models").and_then(toml::Value::as_table);
+    for (name, value) in models.into_iter().flatten() {
+        if let Some(table) = value.as_table() {
+            let settings = hsv_core::region::ModelSettings {
+                table: table.clone(),
+                key_path: format!("models.{name}"),
+            };
+            region.settings.insert(name.clone(), settings);
+        }
+    }
+    let ctx = ModelContext {
+        region: &region,
+        ..context(&table, &config)
+    };
+    KrigingStanton::new(settings, &ctx).map_err(|e| e.to_string())
 }
 
 /// Point `i` of the Halton sequence in bases 2, 3, 5, 7, 11, mapped into `lower..upper`: test

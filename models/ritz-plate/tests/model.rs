@@ -2,8 +2,8 @@
 
 use approx::assert_relative_eq;
 use hsv_core::config::LoadedConfig;
-use hsv_core::structure::RootLoads;
 use hsv_core::registry::{Constructor, ModelContext, ModelDescriptor};
+use hsv_core::structure::RootLoads;
 use hsv_core::structure::StructureModel;
 use hsv_core::surface_grid::SurfaceGrid;
 use hsv_core::vehicle::{Side, lifting_surface_mesh};
@@ -19,7 +19,6 @@ fn descriptor() -> &'static ModelDescriptor {
 
 /// Builds the model from settings TOML (a `[models.ritz-plate]` body) over the sample config.
 fn build(settings_toml: &str) -> Result<Box<dyn StructureModel>, hsv_core::ModelError> {
-    let loaded = LoadedConfig::sample().expect("sample");
     let settings: toml::Table = toml::from_str(settings_toml).expect("toml");
     let ctx = ModelContext {
         settings: &settings,

@@ -736,7 +736,6 @@ fn both_models_are_registered_as_propulsion_with_checked_settings() {
     let registry = Registry::builtin().expect("registry");
     assert!(registry.names(Role::Propulsion).contains(&SCRAMJET_1D));
     assert!(registry.names(Role::Propulsion).contains(&SCRAMJET_Q1D));
-    let loaded = sample();
     for (name, key, value) in [
         (SCRAMJET_1D, "spanwise_strips", toml::Value::Integer(2)),
         (

@@ -5,6 +5,7 @@ use nalgebra::{DMatrix, DVector, Matrix3, Point3};
 use crate::aero::Loads;
 use crate::error::ModelError;
 use crate::mesh::{ModeShapes, PanelMesh};
+use crate::surface_grid::SurfaceGrid;
 
 /// Generalized (modal) matrices of a structure, in the mode order of [`ModalModel::names`].
 #[derive(Debug, Clone, PartialEq, Default)]
@@ -78,6 +79,12 @@ pub trait ThermalStiffness {
 
     /// Updates stiffness from structural node temperatures (K).
     fn set_temperatures(&mut self, node_temperatures_k: &[f64]) -> Result<(), ModelError>;
+
+    /// The surface grid whose nodes [`Self::set_temperatures`] takes, if the model has one:
+    /// what a conduction model's node temperatures are interpolated onto.
+    fn temperature_grid(&self) -> Option<&SurfaceGrid> {
+        None
+    }
 }
 
 /// Forces and moments a structure exerts on its support.

@@ -6,6 +6,7 @@ use crate::aero::AeroSolution;
 use crate::error::ModelError;
 use crate::flow::FlightCondition;
 use crate::mesh::PanelMesh;
+use crate::surface_grid::SurfaceGrid;
 
 /// Stefan-Boltzmann constant σ, W/(m² K⁴) (CODATA 2018, exact), for re-radiation εσT⁴.
 pub const STEFAN_BOLTZMANN_W_M2_K4: f64 = 5.670_374_419e-8;
@@ -42,11 +43,50 @@ pub fn check_heat_flux_inputs(
     wall_temperature_k: &[f64],
     out_w_m2: &[f64],
 ) -> Result<(), ModelError> {
+    check_wall_inputs(
+        model,
+        mesh,
+        flight,
+        aero,
+        wall_temperature_k,
+        ("heat-flux outputs", out_w_m2.len()),
+    )
+}
+
+/// Checks what every [`SkinFriction::wall_shear`] call receives: one edge state, wall temperature
+/// and output slot per panel of `mesh`, and a finite flight condition.
+pub fn check_wall_shear_inputs(
+    model: &str,
+    mesh: &PanelMesh,
+    flight: &FlightCondition,
+    aero: &AeroSolution,
+    wall_temperature_k: &[f64],
+    out_pa: &[f64],
+) -> Result<(), ModelError> {
+    check_wall_inputs(
+        model,
+        mesh,
+        flight,
+        aero,
+        wall_temperature_k,
+        ("wall-shear outputs", out_pa.len()),
+    )
+}
+
+/// One entry per panel in every per-panel input and in the output named by `output`.
+fn check_wall_inputs(
+    model: &str,
+    mesh: &PanelMesh,
+    flight: &FlightCondition,
+    aero: &AeroSolution,
+    wall_temperature_k: &[f64],
+    output: (&str, usize),
+) -> Result<(), ModelError> {
     let n = mesh.panels.len();
     for (what, len) in [
         ("edge states", aero.edge.len()),
         ("wall temperatures", wall_temperature_k.len()),
-        ("heat-flux outputs", out_w_m2.len()),
+        output,
     ] {
         if len != n {
             return Err(ModelError::inconsistent(
@@ -102,6 +142,28 @@ pub trait HeatFluxModel: Send {
         wall_temperature_k: &[f64],
         out_w_m2: &mut [f64],
     ) -> Result<(), ModelError>;
+
+    /// Wall shear from the same boundary layer, if the model has a skin-friction law (skin
+    /// friction is an optional capability: `None` by default, as for structure capabilities).
+    fn skin_friction(&mut self) -> Option<&mut dyn SkinFriction> {
+        None
+    }
+}
+
+/// Skin friction of a heat-flux model whose boundary layer has a wall-shear law: what turns the
+/// boundary layer into viscous loads ([`crate::aero::integrate_shear`]).
+pub trait SkinFriction {
+    /// Wall shear stress τ_w ≥ 0, Pa, on every panel of `mesh`, from the edge states of an aero
+    /// evaluation and the wall temperature of each panel (K). The stress acts along the local
+    /// edge flow; [`crate::aero::integrate_shear`] gives it that direction.
+    fn wall_shear(
+        &mut self,
+        mesh: &PanelMesh,
+        flight: &FlightCondition,
+        aero: &AeroSolution,
+        wall_temperature_k: &[f64],
+        out_pa: &mut [f64],
+    ) -> Result<(), ModelError>;
 }
 
 /// Transient heat conduction in a structure, advanced by the heat flux on its wetted panels.
@@ -138,4 +200,11 @@ pub trait ConductionModel: Send {
 
     /// Temperature of each structural node, K (what the structure model degrades stiffness from).
     fn node_temperatures(&self, state: &DVector<f64>, out_k: &mut [f64]);
+
+    /// The surface grid whose nodes [`Self::node_temperatures`] reports on, if the model has
+    /// one: what a structure's temperature grid is interpolated from
+    /// ([`crate::coupling::GridTransfer`]).
+    fn node_grid(&self) -> Option<&SurfaceGrid> {
+        None
+    }
 }

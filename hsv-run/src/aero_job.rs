@@ -5,12 +5,14 @@ use std::time::Instant;
 use anyhow::{Context, Result, bail};
 use hsv_core::aero::{
     AeroDiagnostics, AeroModel, AeroSolution, Coefficients, Loads, PanelMotion, ReferenceValues,
-    integrate_pressure,
+    integrate_pressure, integrate_shear,
 };
 use hsv_core::config::LoadedConfig;
 use hsv_core::flow::{FlightCondition, Freestream};
 use hsv_core::mesh::{PanelMesh, RegionKind};
+use hsv_core::region::RegionInfo;
 use hsv_core::registry::{ModelContext, Registry, Role};
+use hsv_core::thermal::HeatFluxModel;
 use hsv_core::vehicle::build_vehicle;
 
 /// A mesh to evaluate and what it is, for reports.
@@ -70,15 +72,74 @@ pub struct AeroRequest {
     pub include_engine_surfaces: bool,
 }
 
+/// Skin friction to add to the pressure loads: the wall shear of a heat-flux model's boundary
+/// layer on the aero model's edge states.
+#[derive(Debug, Clone, PartialEq)]
+pub struct FrictionRequest {
+    /// Registered heat-flux model with a skin-friction law (`eckert`).
+    pub heat_flux_model: String,
+    /// Wall temperature of every panel, K (the cold-structure default of `aero` is 300 K).
+    pub wall_temperature_k: f64,
+}
+
+impl FrictionRequest {
+    /// The main body's heat-flux model (`[regions.main_body] heat_flux`), else `eckert`, at
+    /// `wall_temperature_k`.
+    pub fn from_config(loaded: &LoadedConfig, wall_temperature_k: f64) -> Self {
+        Self {
+            heat_flux_model: loaded
+                .config
+                .regions
+                .main_body
+                .heat_flux
+                .clone()
+                .unwrap_or_else(|| "eckert".to_owned()),
+            wall_temperature_k,
+        }
+    }
+}
+
+/// Skin-friction loads of one aero evaluation.
+#[derive(Debug, Clone, serde::Serialize)]
+pub struct FrictionLoads {
+    /// The heat-flux model whose wall shear was integrated.
+    pub heat_flux_model: String,
+    pub wall_temperature_k: f64,
+    /// F = Σ τ A t̂ and its moment about the reference point, body axes.
+    pub loads: Loads,
+    /// Friction drag, N (the force's component along −V).
+    pub drag_n: f64,
+    pub coefficients: Coefficients,
+}
+
 /// One model's result.
 #[derive(Debug, Clone, serde::Serialize)]
 pub struct AeroRow {
     pub model: String,
+    /// Pressure loads.
     pub loads: Loads,
     pub coefficients: Coefficients,
     pub diagnostics: AeroDiagnostics,
     /// Wall time of one evaluation as measured here (indicative; benches give the real figures), s.
     pub evaluation_time_s: f64,
+    /// Skin-friction loads, when requested.
+    pub friction: Option<FrictionLoads>,
+}
+
+impl AeroRow {
+    /// Pressure plus friction loads.
+    pub fn total_loads(&self) -> Loads {
+        match &self.friction {
+            Some(f) => self.loads + f.loads,
+            None => self.loads,
+        }
+    }
+}
+
+/// Drag D = −F · V̂, N: the force's component against the flight velocity (the wind-axis drag of
+/// [`Coefficients::from_loads`] times q S).
+pub fn drag_n(loads: &Loads, flight: &FlightCondition) -> f64 {
+    -loads.force_n.dot(&flight.velocity_body_m_s().normalize())
 }
 
 /// Flight condition of a request in the standard atmosphere.
@@ -103,23 +164,34 @@ pub fn flight_condition(loaded: &LoadedConfig, request: &AeroRequest) -> Result<
     Ok(flight)
 }
 
-/// Evaluates every requested model on `mesh` and integrates its loads.
+/// Evaluates every requested model on `mesh` and integrates its pressure loads.
 pub fn run_aero(
     loaded: &LoadedConfig,
     registry: &Registry,
     mesh: &AeroMesh,
     request: &AeroRequest,
 ) -> Result<Vec<AeroRow>> {
+    run_aero_with_friction(loaded, registry, mesh, request, None)
+}
+
+/// Evaluates every requested model on `mesh`, integrates its pressure loads and, with
+/// `friction`, the skin friction of the named heat-flux model on the same panels.
+pub fn run_aero_with_friction(
+    loaded: &LoadedConfig,
+    registry: &Registry,
+    mesh: &AeroMesh,
+    request: &AeroRequest,
+    friction: Option<&FrictionRequest>,
+) -> Result<Vec<AeroRow>> {
     let flight = flight_condition(loaded, request)?;
-    let include_engine = request.include_engine_surfaces || !mesh.has_engine_surfaces;
-    let include = |region: RegionKind| match region {
-        RegionKind::MainBody | RegionKind::LiftingSurface => true,
-        RegionKind::Propulsion => include_engine,
-        RegionKind::Other => !mesh.has_engine_surfaces,
-    };
+    let include = surfaces_filter(mesh, request.include_engine_surfaces);
     let mut solution = AeroSolution::default();
     let mut rows = Vec::with_capacity(request.models.len());
     let region = loaded.mesh_region("vehicle", mesh.mesh.clone());
+    let mut shear_model = friction
+        .map(|f| friction_model(&region, registry, &f.heat_flux_model))
+        .transpose()?;
+    let mut shear_pa = vec![0.0; mesh.mesh.panels.len()];
     for name in &request.models {
         let settings = region.model_settings(name);
         let context = ModelContext::new(&region, registry, &settings);
@@ -137,17 +209,123 @@ pub fn run_aero(
             &solution.pressure_pa,
             flight.freestream.pressure_pa,
             &request.reference.moment_point(),
-            include,
+            &include,
         );
+        let friction = match (friction, shear_model.as_deref_mut()) {
+            (Some(f), Some(model)) => {
+                let loads =
+                    friction_loads(model, mesh, &flight, &solution, f, request, &mut shear_pa)
+                        .and_then(|loads| {
+                            nonfinite_loads(&loads)
+                                .map_or(Ok(loads), |what| Err(anyhow::anyhow!("{what}")))
+                        })
+                        .with_context(|| {
+                            format!(
+                                "skin friction of `{}` on the edge states of aero model `{name}`",
+                                f.heat_flux_model
+                            )
+                        })?;
+                Some(FrictionLoads {
+                    heat_flux_model: f.heat_flux_model.clone(),
+                    wall_temperature_k: f.wall_temperature_k,
+                    drag_n: drag_n(&loads, &flight),
+                    coefficients: Coefficients::from_loads(&loads, &flight, &request.reference),
+                    loads,
+                })
+            }
+            _ => None,
+        };
         rows.push(AeroRow {
             model: name.clone(),
             coefficients: Coefficients::from_loads(&loads, &flight, &request.reference),
             loads,
             diagnostics: solution.diagnostics,
             evaluation_time_s,
+            friction,
         });
     }
     Ok(rows)
+}
+
+/// Heat-flux model `name`, built by name with the region's settings, checked to have a
+/// skin-friction law.
+fn friction_model(
+    region: &RegionInfo,
+    registry: &Registry,
+    name: &str,
+) -> Result<Box<dyn HeatFluxModel>> {
+    let settings = region.model_settings(name);
+    let context = ModelContext::new(region, registry, &settings);
+    let mut model = registry
+        .create::<dyn HeatFluxModel>(name, &context)
+        .with_context(|| format!("building heat-flux model `{name}` for skin friction"))?;
+    if model.skin_friction().is_none() {
+        bail!(
+            "heat-flux model `{name}` has no skin-friction law (a surrogate of the heat flux \
+             only); name one that has, e.g. `eckert`, in [regions.main_body] heat_flux"
+        );
+    }
+    Ok(model)
+}
+
+/// Wall shear of `model` on every panel at the requested wall temperature, integrated over the
+/// panels of the same regions as the pressure.
+fn friction_loads(
+    model: &mut dyn HeatFluxModel,
+    mesh: &AeroMesh,
+    flight: &FlightCondition,
+    solution: &AeroSolution,
+    friction: &FrictionRequest,
+    request: &AeroRequest,
+    shear_pa: &mut [f64],
+) -> Result<Loads> {
+    let t = friction.wall_temperature_k;
+    if !(t.is_finite() && t > 0.0) {
+        bail!("wall temperature must be a finite number of kelvin > 0, got {t}");
+    }
+    let walls = vec![t; shear_pa.len()];
+    let Some(skin) = model.skin_friction() else {
+        bail!(
+            "heat-flux model `{}` has no skin-friction law",
+            model.name()
+        );
+    };
+    skin.wall_shear(&mesh.mesh, flight, solution, &walls, shear_pa)?;
+    Ok(integrate_shear(
+        &mesh.mesh,
+        shear_pa,
+        flight,
+        &PanelMotion::default(),
+        &request.reference.moment_point(),
+        surfaces_filter(mesh, request.include_engine_surfaces),
+    ))
+}
+
+/// The regions whose panels carry aero loads: body and lifting surfaces always; the engine-owned
+/// surfaces of an assembled vehicle only when asked (an unpowered vehicle); every surface of an
+/// STL mesh.
+fn surfaces_filter(
+    mesh: &AeroMesh,
+    include_engine_surfaces: bool,
+) -> impl Fn(RegionKind) -> bool + use<> {
+    let include_engine = include_engine_surfaces || !mesh.has_engine_surfaces;
+    let has_engine_surfaces = mesh.has_engine_surfaces;
+    move |region: RegionKind| match region {
+        RegionKind::MainBody | RegionKind::LiftingSurface => true,
+        RegionKind::Propulsion => include_engine,
+        RegionKind::Other => !has_engine_surfaces,
+    }
+}
+
+/// Which loads are not finite, if any.
+fn nonfinite_loads(loads: &Loads) -> Option<&'static str> {
+    if loads.force_n.iter().any(|v| !v.is_finite()) {
+        Some("non-finite friction force")
+    } else if loads.moment_nm.iter().any(|v| !v.is_finite()) {
+        Some("non-finite friction moment")
+    } else {
+        None
+    }
 }
 
 /// All registered aero model names, sorted.

@@ -3,7 +3,9 @@
 //! The binary (`hsv-run`) is a thin CLI over this library so tests and benches drive the same code.
 
 pub mod aero_job;
+pub mod analysis;
 pub mod commands;
+pub mod dynamics;
 pub mod linked;
 pub mod output;
 pub mod progress;

@@ -1,38 +1,36 @@
 //! `hsv-run heat`: one lifting surface, uniformly at 293 K, exposed to steady flow for a while;
 //! the heat flux of a heat-flux model on the edge states of an aero model drives each requested
-//! conduction model, and the temperature history of the structure is written out.
+//! conduction model, and the temperature history of the structure is written out. The loop is
+//! [`crate::analysis::heating::SurfaceHeating`]; this module is its CLI and outputs.
 //!
-//! The surface is rigid and undeflected, so one aero evaluation serves the whole run; the heat
-//! flux is re-evaluated from the current wall temperatures every `--flux-interval-s` (paper
-//! Table 3: 10 ms) and the conduction model advances by `--dt-s` (paper: 1 ms; default 0.1 s
-//! here, which the implicit models take without loss of stability).
+//! The heat flux is re-evaluated from the current wall temperatures every `--flux-interval-s`
+//! (paper Table 3: 10 ms) and the conduction model advances by `--dt-s` (paper: 1 ms; default
+//! 0.1 s here, which the implicit models take without loss of stability).
 //!
-//! A `pod` model needs its basis file (`[models.pod] basis_file`); when it is missing this
-//! command builds it from `full-order` snapshots of the same surface at the Mach numbers of
-//! `--snapshot-mach` (default: the run's Mach number and ± 1) at the run's altitude and
-//! duration, and saves it there. A basis from other conditions reproduces the mean temperature
-//! closely but the sharp leading edge's peak less well (Mach 6, 26 km, 20 s from Mach 5 and 7
-//! snapshots: 43 K low at a 533 K peak; from Mach 4, 5, 7, 8: 14 K).
+//! A `pod` model trains its own basis (`[models.pod.training]`): this command sets the training
+//! to the run's altitude, duration, step and models at the Mach numbers of `--snapshot-mach`
+//! (default: M − 1, M − 0.5 and M), so the basis file (`[models.pod] basis_file`) is rebuilt
+//! whenever it was built from anything else. A basis from other conditions reproduces the mean
+//! temperature closely but the sharp leading edge's peak less well (Mach 6, 26 km, 20 s from
+//! Mach 5 and 7 snapshots: 43 K low at a 533 K peak; from Mach 4, 5, 7, 8: 14 K).
 
 use std::path::PathBuf;
-use std::time::Instant;
 
 use anyhow::{Context, Result, bail};
 use clap::Args;
-use hsv_core::aero::{AeroModel, AeroSolution, PanelMotion};
 use hsv_core::config::LoadedConfig;
+use hsv_core::coupling::GridTransfer;
 use hsv_core::flow::{FlightCondition, Freestream};
-use hsv_core::mesh::PanelMesh;
 use hsv_core::region::RegionInfo;
 use hsv_core::registry::{ModelContext, Registry};
-use hsv_core::surface_grid::SurfaceGrid;
-use hsv_core::thermal::{ConductionModel, HeatFluxModel};
-use hsv_core::vehicle::Side;
-use hsv_model_conduction::{FullOrderSettings, PodBasis, PodSettings};
+use hsv_core::structure::StructureModel;
+use hsv_core::thermal::ConductionModel;
 
 use super::{ConfigArg, JsonFlag, load_config};
+use crate::analysis::heating::{HeatingModels, HeatingSteps, SurfaceHeating};
 use crate::output::{self, LinePlot, Series};
 use crate::progress::Progress;
+use crate::vehicle::Region;
 
 /// Arguments of `hsv-run heat`.
 #[derive(Args, Debug, Clone)]
@@ -108,17 +106,18 @@ struct History {
     surface_frames: Vec<(f64, Vec<f64>, Vec<f64>)>,
 }
 
-/// The flight condition, the right lifting surface mesh and its edge states.
-struct Setup {
-    flight: FlightCondition,
-    mesh: PanelMesh,
-    aero: AeroSolution,
-    heat_flux: String,
-    region: RegionInfo,
-}
-
 /// The heated lifting surface: the right one (the left is its mirror image).
 const HEATED_REGION: &str = "right_surface";
+
+/// The flight condition, the heated region and the models of the run.
+struct Setup {
+    flight: FlightCondition,
+    region: RegionInfo,
+    aero: String,
+    heat_flux: String,
+    /// The region's structure model, whose grid the final temperature field is written on.
+    structure: Option<String>,
+}
 
 fn check_positive(flag: &str, value: f64) -> Result<()> {
     if !(value.is_finite() && value > 0.0) {
@@ -127,8 +126,8 @@ fn check_positive(flag: &str, value: f64) -> Result<()> {
     Ok(())
 }
 
-/// Flight condition at `mach`, and the edge states of the aero model on the surface mesh.
-fn setup(loaded: &LoadedConfig, registry: &Registry, args: &HeatArgs, mach: f64) -> Result<Setup> {
+/// Flight condition at `mach` and the heated region with its models.
+fn setup(loaded: &LoadedConfig, args: &HeatArgs, mach: f64) -> Result<Setup> {
     let flight_cfg = loaded.config.flight;
     let altitude_m = args.altitude_m.unwrap_or(10_000.0);
     let alpha_deg = args.alpha_deg.unwrap_or(flight_cfg.alpha_deg);
@@ -138,68 +137,91 @@ fn setup(loaded: &LoadedConfig, registry: &Registry, args: &HeatArgs, mach: f64)
     let freestream = Freestream::standard(mach, altitude_m, loaded.config.gas)?;
     let flight = FlightCondition::steady(freestream, alpha_deg.to_radians(), 0.0);
     let region = loaded.region(HEATED_REGION)?;
-    let aero_name = match &args.aero {
-        Some(name) => name.clone(),
-        None => loaded
-            .config
-            .regions
-            .region(HEATED_REGION)
-            .and_then(|r| r.aero)
-            .unwrap_or_else(|| "shock-expansion".to_owned()),
-    };
-    let settings = region.model_settings(&aero_name);
-    let mut aero_model = registry
-        .create::<dyn AeroModel>(&aero_name, &ModelContext::new(&region, registry, &settings))?;
-    let mut aero = AeroSolution::default();
-    aero_model
-        .evaluate(&region.mesh, &flight, &PanelMotion::default(), &mut aero)
-        .with_context(|| format!("aero model `{aero_name}`"))?;
-    let heat_flux = match &args.heat_flux {
-        Some(name) => name.clone(),
-        None => loaded
-            .config
-            .regions
-            .region(HEATED_REGION)
-            .and_then(|r| r.heat_flux)
-            .unwrap_or_else(|| "eckert".to_owned()),
-    };
+    let configured = loaded
+        .config
+        .regions
+        .region(HEATED_REGION)
+        .unwrap_or_default();
+    let aero = args
+        .aero
+        .clone()
+        .or(configured.aero)
+        .unwrap_or_else(|| "shock-expansion".to_owned());
+    let heat_flux = args
+        .heat_flux
+        .clone()
+        .or(configured.heat_flux)
+        .unwrap_or_else(|| "eckert".to_owned());
     Ok(Setup {
         flight,
-        mesh: region.mesh.clone(),
+        region,
         aero,
         heat_flux,
-        region,
+        structure: configured.structure,
     })
 }
 
-/// Runs `conduction` from a uniform temperature for the run's duration.
+/// Sets `pod`'s training to this run's conditions (`[models.pod.training]`), so its basis is
+/// trained for them, or reused when it already was.
+fn train_pod_for_run(s: &mut Setup, args: &HeatArgs, mach: f64) -> Result<()> {
+    let machs = if args.snapshot_mach.is_empty() {
+        // Bracket the run's heating from below and at it: a snapshot run hotter than the run
+        // itself could leave the material data (Mach 7 at 10 km nears the solidus in 100 s).
+        vec![(mach - 1.0).max(1.5), (mach - 0.5).max(1.5), mach]
+    } else {
+        args.snapshot_mach.clone()
+    };
+    for &m in &machs {
+        check_positive("--snapshot-mach", m)?;
+    }
+    let training = serde_json::json!({
+        "heat_flux": s.heat_flux,
+        "aero": s.aero,
+        "mach": machs,
+        "altitude_m": s.flight.freestream.altitude_m,
+        "alpha_deg": s.flight.alpha_rad.to_degrees(),
+        "duration_s": args.duration_s,
+        "dt_s": args.dt_s,
+        "snapshots_per_run": 100,
+        "initial_k": args.initial_k,
+    });
+    let table: toml::Table = serde_json::from_value(training)?;
+    let mut pod = s.region.model_settings("pod");
+    pod.table
+        .insert("training".to_owned(), toml::Value::Table(table));
+    s.region.settings.insert("pod".to_owned(), pod);
+    Ok(())
+}
+
+/// Runs conduction model `name` from a uniform temperature for the run's duration.
 fn run_model(
     name: &str,
-    conduction: &mut dyn ConductionModel,
-    heat: &mut dyn HeatFluxModel,
     s: &Setup,
+    registry: &Registry,
     args: &HeatArgs,
     samples: usize,
-) -> Result<History> {
-    let n_panels = s.mesh.panels.len();
-    if conduction.n_surface_panels() != n_panels {
-        bail!(
-            "conduction model `{name}` takes {} surface panels, the lifting surface mesh has {n_panels}",
-            conduction.n_surface_panels()
-        );
-    }
+) -> Result<(History, SurfaceHeating)> {
     let steps = (args.duration_s / args.dt_s).round().max(1.0) as usize;
     let flux_every = args
         .flux_interval_s
         .map_or(1, |f| ((f / args.dt_s).round() as usize).max(1));
+    let mut heating = SurfaceHeating::new(
+        s.region.clone(),
+        registry,
+        HeatingModels {
+            aero: s.aero.clone(),
+            heat_flux: s.heat_flux.clone(),
+            conduction: name.to_owned(),
+        },
+        s.flight,
+        HeatingSteps {
+            dt_s: args.dt_s,
+            flux_every,
+            initial_k: args.initial_k,
+        },
+    )?;
     let record_every = (steps / samples.max(1)).max(1);
     let frame_every = (steps / 10).max(1);
-    let mut state = conduction
-        .uniform_state(args.initial_k)
-        .with_context(|| format!("conduction model `{name}`"))?;
-    let mut wall = vec![0.0; n_panels];
-    let mut q = vec![0.0; n_panels];
-    let mut nodes = vec![0.0; conduction.n_nodes()];
     let mut history = History {
         model: name.to_owned(),
         time_s: Vec::new(),
@@ -208,65 +230,43 @@ fn run_model(
         mean_k: Vec::new(),
         conduction_wall_time_s: 0.0,
         steps,
-        states: conduction.n_states(),
+        states: heating.conduction().n_states(),
         final_node_temperatures_k: Vec::new(),
         stopped: None,
         surface_frames: Vec::new(),
     };
-    record(conduction, 0.0, &state, &mut nodes, &mut history);
-    let mut t_end = steps as f64 * args.dt_s;
+    record(&mut heating, &mut history);
     let mut progress = Progress::new(format!("heat: {name}"), steps);
     for k in 0..steps {
-        let t = k as f64 * args.dt_s;
-        if k % flux_every == 0 {
-            conduction.surface_temperatures(&state, &mut wall);
-            if let Err(e) = heat.heat_flux(&s.mesh, &s.flight, &s.aero, &wall, &mut q) {
-                history.stopped = Some(format!("heat flux for `{name}` at t = {t:.3} s: {e}"));
-                t_end = t;
-                break;
-            }
-        }
         if k % frame_every == 0 {
-            history.surface_frames.push((t, wall.clone(), q.clone()));
+            let wall = heating.wall_temperatures_k().to_vec();
+            let q = heating.heat_flux_w_m2().to_vec();
+            history.surface_frames.push((heating.time_s(), wall, q));
         }
-        let start = Instant::now();
-        let mut trial = state.clone();
-        if let Err(e) = conduction.step(&mut trial, &q, args.dt_s) {
+        if let Err(e) = heating.advance(args.dt_s) {
             // Keep the last good state: what was computed so far stays in the outputs.
-            history.stopped = Some(format!("conduction model `{name}` at t = {t:.3} s: {e}"));
-            t_end = t;
+            history.stopped = Some(e.to_string());
             break;
         }
-        state = trial;
         progress.update(k + 1);
-        history.conduction_wall_time_s += start.elapsed().as_secs_f64();
         if (k + 1) % record_every == 0 || k + 1 == steps {
-            record(
-                conduction,
-                (k + 1) as f64 * args.dt_s,
-                &state,
-                &mut nodes,
-                &mut history,
-            );
+            record(&mut heating, &mut history);
         }
     }
     if history.stopped.is_some() {
-        record(conduction, t_end, &state, &mut nodes, &mut history);
+        record(&mut heating, &mut history);
     }
-    conduction.surface_temperatures(&state, &mut wall);
-    history.surface_frames.push((t_end, wall, q));
-    Ok(history)
+    history.conduction_wall_time_s = heating.diagnostics().wall_time_s;
+    let wall = heating.wall_temperatures_k().to_vec();
+    let q = heating.heat_flux_w_m2().to_vec();
+    history.surface_frames.push((heating.time_s(), wall, q));
+    Ok((history, heating))
 }
 
-/// Appends the structure's min/max/mean node temperature at time `t` to `h`.
-fn record(
-    conduction: &dyn ConductionModel,
-    t: f64,
-    state: &nalgebra::DVector<f64>,
-    nodes: &mut [f64],
-    h: &mut History,
-) {
-    conduction.node_temperatures(state, nodes);
+/// Appends the structure's min/max/mean node temperature at the current time to `h`.
+fn record(heating: &mut SurfaceHeating, h: &mut History) {
+    let t = heating.time_s();
+    let nodes = heating.node_temperatures_k();
     h.time_s.push(t);
     h.min_k
         .push(nodes.iter().copied().fold(f64::INFINITY, f64::min));
@@ -276,64 +276,6 @@ fn record(
         .push(nodes.iter().sum::<f64>() / nodes.len().max(1) as f64);
     h.final_node_temperatures_k.clear();
     h.final_node_temperatures_k.extend_from_slice(nodes);
-}
-
-/// Builds and saves the POD basis from full-order snapshots at the snapshot Mach numbers.
-fn build_pod_basis(
-    loaded: &LoadedConfig,
-    registry: &Registry,
-    args: &HeatArgs,
-    mach: f64,
-    path: &std::path::Path,
-    modes: usize,
-) -> Result<PodBasis> {
-    let full_settings: FullOrderSettings = hsv_core::config::parse_table(
-        loaded.model_settings("full-order"),
-        &loaded.file,
-        "models.full-order",
-    )?;
-    let machs = if args.snapshot_mach.is_empty() {
-        // Bracket the run's heating from below and at it: a snapshot run hotter than the run
-        // itself could leave the material data (Mach 7 at 10 km nears the solidus in 100 s).
-        vec![(mach - 1.0).max(1.5), (mach - 0.5).max(1.5), mach]
-    } else {
-        args.snapshot_mach.clone()
-    };
-    let region = loaded.region(HEATED_REGION)?;
-    let pod_settings = region.model_settings("pod");
-    let mut full =
-        hsv_model_conduction::full_order_for(&ModelContext::new(&region, registry, &pod_settings))?;
-    let steps = (args.duration_s / args.dt_s).round().max(1.0) as usize;
-    let every = (steps / 100).max(1);
-    let mut snapshots = Vec::new();
-    for &m in &machs {
-        check_positive("--snapshot-mach", m)?;
-        let s = setup(loaded, registry, args, m)?;
-        let settings = s.region.model_settings(&s.heat_flux);
-        let mut heat = registry.create::<dyn HeatFluxModel>(
-            &s.heat_flux,
-            &ModelContext::new(&s.region, registry, &settings),
-        )?;
-        let mut progress = Progress::new(format!("POD snapshots at Mach {m}"), steps);
-        let mut done = 0;
-        let run = hsv_model_conduction::collect_snapshots(
-            &mut full,
-            args.initial_k,
-            args.dt_s,
-            steps,
-            every,
-            |wall, q| {
-                done += 1;
-                progress.update(done);
-                heat.heat_flux(&s.mesh, &s.flight, &s.aero, wall, q)
-            },
-        )
-        .with_context(|| format!("full-order snapshot run at Mach {m}"))?;
-        snapshots.extend(run);
-    }
-    let basis = PodBasis::from_snapshots(&snapshots, modes, full_settings)?;
-    basis.save(path)?;
-    Ok(basis)
 }
 
 /// Runs the heating job and writes the run folder.
@@ -353,50 +295,41 @@ pub fn run(args: HeatArgs, registry: &Registry) -> Result<()> {
     } else {
         args.models.clone()
     };
-    let s = setup(&loaded, registry, &args, mach)?;
+    let mut s = setup(&loaded, &args, mach)?;
     let folder = output::run_folder("heat", args.out.as_deref())?;
     let mut notes = Vec::new();
     let mut histories = Vec::new();
+    let mut transfers = Vec::new();
     for name in &models {
         if name == "pod" {
-            let pod: PodSettings = hsv_core::config::parse_table(
-                loaded.model_settings("pod"),
-                &loaded.file,
-                "models.pod",
-            )?;
-            let path = PathBuf::from(&pod.basis_file);
-            if !path.exists() {
-                let basis = build_pod_basis(&loaded, registry, &args, mach, &path, pod.modes)?;
-                notes.push(format!(
-                    "built POD basis {} ({} modes from {} snapshots, energy fraction {:.9})",
-                    path.display(),
-                    basis.n_modes(),
-                    basis.n_snapshots,
-                    basis.energy_fraction
-                ));
+            train_pod_for_run(&mut s, &args, mach)?;
+            let basis = s
+                .region
+                .model_settings("pod")
+                .table
+                .get("basis_file")
+                .and_then(|v| v.as_str().map(str::to_owned))
+                .unwrap_or_else(|| "pod-basis.json".to_owned());
+            let before = std::fs::metadata(&basis).and_then(|m| m.modified()).ok();
+            if before.is_none() {
+                eprintln!("heat: training the POD basis {basis} from full-order runs (once)");
             }
+            let (history, heating) = run_model(name, &s, registry, &args, 200)?;
+            let after = std::fs::metadata(&basis).and_then(|m| m.modified()).ok();
+            notes.push(if before.is_some() && before == after {
+                format!("POD basis {basis}: reused (built from these conditions)")
+            } else {
+                format!("POD basis {basis}: trained from full-order runs at this run's conditions")
+            });
+            transfers.push(structure_transfer(&s, registry, heating.conduction())?);
+            histories.push(history);
+            continue;
         }
-        let settings = s.region.model_settings(name);
-        let mut conduction = registry.create::<dyn ConductionModel>(
-            name,
-            &ModelContext::new(&s.region, registry, &settings),
-        )?;
-        let settings = s.region.model_settings(&s.heat_flux);
-        let mut heat = registry.create::<dyn HeatFluxModel>(
-            &s.heat_flux,
-            &ModelContext::new(&s.region, registry, &settings),
-        )?;
-        histories.push(run_model(
-            name,
-            conduction.as_mut(),
-            heat.as_mut(),
-            &s,
-            &args,
-            200,
-        )?);
+        let (history, heating) = run_model(name, &s, registry, &args, 200)?;
+        transfers.push(structure_transfer(&s, registry, heating.conduction())?);
+        histories.push(history);
     }
-    let grids = temperature_field_grids(&loaded, registry)?;
-    write_outputs(&folder, &s, &histories, grids.as_ref())?;
+    write_outputs(&folder, &s, &histories, &transfers)?;
 
     if args.json.json {
         let models: Vec<_> = histories
@@ -432,7 +365,7 @@ pub fn run(args: HeatArgs, registry: &Registry) -> Result<()> {
     }
     println!(
         "lifting surface ({} panels) at Mach {mach}, {} m, alpha {:.2} deg for {} s (dt {} s), heat flux `{}`",
-        s.mesh.panels.len(),
+        s.region.mesh.panels.len(),
         s.flight.freestream.altitude_m,
         s.flight.alpha_rad.to_degrees(),
         args.duration_s,
@@ -482,61 +415,68 @@ fn stopped_error(histories: &[History], folder: &std::path::Path) -> Result<()> 
     )
 }
 
-/// The conduction grid and the lifting-surface structure's grid, when the structure is a
-/// `ritz-plate` on the vehicle planform: node temperatures are handed from one to the other.
-fn temperature_field_grids(
-    loaded: &LoadedConfig,
+/// The transfer of a conduction model's node temperatures onto the grid of the region's
+/// structure model, when both have a grid (the structure is built by name to ask it), with a
+/// description of the target grid.
+fn structure_transfer(
+    s: &Setup,
     registry: &Registry,
-) -> Result<Option<(SurfaceGrid, SurfaceGrid)>> {
-    let region = loaded.region(HEATED_REGION)?;
-    let structure_name = loaded
-        .config
-        .regions
-        .region(HEATED_REGION)
-        .and_then(|r| r.structure);
-    if structure_name.as_deref() != Some("ritz-plate") {
+    conduction: &dyn ConductionModel,
+) -> Result<Option<(GridTransfer, String)>> {
+    let Some(structure_name) = &s.structure else {
+        return Ok(None);
+    };
+    let region = &s.region;
+    let settings = region.model_settings(structure_name);
+    let structure = registry
+        .create::<dyn StructureModel>(
+            structure_name,
+            &ModelContext::new(region, registry, &settings),
+        )
+        .with_context(|| {
+            format!(
+                "structure model `{structure_name}` of region `{}`",
+                region.name
+            )
+        })?;
+    let (Some(source), Some(target)) = (
+        conduction.node_grid(),
+        structure
+            .thermal_stiffness()
+            .and_then(|t| t.temperature_grid()),
+    ) else {
+        return Ok(None);
+    };
+    if source.side != target.side {
         return Ok(None);
     }
-    let settings = region.model_settings("ritz-plate");
-    let context = ModelContext::new(&region, registry, &settings);
-    let ritz: hsv_model_ritz_plate::Settings = context.parse_settings()?;
-    if ritz.planform != hsv_model_ritz_plate::PlanformChoice::Vehicle {
+    let Ok(transfer) = GridTransfer::new(source, target) else {
+        // Another planform (a rectangular test plate): the conduction nodes are written as they are.
         return Ok(None);
-    }
-    let full: FullOrderSettings =
-        ModelContext::new(&region, registry, &region.model_settings("full-order"))
-            .parse_settings()?;
-    // Node order is the same on both sides; resample on the right-hand planform.
-    let conduction = SurfaceGrid::lifting_surface(
-        &loaded.config.lifting_surface,
-        Side::Right,
-        full.elements_chordwise,
-        full.elements_spanwise,
-    )?;
-    let (structure, _) = hsv_model_ritz_plate::structural_grid(&ritz, &context)?;
-    Ok(Some((conduction, structure)))
+    };
+    Ok(Some((
+        transfer,
+        format!(
+            "the {structure_name} grid ({} x {} elements)",
+            target.elements_chordwise, target.elements_spanwise
+        ),
+    )))
 }
 
 /// The final structural temperatures as the `node,temperature_k` CSV that
-/// `hsv-run modes --temperature-field` reads: resampled from the conduction grid onto the
-/// structure's grid when both are known (`grids`), else the conduction model's own nodes.
+/// `hsv-run modes --temperature-field` reads: transferred from the conduction grid onto the
+/// structure's grid when both are known, else the conduction model's own nodes.
 fn write_temperature_field(
     folder: &std::path::Path,
     h: &History,
-    grids: Option<&(SurfaceGrid, SurfaceGrid)>,
+    transfer: Option<&(GridTransfer, String)>,
 ) -> Result<()> {
     let path = folder.join(format!("temperature_field_{}.csv", h.model));
-    let (values, on) = match grids {
-        Some((conduction, structure))
-            if conduction.n_nodes() == h.final_node_temperatures_k.len() =>
-        {
-            (
-                conduction.resample(&h.final_node_temperatures_k, structure),
-                format!(
-                    "the ritz-plate grid ({} x {} elements)",
-                    structure.elements_chordwise, structure.elements_spanwise
-                ),
-            )
+    let (values, on) = match transfer {
+        Some((transfer, on)) if transfer.n_source() == h.final_node_temperatures_k.len() => {
+            let mut values = vec![0.0; transfer.n_target()];
+            transfer.apply(&h.final_node_temperatures_k, &mut values)?;
+            (values, on.clone())
         }
         _ => (
             h.final_node_temperatures_k.clone(),
@@ -561,10 +501,10 @@ fn write_outputs(
     folder: &std::path::Path,
     s: &Setup,
     histories: &[History],
-    grids: Option<&(SurfaceGrid, SurfaceGrid)>,
+    transfers: &[Option<(GridTransfer, String)>],
 ) -> Result<()> {
     let mut plots = Vec::new();
-    for h in histories {
+    for (h, transfer) in histories.iter().zip(transfers) {
         output::write_csv(
             &folder.join(format!("temperature_history_{}.csv", h.model)),
             &[
@@ -588,7 +528,7 @@ fn write_outputs(
             let file = format!("surface_{}_{i:03}.vtk", h.model);
             output::write_vtk_mesh(
                 &folder.join(&file),
-                &s.mesh,
+                &s.region.mesh,
                 &[],
                 &[("temperature_k", wall), ("heat_flux_w_m2", q)],
             )?;
@@ -596,7 +536,7 @@ fn write_outputs(
         }
         let entries: Vec<(f64, &str)> = pvd.iter().map(|(t, f)| (*t, f.as_str())).collect();
         output::write_pvd(&folder.join(format!("surface_{}.pvd", h.model)), &entries)?;
-        write_temperature_field(folder, h, grids)?;
+        write_temperature_field(folder, h, transfer.as_ref())?;
     }
     output::write_line_plots_png(
         &folder.join("temperature_range.png"),

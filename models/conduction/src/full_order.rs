@@ -201,6 +201,8 @@ fn material_error(e: hsv_core::material::MaterialError) -> ModelError {
 #[derive(Debug, Clone)]
 pub struct FullOrder {
     settings: Settings,
+    /// The surface grid the thermal grid is built through (node temperatures are on it).
+    plate: SurfaceGrid,
     grid: ThermalGrid,
     materials: Vec<Material>,
     constant_properties: bool,
@@ -266,11 +268,17 @@ impl FullOrder {
             solution: vec![0.0; n],
             picard_iterations: 0,
             settings,
+            plate: grid.clone(),
             grid: thermal,
             materials,
             panels,
             node_average,
         })
+    }
+
+    /// The surface grid the model is built on.
+    pub fn plate_grid(&self) -> &SurfaceGrid {
+        &self.plate
     }
 
     pub fn settings(&self) -> &Settings {
@@ -527,6 +535,10 @@ impl ConductionModel for FullOrder {
         for (i, out) in out_k.iter_mut().enumerate().take(p.dofs.len()) {
             *out = (0..4).map(|a| p.weights[i][a] * state[p.dofs[i][a]]).sum();
         }
+    }
+
+    fn node_grid(&self) -> Option<&SurfaceGrid> {
+        Some(&self.plate)
     }
 
     fn node_temperatures(&self, state: &DVector<f64>, out_k: &mut [f64]) {

@@ -7,6 +7,7 @@
 pub mod full_order;
 pub mod grid;
 pub mod pod;
+pub mod training;
 
 use hsv_core::error::ModelError;
 use hsv_core::mesh::PanelMesh;
@@ -16,6 +17,7 @@ use hsv_core::thermal::ConductionModel;
 
 pub use full_order::{FullOrder, Settings as FullOrderSettings};
 pub use pod::{Pod, PodBasis, Settings as PodSettings, collect_snapshots};
+pub use training::Training as PodTraining;
 
 /// The settings error for `key` under the model's table.
 fn settings_error(ctx: &ModelContext<'_>, key: &str, value: f64, allowed: &str) -> ModelError {
@@ -69,20 +71,41 @@ pub fn full_order_for(ctx: &ModelContext<'_>) -> Result<FullOrder, ModelError> {
 
 fn construct_pod(ctx: &ModelContext<'_>) -> Result<Box<dyn ConductionModel>, ModelError> {
     let settings: PodSettings = ctx.parse_settings()?;
-    let full = full_order_for(ctx)?;
+    let mut full = full_order_for(ctx)?;
     let path = std::path::Path::new(&settings.basis_file);
-    if !path.exists() {
-        return Err(ctx.settings_error(
-            "basis_file",
-            format!(
-                "POD basis file `{}` does not exist; build one from full-order snapshots \
-                 (`hsv-run heat` does, or hsv_model_conduction::collect_snapshots, \
-                 PodBasis::from_snapshots and PodBasis::save)",
-                settings.basis_file
-            ),
-        ));
-    }
-    let basis = PodBasis::load(path)?;
+    let basis = match &settings.training {
+        None if !path.exists() => {
+            return Err(ctx.settings_error(
+                "basis_file",
+                format!(
+                    "POD basis file `{}` does not exist; give a [models.pod.training] table to \
+                     train one, or build one from full-order snapshots \
+                     (hsv_model_conduction::collect_snapshots, PodBasis::from_snapshots, \
+                     PodBasis::save)",
+                    settings.basis_file
+                ),
+            ));
+        }
+        None => PodBasis::load(path)?,
+        Some(training) => {
+            if let Some((key, value, allowed)) = training.first_invalid() {
+                return Err(settings_error(ctx, &key, value, allowed));
+            }
+            let fingerprint = training::fingerprint(ctx, training, &full)?;
+            match PodBasis::load(path) {
+                Ok(basis) if basis.fingerprint == fingerprint => basis,
+                // Missing, unreadable or built from something else: train and replace it.
+                _ => {
+                    let mut basis =
+                        training::train_basis(ctx, training, &mut full, settings.modes)?;
+                    basis.training = Some(training.clone());
+                    basis.fingerprint = fingerprint;
+                    basis.save(path)?;
+                    basis
+                }
+            }
+        }
+    };
     Ok(Box::new(Pod::new(&full, basis, settings)?))
 }
 

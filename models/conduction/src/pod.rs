@@ -32,10 +32,12 @@ use std::path::Path;
 use hsv_core::error::ModelError;
 use hsv_core::linalg::BandedMatrix;
 use hsv_core::material::Material;
+use hsv_core::surface_grid::SurfaceGrid;
 use hsv_core::thermal::{ConductionModel, check_step_inputs};
 use nalgebra::{DMatrix, DVector, SymmetricEigen};
 
 use crate::full_order::{FullOrder, Settings as FullOrderSettings};
+use crate::training::Training;
 
 /// Registered name.
 pub const NAME: &str = "pod";
@@ -59,6 +61,13 @@ pub struct PodBasis {
     pub n_snapshots: usize,
     /// Lowest and highest snapshot temperature, K (the range of the property fits).
     pub temperature_range_k: (f64, f64),
+    /// The conditions the snapshots were run at, when the model trained it.
+    #[serde(default)]
+    pub training: Option<Training>,
+    /// What the basis was built from ([`crate::training::fingerprint`]); empty for a basis
+    /// built by hand, which is used as it is.
+    #[serde(default)]
+    pub fingerprint: String,
 }
 
 impl PodBasis {
@@ -153,6 +162,8 @@ impl PodBasis {
             energy_fraction: if total > 0.0 { retained / total } else { 1.0 },
             n_snapshots: m,
             temperature_range_k: (lo, hi),
+            training: None,
+            fingerprint: String::new(),
         })
     }
 
@@ -300,6 +311,9 @@ pub struct Settings {
     /// temperature change) is below this, K.
     pub picard_tolerance_k: f64,
     pub max_picard_iterations: usize,
+    /// `[models.pod.training]`: when given, a missing basis, or one built from anything else
+    /// (conditions, grid, planform, base-model settings), is trained anew and saved.
+    pub training: Option<Training>,
 }
 
 impl Default for Settings {
@@ -309,6 +323,7 @@ impl Default for Settings {
             modes: 32,
             picard_tolerance_k: 1e-3,
             max_picard_iterations: 30,
+            training: None,
         }
     }
 }
@@ -318,12 +333,24 @@ pub const SETTINGS_DOC: &str = "\
 basis_file = \"pod-basis.json\"  # POD basis (JSON); grid and materials from [models.full-order]
 modes = 32                     # modes used (paper: 32), at most the basis's
 picard_tolerance_k = 1e-3      # Picard convergence on the mode coefficients, K
-max_picard_iterations = 30     # Picard iterations allowed per step";
+max_picard_iterations = 30     # Picard iterations allowed per step
+[models.pod.training]          # optional: train the basis when missing or built from other conditions
+heat_flux = \"eckert\"           # heat-flux model of the snapshot runs (any registered name)
+aero = \"shock-expansion\"       # aero model giving the edge states
+mach = [5.0, 5.5, 6.0]         # one full-order run per Mach number
+altitude_m = 10000.0           # m (paper: 10 km)
+alpha_deg = 0.0
+duration_s = 100.0             # s in the flow per run (paper: up to 100 s)
+dt_s = 0.1                     # conduction step, s
+snapshots_per_run = 100
+initial_k = 293.0              # uniform initial temperature, K";
 
 /// The POD Galerkin conduction model (module docs). State: the r mode coefficients.
 #[derive(Debug, Clone)]
 pub struct Pod {
     settings: Settings,
+    /// The full-order model's surface grid (node temperatures are on it).
+    plate: SurfaceGrid,
     basis: PodBasis,
     r: usize,
     k0: DMatrix<f64>,
@@ -468,6 +495,7 @@ impl Pod {
             iterate: DVector::zeros(r),
             rhs: DVector::zeros(r),
             picard_iterations: 0,
+            plate: full.plate_grid().clone(),
             settings,
             basis,
             r,
@@ -614,6 +642,10 @@ impl ConductionModel for Pod {
                 self.settings.picard_tolerance_k, self.settings.max_picard_iterations
             ),
         ))
+    }
+
+    fn node_grid(&self) -> Option<&SurfaceGrid> {
+        Some(&self.plate)
     }
 
     fn surface_temperatures(&self, state: &DVector<f64>, out_k: &mut [f64]) {

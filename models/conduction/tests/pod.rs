@@ -258,3 +258,129 @@ fn context<'a>(settings: &'a toml::Table, _config: &'a toml::Table) -> ModelCont
         registry: hsv_core::testing::builtin_registry(),
     }
 }
+
+/// Heat flux q = 1e5 (T_ref − T_w) / 300 K W/m² with T_ref = 1200 K: a test stand-in for a
+/// registered heat-flux model.
+struct RelaxingFlux;
+
+impl hsv_core::thermal::HeatFluxModel for RelaxingFlux {
+    fn name(&self) -> &str {
+        "relaxing-flux"
+    }
+    fn heat_flux(
+        &mut self,
+        _mesh: &PanelMesh,
+        _flight: &hsv_core::flow::FlightCondition,
+        _aero: &hsv_core::aero::AeroSolution,
+        wall_temperature_k: &[f64],
+        out_w_m2: &mut [f64],
+    ) -> Result<(), hsv_core::ModelError> {
+        for (q, t) in out_w_m2.iter_mut().zip(wall_temperature_k) {
+            *q = 1e5 * (1200.0 - t) / 300.0;
+        }
+        Ok(())
+    }
+}
+
+/// Freestream pressure on every panel: a test stand-in for a registered aero model.
+struct FreestreamAero;
+
+impl hsv_core::aero::AeroModel for FreestreamAero {
+    fn name(&self) -> &str {
+        "freestream-aero"
+    }
+    fn evaluate(
+        &mut self,
+        mesh: &PanelMesh,
+        flight: &hsv_core::flow::FlightCondition,
+        _motion: &hsv_core::aero::PanelMotion<'_>,
+        out: &mut hsv_core::aero::AeroSolution,
+    ) -> Result<(), hsv_core::ModelError> {
+        out.reset(mesh.panels.len());
+        out.pressure_pa.fill(flight.freestream.pressure_pa);
+        Ok(())
+    }
+}
+
+/// The built-in models plus the two stand-ins.
+fn training_registry() -> Registry {
+    use hsv_core::registry::{Factory, Origin, RegistryEntry};
+    use std::sync::Arc;
+    let mut registry = Registry::builtin().unwrap();
+    let entry = |name: &str, factory: Factory| RegistryEntry {
+        name: name.to_owned(),
+        fidelity: 0,
+        summary: String::new(),
+        settings_doc: String::new(),
+        origin: Origin::BuiltIn("pod test".to_owned()),
+        factory,
+    };
+    registry
+        .insert(entry(
+            "relaxing-flux",
+            Factory::HeatFlux(Arc::new(|_| Ok(Box::new(RelaxingFlux)))),
+        ))
+        .unwrap();
+    registry
+        .insert(entry(
+            "freestream-aero",
+            Factory::Aero(Arc::new(|_| Ok(Box::new(FreestreamAero)))),
+        ))
+        .unwrap();
+    registry
+}
+
+/// A `pod` with a `[training]` table trains its basis when the file is missing, reuses it when
+/// it was built from the same conditions, and retrains when anything it records changes.
+#[test]
+fn a_training_table_trains_reuses_and_retrains_the_basis() {
+    let dir = std::env::temp_dir().join(format!("hsv-pod-training-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    let path = dir.join("basis.json");
+    let settings = |mach: &str| -> toml::Table {
+        toml::from_str(&format!(
+            "basis_file = {:?}\nmodes = 6\n[training]\nheat_flux = \"relaxing-flux\"\n\
+             aero = \"freestream-aero\"\nmach = [{mach}]\nduration_s = 1.0\n\
+             dt_s = 0.1\nsnapshots_per_run = 5\n",
+            path.display().to_string()
+        ))
+        .unwrap()
+    };
+    let region = hsv_core::testing::sample_region("right_surface");
+    let registry = &training_registry();
+    let build = |table: &toml::Table| {
+        let ctx = ModelContext {
+            settings: table,
+            key_path: "models.pod",
+            file: "test.toml",
+            region,
+            registry,
+        };
+        registry.create::<dyn hsv_core::thermal::ConductionModel>("pod", &ctx)
+    };
+    let first = settings("5.0, 6.0");
+    let model = build(&first).expect("trains");
+    assert_eq!(model.n_states(), 6);
+    let saved = PodBasis::load(&path).expect("saved");
+    assert!(!saved.fingerprint.is_empty());
+    assert_eq!(saved.n_snapshots, 10, "5 snapshots from each of 2 runs");
+    assert_eq!(
+        saved.training.as_ref().map(|t| t.mach.clone()),
+        Some(vec![5.0, 6.0])
+    );
+    // Same conditions: the file is reused as it is.
+    build(&first).expect("reuses");
+    assert_eq!(PodBasis::load(&path).unwrap(), saved);
+    // Other conditions: retrained and replaced.
+    build(&settings("6.5, 7.0")).expect("retrains");
+    let retrained = PodBasis::load(&path).unwrap();
+    assert_ne!(retrained.fingerprint, saved.fingerprint);
+    assert_eq!(retrained.training.map(|t| t.mach), Some(vec![6.5, 7.0]));
+    // A bad training value names its key.
+    let mut bad = settings("0.5");
+    bad.insert("modes".into(), toml::Value::Integer(4));
+    let err = build(&bad).err().expect("refused").to_string();
+    assert!(err.contains("models.pod.training.mach[0]"), "{err}");
+    let _ = std::fs::remove_dir_all(&dir);
+}

@@ -1184,6 +1184,12 @@ impl ThermalStiffness for RitzPlate {
     fn set_temperatures(&mut self, node_temperatures_k: &[f64]) -> Result<(), ModelError> {
         self.update_temperatures(node_temperatures_k, None)
     }
+
+    /// The structural grid; the right surface's, so the left surface's temperatures are taken
+    /// in the same node order (the mirror image).
+    fn temperature_grid(&self) -> Option<&SurfaceGrid> {
+        Some(&self.plate.grid)
+    }
 }
 
 impl RootLoads for RitzPlate {

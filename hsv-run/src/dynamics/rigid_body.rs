@@ -1,0 +1,302 @@
+//! Rigid-body motion of the vehicle's body frame (paper Eq. 1, β and ζ rows): Newton-Euler
+//! equations about the centre of mass in body axes, flat-earth NED position, quaternion
+//! attitude, and gravity varying with altitude.
+//!
+//! **Reference point.** The body frame's origin is the vehicle's centre of mass (with the
+//! lifting surfaces' rigid mass lumped in): for the free-free body's mean axes the origin is
+//! the instantaneous centre of mass and the rigid and elastic equations decouple (Waszak &
+//! Schmidt, "Flight dynamics of aeroelastic vehicles", J. Aircraft 25(6), 1988). Loads are
+//! body-axis forces and moments about the centre of mass; [`moment_about`] moves a moment from
+//! another point (the nose, a pivot).
+//!
+//! **Attitude: a quaternion.** The body → earth rotation is carried as a unit quaternion, not
+//! 3-2-1 Euler angles, because the Euler kinematics are singular at θ = ±90° (a tumbling test
+//! body, a pull-up through the vertical) and the quaternion is not; Euler angles are computed
+//! from it for output ([`RigidBodyState::euler_angles`]), and the linearization layout can
+//! carry Euler angles instead (`vehicle::AttitudeCoordinates::Euler321`), where a minimal,
+//! unconstrained set is what a linear model needs.
+
+use hsv_core::aero::Loads;
+use hsv_core::atmosphere;
+use hsv_core::frames;
+use hsv_core::structure::MassProperties;
+use nalgebra::{Matrix3, Point3, Quaternion, UnitQuaternion, Vector3};
+use serde::{Deserialize, Serialize};
+
+use super::DynamicsError;
+
+/// The rigid-body state of the body frame: plain data (serializable, cloneable for rollback and
+/// linearization).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct RigidBodyState {
+    /// Centre-of-mass position in the flat-earth NED frame, m (altitude = −down).
+    pub position_ned_m: Vector3<f64>,
+    /// Body → earth rotation: `v_ned = attitude * v_body`.
+    pub attitude: UnitQuaternion<f64>,
+    /// β: centre-of-mass velocity relative to the earth, body axes (u, v, w), m/s.
+    pub velocity_body_m_s: Vector3<f64>,
+    /// ζ: angular velocity relative to the earth, body axes (p, q, r), rad/s.
+    pub angular_velocity_body_rad_s: Vector3<f64>,
+}
+
+impl Default for RigidBodyState {
+    fn default() -> Self {
+        Self {
+            position_ned_m: Vector3::zeros(),
+            attitude: UnitQuaternion::identity(),
+            velocity_body_m_s: Vector3::zeros(),
+            angular_velocity_body_rad_s: Vector3::zeros(),
+        }
+    }
+}
+
+impl RigidBodyState {
+    /// A state from 3-2-1 Euler angles (roll φ, pitch θ, yaw ψ), rad.
+    pub fn from_euler(
+        position_ned_m: Vector3<f64>,
+        (roll_rad, pitch_rad, yaw_rad): (f64, f64, f64),
+        velocity_body_m_s: Vector3<f64>,
+        angular_velocity_body_rad_s: Vector3<f64>,
+    ) -> Self {
+        Self {
+            position_ned_m,
+            attitude: frames::attitude_from_euler(roll_rad, pitch_rad, yaw_rad),
+            velocity_body_m_s,
+            angular_velocity_body_rad_s,
+        }
+    }
+
+    /// Steady level flight at altitude `altitude_m`, heading north at airspeed `airspeed_m_s`
+    /// with angle of attack `alpha_rad` (pitch θ = α, no wind).
+    pub fn level_flight(altitude_m: f64, airspeed_m_s: f64, alpha_rad: f64) -> Self {
+        Self::from_euler(
+            Vector3::new(0.0, 0.0, -altitude_m),
+            (0.0, alpha_rad, 0.0),
+            frames::body_velocity_from_wind(airspeed_m_s, alpha_rad, 0.0),
+            Vector3::zeros(),
+        )
+    }
+
+    /// 3-2-1 Euler angles (roll φ, pitch θ, yaw ψ), rad.
+    pub fn euler_angles(&self) -> (f64, f64, f64) {
+        frames::euler_from_attitude(&self.attitude)
+    }
+
+    /// Geometric altitude h = −z_NED, m.
+    pub fn altitude_m(&self) -> f64 {
+        -self.position_ned_m.z
+    }
+
+    /// Centre-of-mass velocity in NED axes, m/s.
+    pub fn velocity_ned_m_s(&self) -> Vector3<f64> {
+        self.attitude * self.velocity_body_m_s
+    }
+
+    /// (airspeed m/s, α rad, β rad) of the centre of mass in a wind given in NED axes (m/s):
+    /// the body-axis velocity relative to the air, β − C_be w.
+    pub fn air_data(&self, wind_ned_m_s: &Vector3<f64>) -> (f64, f64, f64) {
+        let relative =
+            self.velocity_body_m_s - self.attitude.inverse_transform_vector(wind_ned_m_s);
+        frames::wind_angles(&relative)
+    }
+}
+
+/// How gravity varies over the flight (DESIGN §4: flat earth, altitude-dependent gravity
+/// unless the config says otherwise).
+#[derive(Debug, Clone, Copy, PartialEq, Default, Serialize, Deserialize)]
+#[serde(tag = "kind", rename_all = "kebab-case", deny_unknown_fields)]
+pub enum GravityModel {
+    /// g(h) = g0 (R_e / (R_e + h))², g0 = 9.80665 m/s², R_e = 6 356 766 m (USSA-1976 eq. 17;
+    /// [`hsv_core::atmosphere::gravity`]).
+    #[default]
+    InverseSquare,
+    /// The same g at every altitude, m/s² (textbook linear models assume this).
+    Uniform { g_m_s2: f64 },
+    /// No gravity (torque-free and force-free tests).
+    Off,
+}
+
+impl GravityModel {
+    /// Gravitational acceleration at geometric altitude `altitude_m`, m/s², pointing down.
+    pub fn magnitude_m_s2(&self, altitude_m: f64) -> f64 {
+        match *self {
+            GravityModel::InverseSquare => atmosphere::gravity(altitude_m),
+            GravityModel::Uniform { g_m_s2 } => g_m_s2,
+            GravityModel::Off => 0.0,
+        }
+    }
+}
+
+/// The time derivative of a [`RigidBodyState`].
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct RigidBodyDerivative {
+    /// ṗ = C_eb β, m/s.
+    pub position_rate_ned_m_s: Vector3<f64>,
+    /// q̇ = ½ q ⊗ (0, ζ).
+    pub attitude_rate: Quaternion<f64>,
+    /// β̇: rate of change of the body-axis velocity components, m/s².
+    pub acceleration_body_m_s2: Vector3<f64>,
+    /// ζ̇: rate of change of the body-axis angular velocity, rad/s².
+    pub angular_acceleration_body_rad_s2: Vector3<f64>,
+    /// Gravity in body axes, as used, m/s².
+    pub gravity_body_m_s2: Vector3<f64>,
+}
+
+impl Default for RigidBodyDerivative {
+    fn default() -> Self {
+        Self {
+            position_rate_ned_m_s: Vector3::zeros(),
+            attitude_rate: Quaternion::new(0.0, 0.0, 0.0, 0.0),
+            acceleration_body_m_s2: Vector3::zeros(),
+            angular_acceleration_body_rad_s2: Vector3::zeros(),
+            gravity_body_m_s2: Vector3::zeros(),
+        }
+    }
+}
+
+impl RigidBodyDerivative {
+    /// Inertial acceleration of the centre of mass in body axes, β̇ + ζ × β, m/s².
+    pub fn inertial_acceleration_m_s2(&self, state: &RigidBodyState) -> Vector3<f64> {
+        self.acceleration_body_m_s2
+            + state
+                .angular_velocity_body_rad_s
+                .cross(&state.velocity_body_m_s)
+    }
+}
+
+/// The rigid body: mass, inertia about the centre of mass, and the gravity model.
+#[derive(Debug, Clone, PartialEq)]
+pub struct RigidBody {
+    mass_kg: f64,
+    inertia_kg_m2: Matrix3<f64>,
+    inverse_inertia: Matrix3<f64>,
+    center_of_mass_m: Point3<f64>,
+    gravity: GravityModel,
+}
+
+impl RigidBody {
+    /// From the vehicle's mass properties (mass, centre of mass in the structural axes, inertia
+    /// tensor about the centre of mass); the error names a non-positive mass or an inertia that
+    /// is not symmetric positive definite.
+    pub fn new(mass: &MassProperties, gravity: GravityModel) -> Result<Self, DynamicsError> {
+        if !(mass.mass_kg.is_finite() && mass.mass_kg > 0.0) {
+            return Err(DynamicsError::InvalidParameter {
+                quantity: "vehicle mass (kg)".into(),
+                value: mass.mass_kg,
+                allowed: "finite and > 0",
+            });
+        }
+        if let GravityModel::Uniform { g_m_s2 } = gravity
+            && !g_m_s2.is_finite()
+        {
+            return Err(DynamicsError::InvalidParameter {
+                quantity: "uniform gravity (m/s²)".into(),
+                value: g_m_s2,
+                allowed: "finite",
+            });
+        }
+        let i = mass.inertia_kg_m2;
+        let diagonal_kg_m2 = [i[(0, 0)], i[(1, 1)], i[(2, 2)]];
+        let scale = i.abs().max();
+        let symmetric = (i - i.transpose()).abs().max() <= 1e-9 * scale;
+        let inverse = i
+            .cholesky()
+            .filter(|_| symmetric && i.iter().all(|v| v.is_finite()))
+            .map(|c| c.inverse())
+            .ok_or(DynamicsError::InertiaNotPositiveDefinite { diagonal_kg_m2 })?;
+        Ok(Self {
+            mass_kg: mass.mass_kg,
+            inertia_kg_m2: i,
+            inverse_inertia: inverse,
+            center_of_mass_m: mass.center_of_mass_m,
+            gravity,
+        })
+    }
+
+    pub fn mass_kg(&self) -> f64 {
+        self.mass_kg
+    }
+
+    /// Inertia tensor about the centre of mass, body axes, kg m².
+    pub fn inertia_kg_m2(&self) -> &Matrix3<f64> {
+        &self.inertia_kg_m2
+    }
+
+    /// Centre of mass in the structural (nose-origin) body axes, m.
+    pub fn center_of_mass_m(&self) -> Point3<f64> {
+        self.center_of_mass_m
+    }
+
+    pub fn gravity_model(&self) -> GravityModel {
+        self.gravity
+    }
+
+    /// Gravity in body axes, g_b = C_be (0, 0, g(h)), m/s².
+    pub fn gravity_body_m_s2(&self, state: &RigidBodyState) -> Vector3<f64> {
+        let g = self.gravity.magnitude_m_s2(state.altitude_m());
+        state
+            .attitude
+            .inverse_transform_vector(&Vector3::new(0.0, 0.0, g))
+    }
+
+    /// The state derivative for body-axis loads about the centre of mass (gravity excluded; it
+    /// is added here): m(β̇ + ζ × β) = F + m g_b, J ζ̇ + ζ × J ζ = M, ṗ = C_eb β,
+    /// q̇ = ½ q ⊗ (0, ζ).
+    ///
+    /// Reference: Stevens, Lewis & Johnson, *Aircraft Control and Simulation*, 3rd ed. (2016),
+    /// ch. 1 (rigid-body equations in body axes over a flat earth).
+    pub fn derivative(&self, state: &RigidBodyState, loads: &Loads) -> RigidBodyDerivative {
+        let beta = &state.velocity_body_m_s;
+        let zeta = &state.angular_velocity_body_rad_s;
+        let gravity_body = self.gravity_body_m_s2(state);
+        let acceleration = loads.force_n / self.mass_kg + gravity_body - zeta.cross(beta);
+        let angular_momentum = self.inertia_kg_m2 * zeta;
+        let angular_acceleration =
+            self.inverse_inertia * (loads.moment_nm - zeta.cross(&angular_momentum));
+        RigidBodyDerivative {
+            position_rate_ned_m_s: state.attitude * beta,
+            attitude_rate: frames::attitude_rate(&state.attitude, zeta),
+            acceleration_body_m_s2: acceleration,
+            angular_acceleration_body_rad_s2: angular_acceleration,
+            gravity_body_m_s2: gravity_body,
+        }
+    }
+
+    /// Position of a structural point relative to the centre of mass, body axes, m.
+    pub fn offset_from_center_of_mass(&self, point_m: &Point3<f64>) -> Vector3<f64> {
+        point_m - self.center_of_mass_m
+    }
+}
+
+/// The loads about `to` of loads given about `from` (same force):
+/// M_to = M_from + (r_from − r_to) × F.
+pub fn moment_about(loads: &Loads, from_m: &Point3<f64>, to_m: &Point3<f64>) -> Loads {
+    Loads {
+        force_n: loads.force_n,
+        moment_nm: loads.moment_nm + (from_m - to_m).cross(&loads.force_n),
+    }
+}
+
+/// Inertial acceleration, in body axes, of a point moving in the body frame at `offset_m`
+/// from the centre of mass with velocity `relative_velocity_m_s` and acceleration
+/// `relative_acceleration_m_s2` relative to the body axes:
+/// a = a_cm + ζ̇ × d + ζ × (ζ × d) + 2 ζ × ḋ + d̈.
+///
+/// Reference: Greenwood, *Principles of Dynamics*, 2nd ed. (1988), ch. 2 (motion relative to
+/// a rotating frame).
+pub fn point_acceleration(
+    state: &RigidBodyState,
+    derivative: &RigidBodyDerivative,
+    offset_m: &Vector3<f64>,
+    relative_velocity_m_s: &Vector3<f64>,
+    relative_acceleration_m_s2: &Vector3<f64>,
+) -> Vector3<f64> {
+    let zeta = &state.angular_velocity_body_rad_s;
+    derivative.inertial_acceleration_m_s2(state)
+        + derivative
+            .angular_acceleration_body_rad_s2
+            .cross(offset_m)
+        + zeta.cross(&zeta.cross(offset_m))
+        + 2.0 * zeta.cross(relative_velocity_m_s)
+        + relative_acceleration_m_s2
+}

@@ -351,7 +351,7 @@ mod tests {
         };
         let u = normal.cross(&a).normalize() * 0.5;
         let w = normal.cross(&u);
-        let corners = [-u - w, u - w, u + w, -u + w].map(|c| Point3::from(c));
+        let corners = [-u - w, u - w, u + w, -u + w].map(Point3::from);
         let mesh = PanelMesh::new(
             corners.to_vec(),
             &[PanelSpec::quad(0, 1, 2, 3, 0)],

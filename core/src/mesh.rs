@@ -143,6 +143,63 @@ pub enum MeshError {
     ModeShapeSize { rows: usize, n_vertices: usize },
 }
 
+/// How a mesh closes up as the surface of a solid ([`PanelMesh::closure`]).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Closure {
+    /// Edges used by one panel only (holes, open ends).
+    pub boundary_edges: usize,
+    /// Edges shared by more than two panels (non-manifold).
+    pub overshared_edges: usize,
+    /// Edges whose two panels traverse them in the same direction (normals on opposite sides).
+    pub misoriented_edges: usize,
+    /// Signed enclosed volume, m³: positive when the normals point out of the solid.
+    pub enclosed_volume_m3: f64,
+}
+
+impl Closure {
+    /// Every edge shared by exactly two panels (watertight, manifold).
+    pub fn is_closed(&self) -> bool {
+        self.boundary_edges == 0 && self.overshared_edges == 0
+    }
+
+    /// Closed, consistently oriented, and the normals point outward (positive volume).
+    pub fn is_closed_outward(&self) -> bool {
+        self.is_closed() && self.misoriented_edges == 0 && self.enclosed_volume_m3 > 0.0
+    }
+
+    /// Closed and consistently oriented with every normal pointing into the solid.
+    pub fn is_closed_inward(&self) -> bool {
+        self.is_closed() && self.misoriented_edges == 0 && self.enclosed_volume_m3 < 0.0
+    }
+
+    /// What is wrong with the mesh as a solid's surface, e.g. "12 open edges"; empty if nothing.
+    pub fn problems(&self) -> Vec<String> {
+        let mut problems = Vec::new();
+        if self.boundary_edges > 0 {
+            problems.push(format!(
+                "{} open edges (used by one facet only)",
+                self.boundary_edges
+            ));
+        }
+        if self.overshared_edges > 0 {
+            problems.push(format!(
+                "{} edges shared by more than two facets",
+                self.overshared_edges
+            ));
+        }
+        if self.misoriented_edges > 0 {
+            problems.push(format!(
+                "{} edges where neighbouring facets face opposite ways",
+                self.misoriented_edges
+            ));
+        }
+        if problems.is_empty() && self.enclosed_volume_m3 == 0.0 {
+            problems.push("zero enclosed volume".to_owned());
+        }
+        problems
+    }
+}
+
 /// A panel mesh: shared vertices, panels, optional streamwise strips and named surfaces.
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct PanelMesh {
@@ -340,9 +397,8 @@ impl PanelMesh {
     }
 
     /// Directed edges of every panel, counted by undirected edge: (uses a->b with a<b, uses b->a).
-    fn edge_uses(&self) -> HashMap<(usize, usize), (u32, u32)> {
-        let mut edges: HashMap<(usize, usize), (u32, u32)> =
-            HashMap::with_capacity(self.panels.len() * 2);
+    fn edge_uses(&self) -> FastMap<(usize, usize), (u32, u32)> {
+        let mut edges: FastMap<(usize, usize), (u32, u32)> = fast_map(self.panels.len() * 2);
         for p in &self.panels {
             let idx = p.vertex_indices();
             for k in 0..idx.len() {
@@ -367,6 +423,41 @@ impl PanelMesh {
     /// normals point to the same side.
     pub fn is_consistently_oriented(&self) -> bool {
         self.edge_uses().values().all(|&(f, b)| f <= 1 && b <= 1)
+    }
+
+    /// How the panels close up as the surface of a solid: open and over-shared edges, edges
+    /// two panels traverse the same way, and the signed enclosed volume (positive outward).
+    pub fn closure(&self) -> Closure {
+        let mut closure = Closure {
+            boundary_edges: 0,
+            overshared_edges: 0,
+            misoriented_edges: 0,
+            enclosed_volume_m3: self.enclosed_volume_m3(),
+        };
+        for &(forward, backward) in self.edge_uses().values() {
+            match forward + backward {
+                1 => closure.boundary_edges += 1,
+                2 if forward != 1 => closure.misoriented_edges += 1,
+                2 => {}
+                _ => closure.overshared_edges += 1,
+            }
+        }
+        closure
+    }
+
+    /// Turns every panel inside out: reverses its vertex order and recomputes its geometry
+    /// (same area and centroid, opposite normal).
+    pub fn reverse_orientation(&mut self) {
+        for panel in &mut self.panels {
+            let [a, b, c, d] = panel.vertices;
+            panel.vertices = if panel.vertex_count == 4 {
+                [a, d, c, b]
+            } else {
+                [a, c, b, b]
+            };
+            panel.normal = -panel.normal;
+        }
+        self.update_geometry();
     }
 
     /// Appends `other`, offsetting its vertex, panel and surface indices.
@@ -489,74 +580,119 @@ pub fn bounding_box_of(points: &[Point3<f64>]) -> (Point3<f64>, Point3<f64>) {
     })
 }
 
+/// FxHash (the rustc hasher): one multiply-rotate per word. Keys here are integers built from
+/// coordinates and indices, not attacker-chosen, so SipHash's DoS resistance buys nothing and
+/// costs most of an STL read.
+#[derive(Default, Clone, Copy)]
+struct FxHasher(u64);
+
+impl std::hash::Hasher for FxHasher {
+    fn write(&mut self, bytes: &[u8]) {
+        for chunk in bytes.chunks(8) {
+            let mut word = [0u8; 8];
+            word[..chunk.len()].copy_from_slice(chunk);
+            self.write_u64(u64::from_le_bytes(word));
+        }
+    }
+    fn write_u64(&mut self, word: u64) {
+        self.0 = (self.0.rotate_left(5) ^ word).wrapping_mul(0x51_7c_c1_b7_27_22_0a_95);
+    }
+    fn write_usize(&mut self, word: usize) {
+        self.write_u64(word as u64);
+    }
+    fn finish(&self) -> u64 {
+        self.0
+    }
+}
+
+type FastMap<K, V> = HashMap<K, V, std::hash::BuildHasherDefault<FxHasher>>;
+
+fn fast_map<K, V>(capacity: usize) -> FastMap<K, V> {
+    FastMap::with_capacity_and_hasher(capacity, Default::default())
+}
+
 /// Merges points closer than `tolerance_m` (first come, first kept) with a uniform hash grid.
 ///
-/// Returns the unique points and, for each input point, its index among them.
+/// Returns the unique points and, for each input point, its index among them. Bit-identical
+/// copies (the usual duplicates of an STL file) are merged first by one hash lookup each; the
+/// distinct points then go through a grid of cells 2 × tolerance wide, where a point's
+/// neighbours within the tolerance lie in the 2 × 2 × 2 cells on its nearer sides.
 pub fn weld_vertices(points: &[Point3<f64>], tolerance_m: f64) -> (Vec<Point3<f64>>, Vec<usize>) {
     let tol = if tolerance_m.is_finite() && tolerance_m > 0.0 {
         tolerance_m
     } else {
         0.0
     };
-    let mut unique: Vec<Point3<f64>> = Vec::with_capacity(points.len());
-    let mut map = Vec::with_capacity(points.len());
+    let (distinct, mut map) = merge_identical(points);
     if tol == 0.0 {
-        // Exact matches only.
-        let mut seen: HashMap<[u64; 3], usize> = HashMap::with_capacity(points.len());
-        for p in points {
-            let key = [p.x.to_bits(), p.y.to_bits(), p.z.to_bits()];
-            let id = *seen.entry(key).or_insert_with(|| {
-                unique.push(*p);
-                unique.len() - 1
-            });
-            map.push(id);
-        }
-        return (unique, map);
+        return (distinct, map);
     }
-    let cell_of = |p: &Point3<f64>| -> [i64; 3] {
-        // `as` saturates for huge values, which only coarsens the grid there.
-        [
-            (p.x / tol).floor() as i64,
-            (p.y / tol).floor() as i64,
-            (p.z / tol).floor() as i64,
-        ]
-    };
-    let mut grid: HashMap<[i64; 3], Vec<usize>> = HashMap::with_capacity(points.len());
+    let cell = 2.0 * tol;
+    // `as` saturates for huge values, which only coarsens the grid there.
+    let cell_of = |x: f64| (x / cell).floor() as i64;
+    // Cell key -> first point in it; `next` chains the points of a cell.
+    let mut heads: FastMap<(i64, i64, i64), usize> = fast_map(distinct.len());
+    let mut next = vec![usize::MAX; distinct.len()];
+    let mut unique: Vec<Point3<f64>> = Vec::with_capacity(distinct.len());
+    let mut renumber = Vec::with_capacity(distinct.len());
     let tol2 = tol * tol;
-    for p in points {
-        let c = cell_of(p);
+    for p in &distinct {
+        let c = [cell_of(p.x), cell_of(p.y), cell_of(p.z)];
+        // The neighbour cell on the side of the nearer cell face.
+        let side = |x: f64, c: i64| {
+            if x - c as f64 * cell < tol {
+                c.saturating_sub(1)
+            } else {
+                c.saturating_add(1)
+            }
+        };
+        let n = [side(p.x, c[0]), side(p.y, c[1]), side(p.z, c[2])];
         let mut found = None;
-        'search: for dx in -1i64..=1 {
-            for dy in -1i64..=1 {
-                for dz in -1i64..=1 {
-                    let key = [
-                        c[0].saturating_add(dx),
-                        c[1].saturating_add(dy),
-                        c[2].saturating_add(dz),
-                    ];
-                    if let Some(ids) = grid.get(&key) {
-                        for &id in ids {
-                            if (unique[id] - p).norm_squared() <= tol2 {
-                                found = Some(id);
-                                break 'search;
-                            }
+        'search: for x in [c[0], n[0]] {
+            for y in [c[1], n[1]] {
+                for z in [c[2], n[2]] {
+                    let mut id = heads.get(&(x, y, z)).copied().unwrap_or(usize::MAX);
+                    while id != usize::MAX {
+                        if (unique[id] - p).norm_squared() <= tol2 {
+                            found = Some(id);
+                            break 'search;
                         }
+                        id = next[id];
                     }
                 }
             }
         }
-        let id = match found {
-            Some(id) => id,
-            None => {
-                unique.push(*p);
-                let id = unique.len() - 1;
-                grid.entry(c).or_default().push(id);
-                id
+        let id = found.unwrap_or_else(|| {
+            let id = unique.len();
+            unique.push(*p);
+            if let Some(head) = heads.insert((c[0], c[1], c[2]), id) {
+                next[id] = head;
             }
-        };
-        map.push(id);
+            id
+        });
+        renumber.push(id);
+    }
+    for m in &mut map {
+        *m = renumber[*m];
     }
     (unique, map)
+}
+
+/// Bit-identical points merged (first kept): the distinct points and each input's index.
+fn merge_identical(points: &[Point3<f64>]) -> (Vec<Point3<f64>>, Vec<usize>) {
+    let mut seen: FastMap<(u64, u64, u64), usize> = fast_map(points.len() / 2);
+    let mut distinct = Vec::with_capacity(points.len() / 2);
+    let map = points
+        .iter()
+        .map(|p| {
+            let key = (p.x.to_bits(), p.y.to_bits(), p.z.to_bits());
+            *seen.entry(key).or_insert_with(|| {
+                distinct.push(*p);
+                distinct.len() - 1
+            })
+        })
+        .collect();
+    (distinct, map)
 }
 
 /// Modal displacement field on a mesh: column k holds the displacement (x,y,z interleaved per

@@ -228,75 +228,82 @@ fn parse_ascii(bytes: &[u8], origin: &str) -> Result<Vec<Facet>, StlError> {
         /// After `endsolid`: another `solid` or the end.
         Done,
     }
-    let parse_xyz = |line: usize, what: &str, toks: &[&str]| -> Result<Vector3<f64>, StlError> {
-        if toks.len() != 3 {
+    // Three numbers and nothing else from `toks`.
+    let parse_xyz = |line: usize,
+                     what: &str,
+                     toks: &mut std::str::SplitAsciiWhitespace<'_>|
+     -> Result<Vector3<f64>, StlError> {
+        let mut v = [0.0; 3];
+        let mut count = 0;
+        for tok in toks {
+            if count < 3 {
+                v[count] = tok
+                    .parse::<f64>()
+                    .map_err(|_| err(line, format!("`{tok}` in `{what}` is not a number")))?;
+            }
+            count += 1;
+        }
+        if count != 3 {
             return Err(err(
                 line,
-                format!("`{what}` needs 3 numbers, found {}", toks.len()),
+                format!("`{what}` needs 3 numbers, found {count}"),
             ));
-        }
-        let mut v = [0.0; 3];
-        for (slot, tok) in v.iter_mut().zip(toks) {
-            *slot = tok
-                .parse::<f64>()
-                .map_err(|_| err(line, format!("`{tok}` in `{what}` is not a number")))?;
         }
         Ok(Vector3::new(v[0], v[1], v[2]))
     };
+    // True when `tok` is `word`, any case.
+    let is = |tok: Option<&str>, word: &str| tok.is_some_and(|t| t.eq_ignore_ascii_case(word));
     let mut state = State::Start;
-    let mut facets = Vec::new();
+    let mut facets = Vec::with_capacity(bytes.len() / 250);
     let mut normal = Vector3::zeros();
-    let mut verts: Vec<Point3<f64>> = Vec::with_capacity(3);
+    let mut verts: [Point3<f64>; 3] = [Point3::origin(); 3];
+    let mut n_verts = 0;
     let mut last_line = 0;
     for (i, raw) in text.lines().enumerate() {
         let line = i + 1;
         last_line = line;
-        let toks: Vec<&str> = raw.split_whitespace().collect();
-        let Some(first) = toks.first() else {
+        let mut toks = raw.split_ascii_whitespace();
+        let Some(first) = toks.next() else {
             continue;
         };
-        let kw = first.to_ascii_lowercase();
-        match (state, kw.as_str()) {
-            (State::Start | State::Done, "solid") => state = State::Solid,
-            (State::Solid, "facet") => {
-                if toks.get(1).map(|t| t.to_ascii_lowercase()).as_deref() != Some("normal") {
+        let kw = Keyword::of(first);
+        match (state, kw) {
+            (State::Start | State::Done, Keyword::Solid) => state = State::Solid,
+            (State::Solid, Keyword::Facet) => {
+                if !is(toks.next(), "normal") {
                     return Err(err(line, "expected `facet normal nx ny nz`".to_owned()));
                 }
-                normal = parse_xyz(line, "facet normal", &toks[2..])?;
+                normal = parse_xyz(line, "facet normal", &mut toks)?;
                 state = State::Facet;
             }
-            (State::Solid, "endsolid") => state = State::Done,
-            (State::Facet, "outer") => {
-                if toks.get(1).map(|t| t.to_ascii_lowercase()).as_deref() != Some("loop")
-                    || toks.len() != 2
-                {
+            (State::Solid, Keyword::EndSolid) => state = State::Done,
+            (State::Facet, Keyword::Outer) => {
+                if !is(toks.next(), "loop") || toks.next().is_some() {
                     return Err(err(line, "expected `outer loop`".to_owned()));
                 }
-                verts.clear();
+                n_verts = 0;
                 state = State::Loop;
             }
-            (State::Loop, "vertex") => {
-                if verts.len() == 3 {
+            (State::Loop, Keyword::Vertex) => {
+                if n_verts == 3 {
                     return Err(err(
                         line,
                         "more than 3 vertices in a facet (only triangles are allowed)".to_owned(),
                     ));
                 }
-                verts.push(Point3::from(parse_xyz(line, "vertex", &toks[1..])?));
+                verts[n_verts] = Point3::from(parse_xyz(line, "vertex", &mut toks)?);
+                n_verts += 1;
             }
-            (State::Loop, "endloop") => {
-                if verts.len() != 3 {
-                    return Err(err(
-                        line,
-                        format!("facet has {} vertices, needs 3", verts.len()),
-                    ));
+            (State::Loop, Keyword::EndLoop) => {
+                if n_verts != 3 {
+                    return Err(err(line, format!("facet has {n_verts} vertices, needs 3")));
                 }
                 state = State::EndLoop;
             }
-            (State::EndLoop, "endfacet") => {
+            (State::EndLoop, Keyword::EndFacet) => {
                 facets.push(Facet {
                     normal,
-                    vertices: [verts[0], verts[1], verts[2]],
+                    vertices: verts,
                 });
                 state = State::Solid;
             }
@@ -325,6 +332,37 @@ fn parse_ascii(bytes: &[u8], origin: &str) -> Result<Vec<Facet>, StlError> {
         }
     }
     Ok(facets)
+}
+
+/// The first word of an ASCII STL line, any case.
+#[derive(Clone, Copy, PartialEq)]
+enum Keyword {
+    Solid,
+    Facet,
+    Outer,
+    Vertex,
+    EndLoop,
+    EndFacet,
+    EndSolid,
+    Other,
+}
+
+impl Keyword {
+    fn of(word: &str) -> Self {
+        const WORDS: [(&str, Keyword); 7] = [
+            ("vertex", Keyword::Vertex),
+            ("facet", Keyword::Facet),
+            ("outer", Keyword::Outer),
+            ("endloop", Keyword::EndLoop),
+            ("endfacet", Keyword::EndFacet),
+            ("solid", Keyword::Solid),
+            ("endsolid", Keyword::EndSolid),
+        ];
+        WORDS
+            .iter()
+            .find(|(w, _)| w.eq_ignore_ascii_case(word))
+            .map_or(Keyword::Other, |&(_, k)| k)
+    }
 }
 
 /// Welds, drops degenerate facets, orients by the stored normals and builds the mesh.

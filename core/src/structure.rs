@@ -77,8 +77,26 @@ pub trait ThermalStiffness {
     /// Number of structural node temperatures [`Self::set_temperatures`] expects.
     fn temperature_nodes(&self) -> usize;
 
-    /// Updates stiffness from structural node temperatures (K).
+    /// Updates stiffness from structural node temperatures (K), uniform through the thickness.
     fn set_temperatures(&mut self, node_temperatures_k: &[f64]) -> Result<(), ModelError>;
+
+    /// Updates stiffness and the thermal-moment load from mean node temperatures and
+    /// through-thickness differences (lower face minus upper face, K, linear in z). Models
+    /// without bending from a thermal gradient take the mean only.
+    fn set_temperature_field(
+        &mut self,
+        mean_k: &[f64],
+        difference_k: &[f64],
+    ) -> Result<(), ModelError> {
+        let _ = difference_k;
+        self.set_temperatures(mean_k)
+    }
+
+    /// Generalized force of the thermal moment of the latest temperature field (one per mode),
+    /// added to the applied generalized forces; `None` when the model has no thermal moments.
+    fn thermal_generalized_forces(&self) -> Option<&DVector<f64>> {
+        None
+    }
 
     /// The surface grid whose nodes [`Self::set_temperatures`] takes, if the model has one:
     /// what a conduction model's node temperatures are interpolated onto.
@@ -89,13 +107,20 @@ pub trait ThermalStiffness {
 
 /// Forces and moments a structure exerts on its support.
 pub trait RootLoads {
-    /// Root force and moment (body axes; moment about the support's reference point, the
-    /// lifting surface's pivot) from modal coordinates, velocities and accelerations.
+    /// The point root moments are taken about (a lifting surface's pivot), body axes, m.
+    fn root_reference_m(&self) -> Point3<f64>;
+
+    /// Root force and moment (body axes, about [`Self::root_reference_m`]) by force summation
+    /// over the free structure: `applied`, the resultant about the root reference of every
+    /// external load on it (aero pressure, for example from `coupling::pressure_loads`), minus
+    /// the inertia of the elastic motion. Stiffness and damping forces are internal, so a
+    /// truncated modal basis enters only through the accelerations.
     fn root_loads(
         &self,
         modal_coordinates: &DVector<f64>,
         modal_velocities: &DVector<f64>,
         modal_accelerations: &DVector<f64>,
+        applied: &Loads,
     ) -> Result<Loads, ModelError>;
 }
 

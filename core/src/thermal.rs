@@ -201,6 +201,14 @@ pub trait ConductionModel: Send {
     /// Temperature of each structural node, K (what the structure model degrades stiffness from).
     fn node_temperatures(&self, state: &DVector<f64>, out_k: &mut [f64]);
 
+    /// Through-thickness temperature difference of the structure at each node, K: its lower
+    /// face (z down, the larger z) minus its upper face, what a plate's thermal moment comes
+    /// from. Models without through-thickness resolution report zeros.
+    fn node_temperature_differences(&self, state: &DVector<f64>, out_k: &mut [f64]) {
+        let _ = state;
+        out_k.fill(0.0);
+    }
+
     /// The surface grid whose nodes [`Self::node_temperatures`] reports on, if the model has
     /// one: what a structure's temperature grid is interpolated from
     /// ([`crate::coupling::GridTransfer`]).

@@ -7,7 +7,7 @@ use clap::Args;
 use hsv_core::registry::Registry;
 
 use super::{ConfigArg, JsonFlag, load_config};
-use crate::aero_job::{self, AeroMesh, AeroRequest};
+use crate::aero_job::{self, AeroMesh, AeroRequest, FrictionRequest};
 
 /// Arguments of `hsv-run aero`.
 #[derive(Args, Debug, Clone)]
@@ -45,6 +45,20 @@ pub struct AeroArgs {
     /// aero model, as an unpowered vehicle.
     #[arg(long)]
     pub include_engine_surfaces: bool,
+    /// Add skin friction: the wall shear of the main body's heat-flux model
+    /// ([regions.main_body] heat_flux, else `eckert`) on the aero model's edge states, reported
+    /// separately and in the total.
+    #[arg(long)]
+    pub friction: bool,
+    /// Wall temperature for --friction, K (one value on every panel; default 300, a cold
+    /// structure; radiative equilibrium is not computed here).
+    #[arg(
+        long = "wall-temperature-k",
+        default_value_t = 300.0,
+        requires = "friction",
+        allow_negative_numbers = true
+    )]
+    pub wall_temperature_k: f64,
     #[command(flatten)]
     pub json: JsonFlag,
 }
@@ -96,13 +110,26 @@ pub fn run(args: AeroArgs, registry: &Registry) -> Result<()> {
         reference,
         include_engine_surfaces: args.include_engine_surfaces,
     };
-    let rows = aero_job::run_aero(&loaded, registry, &mesh, &request)?;
+    let friction = args.friction.then(|| {
+        let t = args.wall_temperature_k;
+        if t.is_finite() && t > 0.0 {
+            Ok(FrictionRequest::from_config(&loaded, t))
+        } else {
+            Err(anyhow::anyhow!(
+                "--wall-temperature-k must be a positive number of kelvin, got {t}"
+            ))
+        }
+    });
+    let friction = friction.transpose()?;
+    let rows =
+        aero_job::run_aero_with_friction(&loaded, registry, &mesh, &request, friction.as_ref())?;
+    let flight_condition = aero_job::flight_condition(&loaded, &request)?;
 
     if args.json.json {
         let models: Vec<_> = rows
             .iter()
             .map(|r| {
-                serde_json::json!({
+                let mut row = serde_json::json!({
                     "model": r.model,
                     "force_body_n": [r.loads.force_n.x, r.loads.force_n.y, r.loads.force_n.z],
                     "moment_body_nm": [r.loads.moment_nm.x, r.loads.moment_nm.y, r.loads.moment_nm.z],
@@ -114,7 +141,11 @@ pub fn run(args: AeroArgs, registry: &Registry) -> Result<()> {
                     "cn": r.coefficients.cn,
                     "diagnostics": r.diagnostics,
                     "evaluation_time_s": r.evaluation_time_s,
-                })
+                });
+                if let Some(f) = &r.friction {
+                    add_friction_json(&mut row, r, f, &flight_condition);
+                }
+                row
             })
             .collect();
         let summary = serde_json::json!({
@@ -205,6 +236,79 @@ pub fn run(args: AeroArgs, registry: &Registry) -> Result<()> {
         if !notes.is_empty() {
             println!("{:<24} note: {}", "", notes.join(", "));
         }
+        if let Some(f) = &r.friction {
+            print_friction_rows(r, f, &flight_condition);
+        }
     }
     Ok(())
+}
+
+/// Friction keys of one model's JSON row: friction force, moment, drag and drag coefficient,
+/// the pressure drag, and the pressure + friction totals.
+fn add_friction_json(
+    row: &mut serde_json::Value,
+    r: &aero_job::AeroRow,
+    f: &aero_job::FrictionLoads,
+    flight: &hsv_core::flow::FlightCondition,
+) {
+    let total = r.total_loads();
+    let pressure_drag_n = aero_job::drag_n(&r.loads, flight);
+    let (fl, tf, tm) = (f.loads.force_n, total.force_n, total.moment_nm);
+    let extra = serde_json::json!({
+        "friction_heat_flux_model": f.heat_flux_model,
+        "friction_wall_temperature_k": f.wall_temperature_k,
+        "friction_force_body_n": [fl.x, fl.y, fl.z],
+        "friction_moment_body_nm": [f.loads.moment_nm.x, f.loads.moment_nm.y, f.loads.moment_nm.z],
+        "friction_drag_n": f.drag_n,
+        "friction_drag_coefficient": f.coefficients.cd,
+        "pressure_drag_n": pressure_drag_n,
+        "total_force_body_n": [tf.x, tf.y, tf.z],
+        "total_moment_body_nm": [tm.x, tm.y, tm.z],
+        "total_drag_n": pressure_drag_n + f.drag_n,
+        "total_cd": r.coefficients.cd + f.coefficients.cd,
+        "total_cl": r.coefficients.cl + f.coefficients.cl,
+        "total_cm": r.coefficients.cm + f.coefficients.cm,
+    });
+    if let (Some(row), serde_json::Value::Object(extra)) = (row.as_object_mut(), extra) {
+        row.extend(extra);
+    }
+}
+
+/// The friction and total lines under one model's row of the table.
+fn print_friction_rows(
+    r: &aero_job::AeroRow,
+    f: &aero_job::FrictionLoads,
+    flight: &hsv_core::flow::FlightCondition,
+) {
+    let total = r.total_loads();
+    for (label, loads, cl, cd, cm) in [
+        (
+            format!("  friction ({})", f.heat_flux_model),
+            f.loads,
+            f.coefficients.cl,
+            f.coefficients.cd,
+            f.coefficients.cm,
+        ),
+        (
+            "  pressure + friction".to_owned(),
+            total,
+            r.coefficients.cl + f.coefficients.cl,
+            r.coefficients.cd + f.coefficients.cd,
+            r.coefficients.cm + f.coefficients.cm,
+        ),
+    ] {
+        let (fo, m) = (loads.force_n, loads.moment_nm);
+        println!(
+            "{label:<24} {:>12.4e} {:>12.4e} {:>12.4e} {:>13.4e} {:>13.4e} {:>13.4e} {cl:>9.5} {cd:>9.5} {cm:>9.5}",
+            fo.x, fo.y, fo.z, m.x, m.y, m.z
+        );
+    }
+    println!(
+        "{:<24} drag: pressure {:.4e} N, friction {:.4e} N (wall at {} K), total {:.4e} N",
+        "",
+        aero_job::drag_n(&r.loads, flight),
+        f.drag_n,
+        f.wall_temperature_k,
+        aero_job::drag_n(&total, flight)
+    );
 }

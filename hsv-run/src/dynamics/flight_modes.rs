@@ -75,7 +75,9 @@ pub enum ModeName {
     Spiral,
     Heading,
     Position,
-    Structural { mode: usize },
+    Structural {
+        mode: usize,
+    },
     /// Longitudinal, none of the above.
     Longitudinal,
     /// Lateral-directional, none of the above.

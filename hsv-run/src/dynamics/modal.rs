@@ -145,14 +145,22 @@ impl ModalDynamics {
         let name = &self.name;
         check_len(|| format!("{name}: modal coordinates"), n, state.q.len())?;
         check_len(|| format!("{name}: modal velocities"), n, state.q_dot.len())?;
-        check_len(|| format!("{name}: generalized forces"), n, generalized_force.len())?;
+        check_len(
+            || format!("{name}: generalized forces"),
+            n,
+            generalized_force.len(),
+        )?;
         check_len(|| format!("{name}: modal rate buffer"), n, out.q_ddot.len())?;
         check_len(|| format!("{name}: modal rate buffer"), n, out.q_dot.len())?;
         self.rhs.copy_from(generalized_force);
         self.rhs.gemv(-1.0, &self.damping, &state.q_dot, 1.0);
         self.rhs.gemv(-1.0, &self.stiffness, &state.q, 1.0);
         if let Some((coupling, root_acceleration)) = rigid {
-            check_len(|| format!("{name}: rigid coupling rows"), n, coupling.nrows())?;
+            check_len(
+                || format!("{name}: rigid coupling rows"),
+                n,
+                coupling.nrows(),
+            )?;
             check_len(
                 || format!("{name}: root accelerations"),
                 coupling.ncols(),
@@ -214,7 +222,11 @@ pub struct SurfaceAttachment {
 impl SurfaceAttachment {
     /// From a structure's rigid-body coupling capability, with the pivot fixed to the body
     /// frame (no body-mode motion at the pivot; set [`Self::body_modes_at_pivot`] to add it).
-    pub fn from_coupling(name: &str, coupling: &dyn RigidBodyCoupling, n_body_modes: usize) -> Self {
+    pub fn from_coupling(
+        name: &str,
+        coupling: &dyn RigidBodyCoupling,
+        n_body_modes: usize,
+    ) -> Self {
         Self {
             name: name.to_owned(),
             pivot_m: coupling.rigid_reference_point_m(),

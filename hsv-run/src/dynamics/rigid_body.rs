@@ -293,9 +293,7 @@ pub fn point_acceleration(
 ) -> Vector3<f64> {
     let zeta = &state.angular_velocity_body_rad_s;
     derivative.inertial_acceleration_m_s2(state)
-        + derivative
-            .angular_acceleration_body_rad_s2
-            .cross(offset_m)
+        + derivative.angular_acceleration_body_rad_s2.cross(offset_m)
         + zeta.cross(&zeta.cross(offset_m))
         + 2.0 * zeta.cross(relative_velocity_m_s)
         + relative_acceleration_m_s2

@@ -111,7 +111,10 @@ impl VehicleDynamics {
                     body.n_modes(),
                     attachment.body_modes_at_pivot.ncols(),
                 )?;
-                check_finite(|| format!("{name}: rigid coupling"), attachment.coupling.iter())?;
+                check_finite(
+                    || format!("{name}: rigid coupling"),
+                    attachment.coupling.iter(),
+                )?;
                 Ok(Surface {
                     root_acceleration: DVector::zeros(attachment.dofs.len()),
                     modal,
@@ -219,13 +222,21 @@ impl VehicleDynamics {
         out: &mut VehicleDerivative,
     ) -> Result<(), DynamicsError> {
         let n_surfaces = self.surfaces.len();
-        check_len(|| "surface modal states".into(), n_surfaces, state.surface_modes.len())?;
+        check_len(
+            || "surface modal states".into(),
+            n_surfaces,
+            state.surface_modes.len(),
+        )?;
         check_len(
             || "surface generalized forces".into(),
             n_surfaces,
             loads.surface_generalized_forces.len(),
         )?;
-        check_len(|| "surface modal rates".into(), n_surfaces, out.surface_modes.len())?;
+        check_len(
+            || "surface modal rates".into(),
+            n_surfaces,
+            out.surface_modes.len(),
+        )?;
         check_len(
             || "surface root motions".into(),
             n_surfaces,
@@ -368,17 +379,8 @@ impl StateLayout {
                 names.extend(["roll_rad", "pitch_rad", "yaw_rad"].map(String::from))
             }
         }
-        names.extend(
-            [
-                "u_m_s",
-                "v_m_s",
-                "w_m_s",
-                "p_rad_s",
-                "q_rad_s",
-                "r_rad_s",
-            ]
-            .map(String::from),
-        );
+        names
+            .extend(["u_m_s", "v_m_s", "w_m_s", "p_rad_s", "q_rad_s", "r_rad_s"].map(String::from));
         let mut modes = |prefix: &str, n: usize| {
             names.extend((1..=n).map(|k| format!("{prefix}_eta_{k}")));
             names.extend((1..=n).map(|k| format!("{prefix}_eta_dot_{k}_per_s")));
@@ -394,7 +396,11 @@ impl StateLayout {
     /// ([`super::flight_modes::flight_modes`]). Structural entries are numbered across the body
     /// and the surfaces in layout order.
     pub fn roles(&self) -> Vec<StateRole> {
-        let mut roles = vec![StateRole::Position, StateRole::Position, StateRole::Altitude];
+        let mut roles = vec![
+            StateRole::Position,
+            StateRole::Position,
+            StateRole::Altitude,
+        ];
         match self.attitude {
             AttitudeCoordinates::Quaternion => roles.extend([StateRole::Other; 4]),
             AttitudeCoordinates::Euler321 => {
@@ -419,7 +425,11 @@ impl StateLayout {
     }
 
     fn check_state(&self, state: &VehicleState) -> Result<(), DynamicsError> {
-        check_len(|| "body modal coordinates".into(), self.n_body_modes, state.body_modes.q.len())?;
+        check_len(
+            || "body modal coordinates".into(),
+            self.n_body_modes,
+            state.body_modes.q.len(),
+        )?;
         check_len(
             || "body modal velocities".into(),
             self.n_body_modes,
@@ -430,9 +440,22 @@ impl StateLayout {
             self.n_surface_modes.len(),
             state.surface_modes.len(),
         )?;
-        for (i, (&n, s)) in self.n_surface_modes.iter().zip(&state.surface_modes).enumerate() {
-            check_len(|| format!("surface {} Ritz coordinates", i + 1), n, s.q.len())?;
-            check_len(|| format!("surface {} Ritz velocities", i + 1), n, s.q_dot.len())?;
+        for (i, (&n, s)) in self
+            .n_surface_modes
+            .iter()
+            .zip(&state.surface_modes)
+            .enumerate()
+        {
+            check_len(
+                || format!("surface {} Ritz coordinates", i + 1),
+                n,
+                s.q.len(),
+            )?;
+            check_len(
+                || format!("surface {} Ritz velocities", i + 1),
+                n,
+                s.q_dot.len(),
+            )?;
         }
         Ok(())
     }
@@ -526,7 +549,8 @@ impl StateLayout {
             derivative.surface_modes.len(),
         )?;
         let d = &derivative.rigid;
-        dx.fixed_rows_mut::<3>(0).copy_from(&d.position_rate_ned_m_s);
+        dx.fixed_rows_mut::<3>(0)
+            .copy_from(&d.position_rate_ned_m_s);
         let a = Self::ATTITUDE;
         match self.attitude {
             AttitudeCoordinates::Quaternion => {
@@ -557,7 +581,12 @@ impl StateLayout {
             dx.rows_mut(start + n, n).copy_from(&m.q_ddot);
             Ok::<(), DynamicsError>(())
         };
-        write_rates("body", self.body_modes(), self.n_body_modes, &derivative.body_modes)?;
+        write_rates(
+            "body",
+            self.body_modes(),
+            self.n_body_modes,
+            &derivative.body_modes,
+        )?;
         for (i, (&n, m)) in self
             .n_surface_modes
             .iter()

@@ -541,6 +541,14 @@ impl ConductionModel for FullOrder {
         Some(&self.plate)
     }
 
+    /// T at the structure's lowest level minus T at its highest (levels run lower face first).
+    fn node_temperature_differences(&self, state: &DVector<f64>, out_k: &mut [f64]) {
+        let (lower, upper) = self.grid.structure_levels;
+        for (node, out) in out_k.iter_mut().enumerate().take(self.grid.n_plate_nodes) {
+            *out = state[self.grid.dof(node, lower)] - state[self.grid.dof(node, upper)];
+        }
+    }
+
     fn node_temperatures(&self, state: &DVector<f64>, out_k: &mut [f64]) {
         let levels = self.grid.n_levels;
         for (node, out) in out_k.iter_mut().enumerate().take(self.grid.n_plate_nodes) {

@@ -363,6 +363,8 @@ pub struct Pod {
     surface_map: DMatrix<f64>,
     /// Column i: structural node i's temperature per coefficient.
     node_map: DMatrix<f64>,
+    /// Column i: structural node i's lower-minus-upper face temperature per coefficient.
+    difference_map: DMatrix<f64>,
     /// Φᵀ 1: the coefficients of a uniform unit field.
     uniform: DVector<f64>,
     // Scratch.
@@ -485,8 +487,13 @@ impl Pod {
                 }
             }
         }
+        let (lower, upper) = grid.structure_levels;
+        let difference_map = DMatrix::from_fn(r, grid.n_plate_nodes, |j, node| {
+            phi[(grid.dof(node, lower), j)] - phi[(grid.dof(node, upper), j)]
+        });
         let uniform = phi.transpose() * DVector::from_element(n, 1.0);
         Ok(Self {
+            difference_map,
             matrix: BandedMatrix::zeros(r, r.saturating_sub(1)),
             capacity: DMatrix::zeros(r, r),
             conduction: DMatrix::zeros(r, r),
@@ -657,6 +664,16 @@ impl ConductionModel for Pod {
     fn node_temperatures(&self, state: &DVector<f64>, out_k: &mut [f64]) {
         for (i, out) in out_k.iter_mut().enumerate().take(self.node_map.ncols()) {
             *out = self.node_map.column(i).dot(state);
+        }
+    }
+
+    fn node_temperature_differences(&self, state: &DVector<f64>, out_k: &mut [f64]) {
+        for (i, out) in out_k
+            .iter_mut()
+            .enumerate()
+            .take(self.difference_map.ncols())
+        {
+            *out = self.difference_map.column(i).dot(state);
         }
     }
 }

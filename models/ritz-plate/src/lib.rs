@@ -1185,6 +1185,18 @@ impl ThermalStiffness for RitzPlate {
         self.update_temperatures(node_temperatures_k, None)
     }
 
+    fn set_temperature_field(
+        &mut self,
+        mean_k: &[f64],
+        difference_k: &[f64],
+    ) -> Result<(), ModelError> {
+        RitzPlate::set_temperature_field(self, mean_k, difference_k)
+    }
+
+    fn thermal_generalized_forces(&self) -> Option<&DVector<f64>> {
+        Some(RitzPlate::thermal_generalized_forces(self))
+    }
+
     /// The structural grid; the right surface's, so the left surface's temperatures are taken
     /// in the same node order (the mirror image).
     fn temperature_grid(&self) -> Option<&SurfaceGrid> {
@@ -1193,7 +1205,31 @@ impl ThermalStiffness for RitzPlate {
 }
 
 impl RootLoads for RitzPlate {
+    fn root_reference_m(&self) -> Point3<f64> {
+        RitzPlate::root_reference_m(self)
+    }
+
     fn root_loads(
+        &self,
+        modal_coordinates: &DVector<f64>,
+        modal_velocities: &DVector<f64>,
+        modal_accelerations: &DVector<f64>,
+        applied: &Loads,
+    ) -> Result<Loads, ModelError> {
+        self.root_loads_by_force_summation(
+            modal_coordinates,
+            modal_velocities,
+            modal_accelerations,
+            applied,
+        )
+    }
+}
+
+impl RitzPlate {
+    /// Root loads by the mode-displacement method, r = K_cf Φ q + M_cf Φ q̈ at the full model's
+    /// root row: misses the root row's own load and converges slowly for loads outside the
+    /// basis; kept to compare with [`RootLoads::root_loads`] (force summation).
+    pub fn root_loads_by_mode_displacement(
         &self,
         modal_coordinates: &DVector<f64>,
         modal_velocities: &DVector<f64>,

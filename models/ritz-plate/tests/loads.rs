@@ -5,7 +5,7 @@
 use approx::assert_relative_eq;
 use hsv_core::aero::Loads;
 use hsv_core::material::Material;
-use hsv_core::structure::{RootLoads, StructureModel};
+use hsv_core::structure::StructureModel;
 use hsv_core::surface_grid::SurfaceGrid;
 use hsv_model_ritz_plate::plate::{ElementState, PlateModel, Supports};
 use hsv_model_ritz_plate::{RitzPlate, Settings};
@@ -90,11 +90,16 @@ fn force_summation_root_load_equals_a_static_point_load_at_the_leading_edge() {
         .solve(&q_gen)
         .expect("static solve");
     let zero = DVector::zeros(q.len());
+    // Through the capability the coupling uses.
     let summed = model
-        .root_loads_by_force_summation(&q, &zero, &zero, &applied)
+        .root_loads()
+        .expect("root-load capability")
+        .root_loads(&q, &zero, &zero, &applied)
         .expect("root loads");
     let (ef, em) = load_error(&summed, &expected);
-    let displaced = RootLoads::root_loads(&model, &q, &zero, &zero).expect("mode displacement");
+    let displaced = model
+        .root_loads_by_mode_displacement(&q, &zero, &zero)
+        .expect("mode displacement");
     let (df, dm) = load_error(&displaced, &expected);
     eprintln!(
         "point load {force:?} at node {node} ({:?}): force summation {summed:?} (errors {ef:.1e}, \
@@ -227,7 +232,9 @@ fn force_summation_includes_the_root_rows_share_of_a_uniform_pressure() {
         max_relative = 1e-9
     );
     let root_share = |f: &dyn Fn(usize) -> f64| -> f64 { g.root_nodes.iter().map(|&n| f(n)).sum() };
-    let displaced = RootLoads::root_loads(&model, &q, &zero, &zero).expect("loads");
+    let displaced = model
+        .root_loads_by_mode_displacement(&q, &zero, &zero)
+        .expect("loads");
     let root_fz = root_share(&|n| p * g.node_areas_m2[n]);
     let root_mx = root_share(&|n| (g.positions_m[n].y - g.pivot_m.y) * p * g.node_areas_m2[n]);
     let root_my = root_share(&|n| -(g.positions_m[n].x - g.pivot_m.x) * p * g.node_areas_m2[n]);

@@ -3,7 +3,6 @@
 use approx::assert_relative_eq;
 use hsv_core::config::LoadedConfig;
 use hsv_core::registry::{Constructor, ModelContext, ModelDescriptor};
-use hsv_core::structure::RootLoads;
 use hsv_core::structure::StructureModel;
 use hsv_core::surface_grid::SurfaceGrid;
 use hsv_core::vehicle::{Side, lifting_surface_mesh};
@@ -143,7 +142,12 @@ fn bad_temperatures_are_errors_naming_the_quantity() {
     let e = model
         .root_loads()
         .expect("root loads")
-        .root_loads(&DVector::zeros(3), &DVector::zeros(15), &DVector::zeros(15))
+        .root_loads(
+            &DVector::zeros(3),
+            &DVector::zeros(15),
+            &DVector::zeros(15),
+            &hsv_core::aero::Loads::default(),
+        )
         .unwrap_err()
         .to_string();
     assert!(e.contains("3 modal coordinates"), "{e}");
@@ -231,8 +235,8 @@ fn left_side_root_loads_mirror_the_right() {
     let left = right.clone().with_side(Side::Left);
     let q = DVector::from_fn(15, |i, _| 1e-3 * (i as f64 + 1.0));
     let z = DVector::zeros(15);
-    let a = RootLoads::root_loads(&right, &q, &z, &q).unwrap();
-    let b = RootLoads::root_loads(&left, &q, &z, &q).unwrap();
+    let a = right.root_loads_by_mode_displacement(&q, &z, &q).unwrap();
+    let b = left.root_loads_by_mode_displacement(&q, &z, &q).unwrap();
     assert_relative_eq!(a.force_n.z, b.force_n.z);
     assert_relative_eq!(a.moment_nm.x, -b.moment_nm.x);
     assert_relative_eq!(a.moment_nm.y, b.moment_nm.y);

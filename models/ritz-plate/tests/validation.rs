@@ -6,7 +6,7 @@ use std::f64::consts::PI;
 
 use approx::assert_relative_eq;
 use hsv_core::material::Material;
-use hsv_core::structure::{RootLoads, StructureModel, ThermalStiffness};
+use hsv_core::structure::{StructureModel, ThermalStiffness};
 use hsv_core::surface_grid::{GridEdge, SurfaceGrid};
 use hsv_model_ritz_plate::plate::{PlateModel, Supports};
 use hsv_model_ritz_plate::{RitzPlate, Settings};
@@ -348,7 +348,7 @@ fn ritz_basis_is_mass_orthonormal_and_stiffness_orthogonal() {
 /// (the uniform-pressure shape is in the basis, so it is the full-order solution) gives root
 /// reactions equal to the applied load: F_z = p S and M = Σ (r − r_pivot) × F about the pivot
 /// (Newton's third law on the free-body of the surface), to 1e-6. These are the
-/// mode-displacement reactions of [`RootLoads::root_loads`], which see the free nodes' share;
+/// mode-displacement reactions of `RitzPlate::root_loads_by_mode_displacement`, which see the free nodes' share;
 /// force summation (tests/loads.rs) adds the root row's own.
 #[test]
 fn root_loads_balance_a_uniform_pressure() {
@@ -361,7 +361,9 @@ fn root_loads_balance_a_uniform_pressure() {
     let k_r = &model.modal_model().stiffness;
     let q = k_r.clone().lu().solve(&q_gen).expect("solve");
     let zero = DVector::zeros(q.len());
-    let loads = RootLoads::root_loads(&model, &q, &zero, &zero).expect("loads");
+    let loads = model
+        .root_loads_by_mode_displacement(&q, &zero, &zero)
+        .expect("loads");
     // Applied load over the free nodes (the root nodes' share goes straight to the tube).
     let free: Vec<usize> = (0..g.n_nodes())
         .filter(|n| !g.root_nodes.contains(n))

@@ -120,24 +120,13 @@ fn included(mesh: &PanelMesh, panel: &Panel, include: &impl Fn(RegionKind) -> bo
         .is_some_and(|s| include(s.region))
 }
 
-/// φ_k at a panel: the mean of its vertices' mode-k displacement, m per unit modal coordinate
-/// (the rule of [`ModeShapes::panel_velocities`]). Shapes must fit the mesh ([`ModeShapes::check`]).
-fn panel_mode_displacement(shapes: &ModeShapes, panel: &Panel, mode: usize) -> Vector3<f64> {
-    let phi = shapes.vertex_displacement.column(mode);
-    let idx = panel.vertex_indices();
-    let sum = idx.iter().fold(Vector3::zeros(), |acc, &v| {
-        acc + Vector3::new(phi[3 * v], phi[3 * v + 1], phi[3 * v + 2])
-    });
-    sum / idx.len() as f64
-}
-
 /// A n · φ_k of one panel, m³ per unit modal coordinate: its generalized force per unit
 /// gauge pressure is the negative of this.
 fn panel_projection(shapes: &ModeShapes, panel: &Panel, mode: usize) -> f64 {
     panel.area_m2
         * panel
             .normal
-            .dot(&panel_mode_displacement(shapes, panel, mode))
+            .dot(&shapes.panel_displacement(panel, mode))
 }
 
 /// Q_k = −Σ (p − p_ref) A n · φ_k over the panels whose region passes `include`, on the geometry

@@ -679,7 +679,50 @@ pub fn weld_vertices(points: &[Point3<f64>], tolerance_m: f64) -> (Vec<Point3<f6
 }
 
 /// Bit-identical points merged (first kept): the distinct points and each input's index.
+///
+/// An open-addressing table of 4-byte slots (index + 1, 0 = empty) at most half full, probed
+/// linearly: small enough to stay in cache for a few hundred thousand points, which a map of
+/// full keys is not.
 fn merge_identical(points: &[Point3<f64>]) -> (Vec<Point3<f64>>, Vec<usize>) {
+    let Some(slots) = (2 * points.len())
+        .max(16)
+        .checked_next_power_of_two()
+        .filter(|_| points.len() < u32::MAX as usize)
+    else {
+        return merge_identical_large(points);
+    };
+    let bits = |p: &Point3<f64>| (p.x.to_bits(), p.y.to_bits(), p.z.to_bits());
+    let shift = 64 - slots.trailing_zeros();
+    let mut table = vec![0u32; slots];
+    let mut distinct: Vec<Point3<f64>> = Vec::with_capacity(points.len() / 2);
+    let mut map = Vec::with_capacity(points.len());
+    for p in points {
+        let key = bits(p);
+        let mut hasher = FxHasher::default();
+        std::hash::Hash::hash(&key, &mut hasher);
+        // The top bits of the Fx product are the well-mixed ones.
+        let mut slot = (std::hash::Hasher::finish(&hasher) >> shift) as usize;
+        let id = loop {
+            match table[slot] {
+                0 => {
+                    distinct.push(*p);
+                    // At most u32::MAX - 1 points (checked above), so this fits.
+                    table[slot] = distinct.len() as u32;
+                    break distinct.len() - 1;
+                }
+                stored if bits(&distinct[stored as usize - 1]) == key => {
+                    break stored as usize - 1;
+                }
+                _ => slot = (slot + 1) & (slots - 1),
+            }
+        };
+        map.push(id);
+    }
+    (distinct, map)
+}
+
+/// [`merge_identical`] for more points than 4-byte slots can number.
+fn merge_identical_large(points: &[Point3<f64>]) -> (Vec<Point3<f64>>, Vec<usize>) {
     let mut seen: FastMap<(u64, u64, u64), usize> = fast_map(points.len() / 2);
     let mut distinct = Vec::with_capacity(points.len() / 2);
     let map = points
@@ -754,6 +797,18 @@ impl ModeShapes {
         out.update_geometry();
     }
 
+    /// Mode `mode`'s displacement at a panel: the mean of its vertices' displacement, m per unit
+    /// modal coordinate (the panel rule of generalized forces and panel velocities). Shapes must
+    /// fit the mesh ([`ModeShapes::check`]).
+    pub fn panel_displacement(&self, panel: &Panel, mode: usize) -> Vector3<f64> {
+        let phi = self.vertex_displacement.column(mode);
+        let idx = panel.vertex_indices();
+        let sum = idx.iter().fold(Vector3::zeros(), |acc, &v| {
+            acc + Vector3::new(phi[3 * v], phi[3 * v + 1], phi[3 * v + 2])
+        });
+        sum / idx.len() as f64
+    }
+
     /// Velocity of each panel centroid from modal velocities (mean of its vertices' Φ q̇), m/s,
     /// written into `out` (len = panels). Allocates nothing.
     pub fn panel_velocities(
@@ -764,25 +819,11 @@ impl ModeShapes {
     ) {
         debug_assert_eq!(out.len(), mesh.panels.len());
         debug_assert_eq!(modal_velocities.len(), self.n_modes());
-        let n_rows = self.vertex_displacement.nrows();
         let n_modes = self.n_modes().min(modal_velocities.len());
-        let phi = &self.vertex_displacement;
         for (panel, v_out) in mesh.panels.iter().zip(out.iter_mut()) {
-            let idx = panel.vertex_indices();
-            let mut sum = Vector3::zeros();
-            for &vi in idx {
-                let r = 3 * vi;
-                if r + 2 >= n_rows {
-                    continue;
-                }
-                for k in 0..n_modes {
-                    let qd = modal_velocities[k];
-                    sum.x += phi[(r, k)] * qd;
-                    sum.y += phi[(r + 1, k)] * qd;
-                    sum.z += phi[(r + 2, k)] * qd;
-                }
-            }
-            *v_out = sum / idx.len() as f64;
+            *v_out = (0..n_modes)
+                .map(|k| self.panel_displacement(panel, k) * modal_velocities[k])
+                .sum();
         }
     }
 }

@@ -72,10 +72,33 @@ pub struct StlReport {
     pub binary: bool,
 }
 
-/// One facet as stored: normal and three vertices.
-struct Facet {
-    normal: Vector3<f64>,
-    vertices: [Point3<f64>; 3],
+/// The facets as stored: facet i has normal `normals[i]` and vertices `points[3 i..3 i + 3]`.
+#[derive(Default)]
+struct Facets {
+    normals: Vec<Vector3<f64>>,
+    points: Vec<Point3<f64>>,
+}
+
+impl Facets {
+    fn with_capacity(n: usize) -> Self {
+        Self {
+            normals: Vec::with_capacity(n),
+            points: Vec::with_capacity(3 * n),
+        }
+    }
+
+    fn len(&self) -> usize {
+        self.normals.len()
+    }
+
+    fn is_empty(&self) -> bool {
+        self.normals.is_empty()
+    }
+
+    fn push(&mut self, normal: Vector3<f64>, vertices: [Point3<f64>; 3]) {
+        self.normals.push(normal);
+        self.points.extend_from_slice(&vertices);
+    }
 }
 
 /// Reads an ASCII or binary STL file into an unstructured mesh.
@@ -158,7 +181,7 @@ fn looks_ascii(bytes: &[u8]) -> bool {
         && std::str::from_utf8(bytes).is_ok()
 }
 
-fn parse_binary(bytes: &[u8], origin: &str) -> Result<Vec<Facet>, StlError> {
+fn parse_binary(bytes: &[u8], origin: &str) -> Result<Facets, StlError> {
     let Some(n) = declared_facets(bytes) else {
         return Err(StlError::TooShort {
             origin: origin.to_owned(),
@@ -174,32 +197,30 @@ fn parse_binary(bytes: &[u8], origin: &str) -> Result<Vec<Facet>, StlError> {
             actual: bytes.len(),
         });
     }
-    let f32_at = |off: usize| -> f64 {
-        let mut b = [0u8; 4];
-        b.copy_from_slice(&bytes[off..off + 4]);
-        f64::from(f32::from_le_bytes(b))
+    let xyz = |record: &[u8]| {
+        let f = |k: usize| {
+            let mut b = [0u8; 4];
+            b.copy_from_slice(&record[4 * k..4 * k + 4]);
+            f64::from(f32::from_le_bytes(b))
+        };
+        Vector3::new(f(0), f(1), f(2))
     };
-    let vec_at = |off: usize| Vector3::new(f32_at(off), f32_at(off + 4), f32_at(off + 8));
     // The size check above guarantees every record is inside `bytes`.
-    let facets = bytes[84..]
-        .chunks_exact(50)
-        .enumerate()
-        .map(|(i, _)| {
-            let base = 84 + 50 * i;
-            Facet {
-                normal: vec_at(base),
-                vertices: [
-                    Point3::from(vec_at(base + 12)),
-                    Point3::from(vec_at(base + 24)),
-                    Point3::from(vec_at(base + 36)),
-                ],
-            }
-        })
-        .collect();
+    let mut facets = Facets::with_capacity(bytes[84..].len() / 50);
+    for record in bytes[84..].chunks_exact(50) {
+        facets.push(
+            xyz(&record[0..12]),
+            [
+                Point3::from(xyz(&record[12..24])),
+                Point3::from(xyz(&record[24..36])),
+                Point3::from(xyz(&record[36..48])),
+            ],
+        );
+    }
     Ok(facets)
 }
 
-fn parse_ascii(bytes: &[u8], origin: &str) -> Result<Vec<Facet>, StlError> {
+fn parse_ascii(bytes: &[u8], origin: &str) -> Result<Facets, StlError> {
     let text = std::str::from_utf8(bytes).map_err(|e| StlError::Malformed {
         origin: origin.to_owned(),
         line: 1 + bytes[..e.valid_up_to()]
@@ -254,7 +275,7 @@ fn parse_ascii(bytes: &[u8], origin: &str) -> Result<Vec<Facet>, StlError> {
     // True when `tok` is `word`, any case.
     let is = |tok: Option<&str>, word: &str| tok.is_some_and(|t| t.eq_ignore_ascii_case(word));
     let mut state = State::Start;
-    let mut facets = Vec::with_capacity(bytes.len() / 250);
+    let mut facets = Facets::with_capacity(bytes.len() / 250);
     let mut normal = Vector3::zeros();
     let mut verts: [Point3<f64>; 3] = [Point3::origin(); 3];
     let mut n_verts = 0;
@@ -301,10 +322,7 @@ fn parse_ascii(bytes: &[u8], origin: &str) -> Result<Vec<Facet>, StlError> {
                 state = State::EndLoop;
             }
             (State::EndLoop, Keyword::EndFacet) => {
-                facets.push(Facet {
-                    normal,
-                    vertices: verts,
-                });
+                facets.push(normal, verts);
                 state = State::Solid;
             }
             (s, _) => {
@@ -367,7 +385,7 @@ impl Keyword {
 
 /// Welds, drops degenerate facets, orients by the stored normals and builds the mesh.
 fn build_mesh(
-    facets: &[Facet],
+    facets: &Facets,
     origin: &str,
     name: &str,
 ) -> Result<(PanelMesh, StlReport), StlError> {
@@ -376,29 +394,26 @@ fn build_mesh(
             origin: origin.to_owned(),
         });
     }
-    for (i, f) in facets.iter().enumerate() {
-        let finite = f
-            .vertices
-            .iter()
-            .all(|v| v.x.is_finite() && v.y.is_finite() && v.z.is_finite());
-        if !finite {
-            return Err(StlError::NonFinite {
-                origin: origin.to_owned(),
-                facet: i,
-            });
-        }
+    let points = &facets.points;
+    if let Some(bad) = points
+        .iter()
+        .position(|v| !(v.x.is_finite() && v.y.is_finite() && v.z.is_finite()))
+    {
+        return Err(StlError::NonFinite {
+            origin: origin.to_owned(),
+            facet: bad / 3,
+        });
     }
-    let points: Vec<Point3<f64>> = facets.iter().flat_map(|f| f.vertices).collect();
-    let (lo, hi) = bounding_box_of(&points);
+    let (lo, hi) = bounding_box_of(points);
     let diag = (hi - lo).norm();
-    let (vertices, map) = weld_vertices(&points, diag * WELD_TOLERANCE_RELATIVE);
+    let (vertices, map) = weld_vertices(points, diag * WELD_TOLERANCE_RELATIVE);
     let min_twice_area = 2.0 * (diag * 1e-10).powi(2);
     let mut report = StlReport {
         facets_read: facets.len(),
         ..StlReport::default()
     };
     let mut triangles = Vec::with_capacity(facets.len());
-    for (i, f) in facets.iter().enumerate() {
+    for (i, stored) in facets.normals.iter().enumerate() {
         let [a, b, c] = [map[3 * i], map[3 * i + 1], map[3 * i + 2]];
         let cross = (vertices[b] - vertices[a]).cross(&(vertices[c] - vertices[a]));
         if a == b || b == c || a == c || cross.norm() <= min_twice_area {
@@ -406,8 +421,7 @@ fn build_mesh(
             continue;
         }
         // A zero or non-finite stored normal carries no orientation; keep the winding then.
-        let stored = f.normal;
-        if stored.iter().all(|x| x.is_finite()) && cross.dot(&stored) < 0.0 {
+        if stored.iter().all(|x| x.is_finite()) && cross.dot(stored) < 0.0 {
             report.reoriented += 1;
             triangles.push([a, c, b]);
         } else {

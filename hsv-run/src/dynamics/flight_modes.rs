@@ -9,12 +9,12 @@
 //! longitudinal, lateral, structural and position groups decide the group.
 //!
 //! **Names** (Etkin & Reid, *Dynamics of Flight: Stability and Control*, 3rd ed., 1996, ch. 6:
-//! the classical mode shapes of a jet transport): a longitudinal mode with more speed than incidence
-//! content is the phugoid (speed exchanged at nearly constant α), with more incidence than speed
-//! the short period (α and q at nearly constant speed; also when it splits into real roots, as
-//! for a statically unstable vehicle); altitude-dominated, the height mode. A lateral
-//! oscillation is the Dutch roll; of the real lateral roots the fastest is the roll subsidence
-//! and the slowest the spiral; heading-dominated, the heading mode (a zero root).
+//! the classical mode shapes of a jet transport): a longitudinal mode with more speed than
+//! incidence content is the phugoid (speed exchanged at nearly constant α), with more incidence
+//! than speed the short period (α and q at nearly constant speed; also when it splits into
+//! real roots, as for a statically unstable vehicle); altitude-dominated, the height mode. A
+//! lateral oscillation is the Dutch roll; of the real lateral roots the fastest is the roll
+//! subsidence and the slowest the spiral; heading-dominated, the heading mode (a zero root).
 
 use std::f64::consts::PI;
 use std::fmt;

@@ -312,7 +312,7 @@ pub enum AttitudeCoordinates {
 }
 
 impl AttitudeCoordinates {
-    pub fn len(self) -> usize {
+    pub fn n_coordinates(self) -> usize {
         match self {
             AttitudeCoordinates::Quaternion => 4,
             AttitudeCoordinates::Euler321 => 3,
@@ -335,7 +335,7 @@ impl StateLayout {
 
     /// Index of u (then v, w).
     pub fn velocity(&self) -> usize {
-        Self::ATTITUDE + self.attitude.len()
+        Self::ATTITUDE + self.attitude.n_coordinates()
     }
 
     /// Index of p (then q, r).

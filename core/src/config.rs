@@ -319,12 +319,138 @@ pub fn parse_config(text: &str, file: &str) -> Result<LoadedConfig, ConfigError>
             message: format!("not valid TOML{place}: {}", first_line(e.message())),
         }
     })?;
+    check_finite(&raw, file, "")?;
     let config: HsvConfig = parse_table(&raw, file, "")?;
+    check_values(&config, file)?;
     Ok(LoadedConfig {
         config,
         raw,
         file: file.to_owned(),
     })
+}
+
+/// Every number in `table` (found at `key_path`) is finite: TOML allows `nan` and `inf`, which
+/// no setting means; the first one found is an error at its key path.
+fn check_finite(table: &toml::Table, file: &str, key_path: &str) -> Result<(), ConfigError> {
+    fn walk(value: &toml::Value, path: &str, file: &str) -> Result<(), ConfigError> {
+        match value {
+            toml::Value::Float(x) if !x.is_finite() => Err(ConfigError {
+                file: file.to_owned(),
+                key_path: path.to_owned(),
+                message: format!("must be a finite number, got {x}"),
+            }),
+            toml::Value::Table(table) => check_finite(table, file, path),
+            toml::Value::Array(items) => items
+                .iter()
+                .enumerate()
+                .try_for_each(|(i, item)| walk(item, &format!("{path}[{i}]"), file)),
+            _ => Ok(()),
+        }
+    }
+    table.iter().try_for_each(|(key, value)| {
+        let path = if key_path.is_empty() {
+            key.clone()
+        } else {
+            format!("{key_path}.{key}")
+        };
+        walk(value, &path, file)
+    })
+}
+
+/// Checks the values every command relies on: a positive flight Mach number and altitude in the
+/// standard atmosphere, positive reference area, length and span (they divide the coefficients).
+fn check_values(config: &HsvConfig, file: &str) -> Result<(), ConfigError> {
+    use crate::atmosphere::{MAX_ALTITUDE_M, MIN_ALTITUDE_M};
+    let error = |key_path: &str, message: String| ConfigError {
+        file: file.to_owned(),
+        key_path: key_path.to_owned(),
+        message,
+    };
+    let flight = &config.flight;
+    if flight.mach <= 0.0 {
+        return Err(error(
+            "flight.mach",
+            format!("must be a positive Mach number, got {}", flight.mach),
+        ));
+    }
+    if !(MIN_ALTITUDE_M..=MAX_ALTITUDE_M).contains(&flight.altitude_m) {
+        return Err(error(
+            "flight.altitude_m",
+            format!(
+                "{} m is outside the standard atmosphere ({MIN_ALTITUDE_M} to {MAX_ALTITUDE_M} m)",
+                flight.altitude_m
+            ),
+        ));
+    }
+    let reference = &config.reference;
+    for (key, value, what) in [
+        ("reference.area_m2", reference.area_m2, "reference area, m²"),
+        (
+            "reference.chord_m",
+            reference.chord_m,
+            "reference length, m",
+        ),
+        ("reference.span_m", reference.span_m, "reference span, m"),
+    ] {
+        if value <= 0.0 {
+            return Err(error(
+                key,
+                format!("the {what}, must be positive (it divides the coefficients), got {value}"),
+            ));
+        }
+    }
+    Ok(())
+}
+
+/// The config key of each model-name field of a region table, with the role it names.
+const REGION_ROLE_KEYS: [(&str, crate::registry::Role); 5] = [
+    ("aero", crate::registry::Role::Aero),
+    ("heat_flux", crate::registry::Role::HeatFlux),
+    ("conduction", crate::registry::Role::Conduction),
+    ("structure", crate::registry::Role::Structure),
+    ("propulsion", crate::registry::Role::Propulsion),
+];
+
+impl LoadedConfig {
+    /// Every model named in `[regions.*]` exists in `registry` with the role its key says
+    /// (`regions.left_surface.aero` names an aero model): the first that does not is an error
+    /// naming the file and key path, before anything runs.
+    pub fn check_models(&self, registry: &crate::registry::Registry) -> Result<(), ConfigError> {
+        let regions = &self.config.regions;
+        let tables = [
+            ("main_body", &regions.main_body),
+            ("lifting_surfaces", &regions.lifting_surfaces),
+            ("left_surface", &regions.left_surface),
+            ("right_surface", &regions.right_surface),
+            ("propulsion", &regions.propulsion),
+        ];
+        for (region, models) in tables {
+            let named = [
+                &models.aero,
+                &models.heat_flux,
+                &models.conduction,
+                &models.structure,
+                &models.propulsion,
+            ];
+            for ((key, wanted), name) in REGION_ROLE_KEYS.iter().zip(named) {
+                let Some(name) = name else { continue };
+                let error = |message: String| ConfigError {
+                    file: self.file.clone(),
+                    key_path: format!("regions.{region}.{key}"),
+                    message,
+                };
+                let entry = registry.get(name).map_err(|e| error(e.to_string()))?;
+                if entry.role() != *wanted {
+                    let known = registry.names(*wanted).join(", ");
+                    return Err(error(format!(
+                        "`{name}` is a {} model, but this key names a {wanted} model (known: {known})",
+                        entry.role()
+                    )));
+                }
+            }
+        }
+        Ok(())
+    }
 }
 
 /// Deserializes `table` (found at `key_path` in `file`) into `T`, naming the full key path of

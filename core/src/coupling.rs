@@ -123,10 +123,7 @@ fn included(mesh: &PanelMesh, panel: &Panel, include: &impl Fn(RegionKind) -> bo
 /// A n · φ_k of one panel, m³ per unit modal coordinate: its generalized force per unit
 /// gauge pressure is the negative of this.
 fn panel_projection(shapes: &ModeShapes, panel: &Panel, mode: usize) -> f64 {
-    panel.area_m2
-        * panel
-            .normal
-            .dot(&shapes.panel_displacement(panel, mode))
+    panel.area_m2 * panel.normal.dot(&shapes.panel_displacement(panel, mode))
 }
 
 /// Q_k = −Σ (p − p_ref) A n · φ_k over the panels whose region passes `include`, on the geometry

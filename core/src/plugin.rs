@@ -159,10 +159,22 @@ impl Registry {
     }
 }
 
+/// `path` as a file path: a bare name (`libmy_plugin.so`) gets a `./` prefix, because the
+/// dynamic loader searches the system library path for names without a directory, so a bare
+/// name would load whatever library of that name the system has, not the file here.
+fn local_path(path: &Path) -> std::path::PathBuf {
+    let mut components = path.components();
+    match (components.next(), components.next()) {
+        (Some(std::path::Component::Normal(_)), None) => Path::new(".").join(path),
+        _ => path.to_path_buf(),
+    }
+}
+
 /// Loads the plugin at `path`, checks its header and returns one registry entry per model.
 ///
 /// The library is never unloaded: plugin code may be referenced by models for the rest of the run.
 pub fn load_plugin(path: &Path) -> Result<Vec<RegistryEntry>, PluginError> {
+    let path = &local_path(path);
     let shown = path.display().to_string();
     // SAFETY: loading a library runs its initialisers; that is the trust a user gives a plugin.
     let library = unsafe { libloading::Library::new(path) }.map_err(|e| PluginError::Load {

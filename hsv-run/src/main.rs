@@ -6,7 +6,8 @@ use std::process::ExitCode;
 use anyhow::Result;
 use clap::{Parser, Subcommand};
 use hsv_run::commands::{
-    self, ConfigArg, JsonFlag, aero::AeroArgs, engine::EngineArgs, heat::HeatArgs, modes::ModesArgs,
+    self, ConfigArg, JsonFlag, aero::AeroArgs, engine::EngineArgs, heat::HeatArgs,
+    modes::ModesArgs, trim::TrimArgs,
 };
 
 #[derive(Parser)]
@@ -53,6 +54,8 @@ enum Command {
     Heat(HeatArgs),
     /// Scramjet thrust, lift, moment, mass flow and station states, one row per propulsion model.
     Engine(EngineArgs),
+    /// Trim steady level flight (rigid vehicle): alpha, elevon and fuel equivalence ratio.
+    Trim(TrimArgs),
 }
 
 fn main() -> ExitCode {
@@ -92,5 +95,6 @@ fn run(cli: Cli) -> Result<()> {
         Command::Modes(args) => commands::modes::run(args, &registry),
         Command::Heat(args) => commands::heat::run(args, &registry),
         Command::Engine(args) => commands::engine::run(args, &registry),
+        Command::Trim(args) => commands::trim::run(args, &registry),
     }
 }

@@ -1,11 +1,17 @@
-//! Run outputs: run folders, CSV time histories, PNG line plots and VTK meshes for ParaView.
+//! Run outputs: standard output, run folders, CSV time histories, PNG line plots and VTK meshes
+//! for ParaView.
 //!
 //! Every command that writes files goes through here, so all runs look alike: one folder per run
-//! (`runs/<command>-<UTC time>/` unless `--out` names one), CSV with units in the headers, PNG
-//! plots of what the paper plots, legacy-VTK meshes plus a `.pvd` collection to animate them.
+//! (`runs/<command>-<UTC time>-<ms>/` unless `--out` names one), CSV with units in the headers,
+//! PNG plots of what the paper plots, legacy-VTK meshes plus a `.pvd` collection to animate them,
+//! and a `summary.json` with the run's `status` and the `files` it wrote. Files are written
+//! whole or not at all (a temporary file renamed into place), so a full disk never leaves a
+//! truncated file behind. Text for the user goes through [`outln!`](crate::outln), which turns a
+//! closed pipe or a full disk into an error instead of a panic.
 
 use std::fmt::Write as _;
 use std::fs;
+use std::io::Write as _;
 use std::path::{Path, PathBuf};
 use std::sync::OnceLock;
 
@@ -14,22 +20,219 @@ use hsv_core::mesh::PanelMesh;
 use nalgebra::Vector3;
 use plotters::prelude::*;
 
-/// Creates the run folder: `out` if given, else `runs/<command>-<UTC time>`.
-pub fn run_folder(command: &str, out: Option<&Path>) -> Result<PathBuf> {
-    let folder = match out {
-        Some(path) => path.to_path_buf(),
+/// Standard output went away (the reader closed the pipe, as `hsv-run models | head -1` does):
+/// not a failure of the run, so `main` exits quietly.
+#[derive(Debug, thiserror::Error)]
+#[error("standard output was closed")]
+pub struct StdoutClosed;
+
+/// Writes formatted text to standard output: a closed pipe is [`StdoutClosed`], any other
+/// failure (a full disk) an error naming standard output. Use [`outln!`](crate::outln).
+pub fn write_stdout(text: std::fmt::Arguments<'_>) -> Result<()> {
+    std::io::stdout()
+        .lock()
+        .write_fmt(text)
+        .map_err(stdout_error)
+}
+
+/// Flushes standard output (what a `print!` without a newline left in the buffer).
+pub fn flush_stdout() -> Result<()> {
+    std::io::stdout().lock().flush().map_err(stdout_error)
+}
+
+fn stdout_error(error: std::io::Error) -> anyhow::Error {
+    if error.kind() == std::io::ErrorKind::BrokenPipe {
+        StdoutClosed.into()
+    } else {
+        anyhow::anyhow!("cannot write to standard output: {error}")
+    }
+}
+
+/// `println!` that returns `Result` instead of panicking when standard output fails.
+#[macro_export]
+macro_rules! outln {
+    () => {
+        $crate::output::write_stdout(format_args!("\n"))
+    };
+    ($($arg:tt)*) => {
+        $crate::output::write_stdout(format_args!("{}\n", format_args!($($arg)*)))
+    };
+}
+
+/// `print!` that returns `Result` instead of panicking when standard output fails.
+#[macro_export]
+macro_rules! out {
+    ($($arg:tt)*) => {
+        $crate::output::write_stdout(format_args!($($arg)*))
+    };
+}
+
+/// Writes `bytes` to `path` whole or not at all: into a temporary file beside it, renamed into
+/// place when complete, so a failure (a full disk) leaves no truncated file.
+pub fn write_file(path: &Path, bytes: impl AsRef<[u8]>) -> Result<()> {
+    let partial = partial_path(path);
+    let written = fs::write(&partial, bytes).and_then(|()| fs::rename(&partial, path));
+    if let Err(error) = written {
+        let _ = fs::remove_file(&partial);
+        bail!("cannot write {}: {error}", path.display());
+    }
+    Ok(())
+}
+
+/// `.name.partial.ext` beside `path` (the extension kept: the PNG writer goes by it).
+fn partial_path(path: &Path) -> PathBuf {
+    let stem = path
+        .file_stem()
+        .map_or_else(String::new, |s| s.to_string_lossy().into_owned());
+    let name = match path.extension() {
+        Some(ext) => format!(".{stem}.partial.{}", ext.to_string_lossy()),
+        None => format!(".{stem}.partial"),
+    };
+    path.with_file_name(name)
+}
+
+/// Creates the run folder: `out` if given (refused when it holds files, unless `force`), else a
+/// new `runs/<command>-<UTC time>-<milliseconds>` (with `-2`, `-3`, ... when runs start in the
+/// same millisecond).
+pub fn create_run_folder(command: &str, out: Option<&Path>, force: bool) -> Result<PathBuf> {
+    match out {
+        Some(folder) => {
+            let has_files = fs::read_dir(folder).is_ok_and(|mut entries| entries.next().is_some());
+            if has_files && !force {
+                bail!(
+                    "the run folder {} is not empty; choose another --out or pass --force to write into it",
+                    folder.display()
+                );
+            }
+            fs::create_dir_all(folder)
+                .with_context(|| format!("cannot create the run folder {}", folder.display()))?;
+            Ok(folder.to_path_buf())
+        }
         None => {
-            let stamp = humantime::format_rfc3339_seconds(std::time::SystemTime::now())
+            let runs = Path::new("runs");
+            fs::create_dir_all(runs)
+                .with_context(|| format!("cannot create the folder {}", runs.display()))?;
+            let stamp = humantime::format_rfc3339_millis(std::time::SystemTime::now())
                 .to_string()
                 .replace([':', '-'], "")
+                .replace('.', "-")
                 .trim_end_matches('Z')
                 .to_owned();
-            PathBuf::from("runs").join(format!("{command}-{stamp}"))
+            for attempt in 1u32.. {
+                let name = match attempt {
+                    1 => format!("{command}-{stamp}"),
+                    n => format!("{command}-{stamp}-{n}"),
+                };
+                let folder = runs.join(name);
+                // `create_dir` fails on an existing folder, so two runs never share one.
+                match fs::create_dir(&folder) {
+                    Ok(()) => return Ok(folder),
+                    Err(e) if e.kind() == std::io::ErrorKind::AlreadyExists && attempt < 1000 => {}
+                    Err(e) => {
+                        bail!("cannot create the run folder {}: {e}", folder.display())
+                    }
+                }
+            }
+            unreachable!("the loop returns or fails by attempt 1000")
         }
-    };
-    fs::create_dir_all(&folder)
-        .with_context(|| format!("cannot create the run folder {}", folder.display()))?;
-    Ok(folder)
+    }
+}
+
+/// [`create_run_folder`] without `--force`.
+pub fn run_folder(command: &str, out: Option<&Path>) -> Result<PathBuf> {
+    create_run_folder(command, out, false)
+}
+
+/// How a run ended, for the `status` entry of its JSON summary.
+#[derive(Debug, Clone, PartialEq)]
+pub enum RunStatus {
+    Completed,
+    /// Why the run stopped.
+    Failed(String),
+}
+
+impl RunStatus {
+    /// `{"state": "completed"}` or `{"state": "failed", "reason": ...}`.
+    pub fn to_json(&self) -> serde_json::Value {
+        match self {
+            RunStatus::Completed => serde_json::json!({"state": "completed"}),
+            RunStatus::Failed(reason) => serde_json::json!({"state": "failed", "reason": reason}),
+        }
+    }
+}
+
+/// A run folder and the files written into it so far.
+#[derive(Debug, Clone)]
+pub struct RunFolder {
+    pub path: PathBuf,
+    files: Vec<PathBuf>,
+}
+
+impl RunFolder {
+    /// Creates the folder ([`create_run_folder`]).
+    pub fn create(command: &str, out: Option<&Path>, force: bool) -> Result<Self> {
+        Ok(Self {
+            path: create_run_folder(command, out, force)?,
+            files: Vec::new(),
+        })
+    }
+
+    /// `name` inside the folder.
+    pub fn join(&self, name: &str) -> PathBuf {
+        self.path.join(name)
+    }
+
+    /// Records a file as written.
+    pub fn record(&mut self, file: PathBuf) {
+        if !self.files.contains(&file) {
+            self.files.push(file);
+        }
+    }
+
+    /// The files written so far, as strings for JSON.
+    pub fn files(&self) -> Vec<String> {
+        self.files.iter().map(|f| f.display().to_string()).collect()
+    }
+
+    /// Writes `summary.json`: `summary` (a JSON object) with `run_folder`, `status` and `files`
+    /// (summary.json included) added; returns the object written.
+    pub fn write_summary(
+        &mut self,
+        mut summary: serde_json::Value,
+        status: &RunStatus,
+    ) -> Result<serde_json::Value> {
+        let path = self.join("summary.json");
+        self.record(path.clone());
+        if let Some(map) = summary.as_object_mut() {
+            map.insert(
+                "run_folder".to_owned(),
+                self.path.display().to_string().into(),
+            );
+            map.insert("status".to_owned(), status.to_json());
+            map.insert("files".to_owned(), self.files().into());
+        }
+        write_file(&path, serde_json::to_string_pretty(&summary)?)?;
+        Ok(summary)
+    }
+
+    /// Runs `job`; if it fails, records the failure in `summary.json` (with what `summary`
+    /// gives, and the files written so far) before passing the error on.
+    pub fn run<T>(
+        &mut self,
+        job: impl FnOnce(&mut Self) -> Result<T>,
+        summary: impl FnOnce() -> serde_json::Value,
+    ) -> Result<T> {
+        job(self).or_else(|error| {
+            let reason = error
+                .chain()
+                .map(ToString::to_string)
+                .collect::<Vec<_>>()
+                .join(": ");
+            // The job's error is the one to report; a second failure here adds nothing.
+            let _ = self.write_summary(summary(), &RunStatus::Failed(reason));
+            Err(error)
+        })
+    }
 }
 
 /// Writes columns of equal length as CSV; headers carry the unit, e.g. `time_s`.
@@ -62,7 +265,7 @@ pub fn write_csv(path: &Path, headers: &[&str], columns: &[&[f64]]) -> Result<()
         }
         text.push('\n');
     }
-    fs::write(path, text).with_context(|| format!("cannot write {}", path.display()))
+    write_file(path, text)
 }
 
 /// One line of a plot.
@@ -148,8 +351,11 @@ pub fn write_line_plots_png(
     register_font()?;
     let columns = columns.clamp(1, plots.len());
     let rows = plots.len().div_ceil(columns);
-    let root = BitMapBackend::new(path, (width, height)).into_drawing_area();
+    // Drawn beside the target and renamed into place, like every other file.
+    let partial = partial_path(path);
+    // The backend lives inside the closure: dropped before the rename (it writes on drop).
     let draw = || -> std::result::Result<(), Box<dyn std::error::Error>> {
+        let root = BitMapBackend::new(&partial, (width, height)).into_drawing_area();
         root.fill(&WHITE)?;
         let areas = root.split_evenly((rows, columns));
         for (plot, area) in plots.iter().zip(areas.iter()) {
@@ -194,7 +400,12 @@ pub fn write_line_plots_png(
         root.present()?;
         Ok(())
     };
-    draw().map_err(|e| anyhow::anyhow!("cannot draw {}: {e}", path.display()))
+    let drawn = draw().and_then(|()| Ok(fs::rename(&partial, path)?));
+    if let Err(e) = drawn {
+        let _ = fs::remove_file(&partial);
+        bail!("cannot draw {}: {e}", path.display());
+    }
+    Ok(())
 }
 
 /// Writes a panel mesh as legacy ASCII VTK polydata, with optional per-vertex vectors (e.g. a
@@ -269,7 +480,7 @@ pub fn write_vtk_mesh(
             let _ = writeln!(text, "{v}");
         }
     }
-    fs::write(path, text).with_context(|| format!("cannot write {}", path.display()))
+    write_file(path, text)
 }
 
 /// VTK field names cannot contain white space.
@@ -290,7 +501,7 @@ pub fn write_pvd(path: &Path, entries: &[(f64, &str)]) -> Result<()> {
         );
     }
     text.push_str("  </Collection>\n</VTKFile>\n");
-    fs::write(path, text).with_context(|| format!("cannot write {}", path.display()))
+    write_file(path, text)
 }
 
 #[cfg(test)]

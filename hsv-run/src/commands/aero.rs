@@ -162,11 +162,11 @@ pub fn run(args: AeroArgs, registry: &Registry) -> Result<()> {
             "engine_surfaces_included": request.include_engine_surfaces || !mesh.has_engine_surfaces,
             "models": models,
         });
-        println!("{}", serde_json::to_string_pretty(&summary)?);
+        outln!("{}", serde_json::to_string_pretty(&summary)?)?;
         return Ok(());
     }
 
-    println!(
+    outln!(
         "{} ({} panels) at Mach {}, {} m, alpha {} deg, beta {} deg",
         mesh.source,
         mesh.mesh.panels.len(),
@@ -174,8 +174,8 @@ pub fn run(args: AeroArgs, registry: &Registry) -> Result<()> {
         request.altitude_m,
         request.alpha_deg,
         request.beta_deg
-    );
-    println!(
+    )?;
+    outln!(
         "reference: S = {:.3} m^2, l = {:.3} m, b = {:.3} m, moments about ({:.3}, {:.3}, {:.3}) m (body axes: x fwd, y right, z down)",
         reference.area_m2,
         reference.chord_m,
@@ -183,13 +183,13 @@ pub fn run(args: AeroArgs, registry: &Registry) -> Result<()> {
         reference.moment_point_m[0],
         reference.moment_point_m[1],
         reference.moment_point_m[2]
-    );
+    )?;
     if mesh.has_engine_surfaces && !request.include_engine_surfaces {
-        println!(
+        outln!(
             "engine-owned surfaces (inlet ramp, external nozzle) excluded: the propulsion model owns them (--include-engine-surfaces to add)"
-        );
+        )?;
     }
-    println!(
+    outln!(
         "{:<24} {:>12} {:>12} {:>12} {:>13} {:>13} {:>13} {:>9} {:>9} {:>9} {:>9}",
         "model",
         "Fx [N]",
@@ -202,11 +202,11 @@ pub fn run(args: AeroArgs, registry: &Registry) -> Result<()> {
         "CD",
         "Cm",
         "time"
-    );
+    )?;
     for r in &rows {
         let f = r.loads.force_n;
         let m = r.loads.moment_nm;
-        println!(
+        outln!(
             "{:<24} {:>12.4e} {:>12.4e} {:>12.4e} {:>13.4e} {:>13.4e} {:>13.4e} {:>9.5} {:>9.5} {:>9.5} {:>7.0}us",
             r.model,
             f.x,
@@ -219,7 +219,7 @@ pub fn run(args: AeroArgs, registry: &Registry) -> Result<()> {
             r.coefficients.cd,
             r.coefficients.cm,
             r.evaluation_time_s * 1e6
-        );
+        )?;
         let d = r.diagnostics;
         let notes: Vec<String> = [
             (d.detached_shocks, "detached shocks (pitot pressure)"),
@@ -234,7 +234,7 @@ pub fn run(args: AeroArgs, registry: &Registry) -> Result<()> {
         .map(|(count, what)| format!("{count} {what}"))
         .collect();
         if !notes.is_empty() {
-            println!("{:<24} note: {}", "", notes.join(", "));
+            outln!("{:<24} note: {}", "", notes.join(", "))?;
         }
         if let Some(f) = &r.friction {
             print_friction_rows(r, f, &flight_condition);
@@ -298,17 +298,17 @@ fn print_friction_rows(
         ),
     ] {
         let (fo, m) = (loads.force_n, loads.moment_nm);
-        println!(
+        outln!(
             "{label:<24} {:>12.4e} {:>12.4e} {:>12.4e} {:>13.4e} {:>13.4e} {:>13.4e} {cl:>9.5} {cd:>9.5} {cm:>9.5}",
             fo.x, fo.y, fo.z, m.x, m.y, m.z
-        );
+        )?;
     }
-    println!(
+    outln!(
         "{:<24} drag: pressure {:.4e} N, friction {:.4e} N (wall at {} K), total {:.4e} N",
         "",
         aero_job::drag_n(&r.loads, flight),
         f.drag_n,
         f.wall_temperature_k,
         aero_job::drag_n(&total, flight)
-    );
+    )?;
 }

@@ -3,6 +3,8 @@
 use anyhow::Result;
 use hsv_core::registry::Registry;
 
+use crate::outln;
+
 /// Lists every registered model with family, role, fidelity and summary.
 pub fn models(registry: &Registry, json: bool) -> Result<()> {
     if json {
@@ -19,22 +21,22 @@ pub fn models(registry: &Registry, json: bool) -> Result<()> {
                 })
             })
             .collect();
-        println!("{}", serde_json::to_string_pretty(&list)?);
+        outln!("{}", serde_json::to_string_pretty(&list)?)?;
         return Ok(());
     }
-    println!(
+    outln!(
         "{:<24} {:<11} {:<11} {:>8}  summary",
         "name", "family", "role", "fidelity"
-    );
+    )?;
     for e in registry.iter() {
-        println!(
+        outln!(
             "{:<24} {:<11} {:<11} {:>8}  {}",
             e.name,
             e.role().family().to_string(),
             e.role().to_string(),
             e.fidelity,
             e.summary
-        );
+        )?;
     }
     Ok(())
 }
@@ -52,24 +54,24 @@ pub fn describe(registry: &Registry, name: &str, json: bool) -> Result<()> {
             "origin": e.origin.to_string(),
             "settings": e.settings_doc,
         });
-        println!("{}", serde_json::to_string_pretty(&value)?);
+        outln!("{}", serde_json::to_string_pretty(&value)?)?;
         return Ok(());
     }
-    println!(
+    outln!(
         "{}  ({} / {}, fidelity {})",
         e.name,
         e.role().family(),
         e.role(),
         e.fidelity
-    );
-    println!("{}", e.summary);
-    println!("origin: {}", e.origin);
+    )?;
+    outln!("{}", e.summary)?;
+    outln!("origin: {}", e.origin)?;
     if e.settings_doc.trim().is_empty() {
-        println!("settings: none");
+        outln!("settings: none")?;
     } else {
-        println!("settings ([models.{}] in the config):", e.name);
+        outln!("settings ([models.{}] in the config):", e.name)?;
         for line in e.settings_doc.lines() {
-            println!("  {line}");
+            outln!("  {line}")?;
         }
     }
     Ok(())

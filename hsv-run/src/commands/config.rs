@@ -1,19 +1,37 @@
-//! `hsv-run config`: the embedded sample-vehicle TOML (or a parsed user config) to start from.
+//! `hsv-run config`: the embedded sample-vehicle TOML (or a parsed user config) to start from,
+//! and `hsv-run config --check FILE` to validate a config without running anything.
 
 use std::path::Path;
 
 use anyhow::Result;
 use hsv_core::config::{LoadedConfig, SAMPLE_CONFIG_TOML};
+use hsv_core::registry::Registry;
+
+use crate::{out, outln};
 
 /// Prints the embedded config verbatim (with its comments), or a user config as parsed.
 pub fn print_config(path: Option<&Path>, json: bool) -> Result<()> {
     let loaded = LoadedConfig::load(path)?;
     if json {
-        println!("{}", serde_json::to_string_pretty(&loaded.config)?);
+        outln!("{}", serde_json::to_string_pretty(&loaded.config)?)?;
     } else if path.is_none() {
-        print!("{SAMPLE_CONFIG_TOML}");
+        out!("{SAMPLE_CONFIG_TOML}")?;
     } else {
-        print!("{}", toml::to_string_pretty(&loaded.config)?);
+        out!("{}", toml::to_string_pretty(&loaded.config)?)?;
+    }
+    Ok(())
+}
+
+/// Validates the config at `path` as every command would before running (parse, finite values,
+/// reference values, plugins, vehicle geometry, region model names and roles) and says OK; the
+/// first problem is the error.
+pub fn check_config(path: &Path, registry: &Registry, json: bool) -> Result<()> {
+    let (loaded, _) = super::load_config(Some(path), registry)?;
+    if json {
+        let summary = serde_json::json!({"config": loaded.file, "valid": true});
+        outln!("{}", serde_json::to_string_pretty(&summary)?)?;
+    } else {
+        outln!("{}: OK", loaded.file)?;
     }
     Ok(())
 }

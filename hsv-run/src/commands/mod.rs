@@ -6,6 +6,8 @@ pub mod config;
 pub mod engine;
 pub mod heat;
 pub mod modes;
+pub mod steps;
+pub mod trim;
 
 use std::path::{Path, PathBuf};
 
@@ -30,9 +32,41 @@ pub struct ConfigArg {
     pub config: Option<PathBuf>,
 }
 
+/// `--out DIR` and `--force`, shared by every command that writes a run folder.
+#[derive(Args, Debug, Clone, Default)]
+pub struct OutArgs {
+    /// Run folder (default: a new runs/<command>-<UTC time>-<ms>); refused when it already
+    /// holds files, unless --force.
+    #[arg(long, value_name = "DIR")]
+    pub out: Option<PathBuf>,
+    /// Write into a non-empty --out folder (files of the same name are replaced).
+    #[arg(long, requires = "out")]
+    pub force: bool,
+}
+
 /// Loads the config at `path` (or the embedded sample) and returns it with `registry` extended by
-/// the plugins the config lists (paths relative to the config file).
+/// the plugins the config lists (paths relative to the config file), after checking everything
+/// a command relies on ([`validate_config`]), so a bad config fails before any work starts.
 pub fn load_config(path: Option<&Path>, registry: &Registry) -> Result<(LoadedConfig, Registry)> {
+    let (loaded, registry) = load_config_unchecked(path, registry)?;
+    validate_config(&loaded, &registry)?;
+    Ok((loaded, registry))
+}
+
+/// Checks a loaded config beyond parsing (which already checked keys, types, finite numbers and
+/// reference values): the vehicle geometry builds, and every `[regions.*]` model name is a
+/// registered model of the role its key names.
+pub fn validate_config(loaded: &LoadedConfig, registry: &Registry) -> Result<()> {
+    loaded.check_models(registry)?;
+    loaded.vehicle()?;
+    Ok(())
+}
+
+/// [`load_config`] without [`validate_config`].
+fn load_config_unchecked(
+    path: Option<&Path>,
+    registry: &Registry,
+) -> Result<(LoadedConfig, Registry)> {
     let loaded = LoadedConfig::load(path)?;
     let mut registry = registry.clone();
     let base = path

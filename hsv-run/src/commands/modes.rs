@@ -726,18 +726,18 @@ pub fn summary_json(report: &ModesReport, folder: &Path, files: &[PathBuf]) -> s
 fn print_structure(s: &StructureModes) {
     match &s.outcome {
         ModesOutcome::Modes(rows) => {
-            println!("{} ({}): {} modes", s.component, s.model, rows.len());
-            println!("  {:>3}  {:<28} {:>14}", "#", "mode", "frequency [Hz]");
+            outln!("{} ({}): {} modes", s.component, s.model, rows.len())?;
+            outln!("  {:>3}  {:<28} {:>14}", "#", "mode", "frequency [Hz]")?;
             for (i, r) in rows.iter().enumerate() {
-                println!("  {:>3}  {:<28} {:>14.4}", i + 1, r.name, r.frequency_hz);
+                outln!("  {:>3}  {:<28} {:>14.4}", i + 1, r.name, r.frequency_hz)?;
             }
         }
         ModesOutcome::Buckled(message) => {
-            println!("{} ({}): BUCKLED: {message}", s.component, s.model);
+            outln!("{} ({}): BUCKLED: {message}", s.component, s.model)?;
         }
     }
     for note in &s.notes {
-        println!("  note: {note}");
+        outln!("  note: {note}")?;
     }
 }
 
@@ -762,30 +762,30 @@ pub fn run(args: ModesArgs, registry: &Registry) -> Result<()> {
     let files = write_outputs(&report, &folder)?;
 
     if args.json.json {
-        println!(
+        outln!(
             "{}",
             serde_json::to_string_pretty(&summary_json(&report, &folder, &files))?
-        );
+        )?;
         return Ok(());
     }
-    println!("structure modes of {}", report.config_file);
+    outln!("structure modes of {}", report.config_file)?;
     if let Some(body) = &report.body {
         print_structure(body);
     }
     if !report.surfaces.is_empty() {
-        println!("lifting surfaces at {}:", report.temperature.describe());
+        outln!("lifting surfaces at {}:", report.temperature.describe())?;
         for (_, s) in &report.surfaces {
             print_structure(s);
         }
     }
     for note in &report.notes {
-        println!("note: {note}");
+        outln!("note: {note}")?;
     }
-    println!(
+    outln!(
         "mode shapes: {} ({} files: VTK per mode with .pvd collections for ParaView, PNG plots)",
         folder.display(),
         files.len()
-    );
+    )?;
     Ok(())
 }
 

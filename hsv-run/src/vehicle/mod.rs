@@ -5,6 +5,8 @@
 //! A [`Region`] owns its models and state and talks to other regions only through topics it
 //! declares at assembly ([`wire`] fails when a subscribed topic has no publisher).
 
+pub mod rigid;
+
 use hsv_core::aero::AeroModel;
 use hsv_core::config::{LoadedConfig, REGION_NAMES, RegionModels};
 use hsv_core::data::{DataError, DataManager, DataManagerBuilder};
@@ -143,7 +145,9 @@ fn role_key(role: Role) -> &'static str {
     }
 }
 
-/// Builds every region's models by name and checks them against `needs` before anything runs.
+/// Builds the models every region needs for the analysis, by name, and checks them before
+/// anything runs. Roles the analysis does not use are not built (a rigid trim trains no POD
+/// basis); regions it does not list get no models.
 pub fn assemble(
     loaded: &LoadedConfig,
     registry: &Registry,
@@ -151,20 +155,40 @@ pub fn assemble(
 ) -> Result<Vec<RegionModelSet>, AssemblyError> {
     let mut sets = Vec::with_capacity(REGION_NAMES.len());
     for name in REGION_NAMES {
+        let Some((_, need)) = needs.regions.iter().find(|(r, _)| *r == name) else {
+            continue;
+        };
         let info = loaded.region(name)?;
         let names = loaded.config.regions.region(name).unwrap_or_default();
+        let wanted = |role: Role, model: &Option<String>| {
+            need.roles.contains(&role).then(|| model.clone()).flatten()
+        };
         let set = RegionModelSet {
-            aero: build(&info, registry, names.aero.as_deref())?,
-            heat_flux: build(&info, registry, names.heat_flux.as_deref())?,
-            conduction: build(&info, registry, names.conduction.as_deref())?,
-            structure: build(&info, registry, names.structure.as_deref())?,
-            propulsion: build(&info, registry, names.propulsion.as_deref())?,
+            aero: build(&info, registry, wanted(Role::Aero, &names.aero).as_deref())?,
+            heat_flux: build(
+                &info,
+                registry,
+                wanted(Role::HeatFlux, &names.heat_flux).as_deref(),
+            )?,
+            conduction: build(
+                &info,
+                registry,
+                wanted(Role::Conduction, &names.conduction).as_deref(),
+            )?,
+            structure: build(
+                &info,
+                registry,
+                wanted(Role::Structure, &names.structure).as_deref(),
+            )?,
+            propulsion: build(
+                &info,
+                registry,
+                wanted(Role::Propulsion, &names.propulsion).as_deref(),
+            )?,
             info,
             names,
         };
-        if let Some((_, need)) = needs.regions.iter().find(|(r, _)| *r == name) {
-            check_needs(&set, need, &needs.analysis)?;
-        }
+        check_needs(&set, need, &needs.analysis)?;
         sets.push(set);
     }
     Ok(sets)

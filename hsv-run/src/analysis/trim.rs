@@ -1,0 +1,319 @@
+//! Trim of steady level flight (paper §IV.B, Eq. 2): Nelder-Mead on J = u̇² + ẇ² + q̇² over the
+//! angle of attack, the symmetric elevon and the fuel equivalence ratio, then a restart from a
+//! seeded random perturbation of up to 10 % of each parameter; the trim is accepted when both
+//! minima agree within 1 % (the paper's rule), otherwise both are reported.
+
+use std::cell::RefCell;
+use std::time::Instant;
+
+use argmin::core::{CostFunction, Error as ArgminError, Executor, State};
+use argmin::solver::neldermead::NelderMead;
+use rand_xoshiro::Xoshiro256Plus;
+use rand_xoshiro::rand_core::{RngCore, SeedableRng};
+
+use crate::vehicle::rigid::{Accelerations, Controls, RigidLoads, RigidVehicle};
+
+/// Cost of a point the models refuse (an unstarted engine, a detached inlet), above any real J.
+const REFUSED_COST: f64 = 1e12;
+
+/// Fuel equivalence ratios the search may try (rich beyond stoichiometric is refused).
+const PHI_RANGE: (f64, f64) = (1e-3, 1.0);
+
+/// What to trim for.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct TrimRequest {
+    pub mach: f64,
+    pub altitude_m: f64,
+    /// Starting guess: α (deg), δe (deg), φ.
+    pub start: [f64; 3],
+    /// Initial simplex steps: α (deg), δe (deg), φ.
+    pub steps: [f64; 3],
+    /// Nelder-Mead stops when the standard deviation of J over the simplex is below this.
+    pub tolerance: f64,
+    pub max_iterations: u64,
+    /// Seed of the restart's perturbation.
+    pub seed: u64,
+}
+
+impl Default for TrimRequest {
+    fn default() -> Self {
+        Self {
+            mach: 6.0,
+            altitude_m: 26_000.0,
+            start: [2.0, 0.0, 0.3],
+            steps: [1.0, 2.0, 0.1],
+            tolerance: 1e-14,
+            max_iterations: 3000,
+            seed: 1,
+        }
+    }
+}
+
+/// One minimum: the controls, the loads there and the residual accelerations.
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
+pub struct TrimPoint {
+    pub alpha_deg: f64,
+    pub elevon_deg: f64,
+    pub fuel_equivalence_ratio: f64,
+    pub cost: f64,
+    pub accelerations: Accelerations,
+    pub loads: RigidLoads,
+    pub evaluations: u64,
+}
+
+/// The trim and its check.
+#[derive(Debug, Clone, PartialEq, serde::Serialize)]
+pub struct TrimResult {
+    pub mach: f64,
+    pub altitude_m: f64,
+    pub trim: TrimPoint,
+    /// The minimum found again from the perturbed start.
+    pub restart: TrimPoint,
+    /// Both minima agree within 1 % in every parameter.
+    pub agreed: bool,
+    pub mass_kg: f64,
+    pub wall_time_s: f64,
+}
+
+/// Why trim failed.
+#[derive(Debug, thiserror::Error)]
+pub enum TrimError {
+    #[error("trim at Mach {mach}, {altitude_m} m: {message}")]
+    Search {
+        mach: f64,
+        altitude_m: f64,
+        message: String,
+    },
+    #[error(
+        "no trim at Mach {mach}, {altitude_m} m: the search stalled at alpha {alpha_deg:.3} deg, \
+         elevon {elevon_deg:.3} deg, phi {phi:.4} with residual u_dot {u_dot:.3e} m/s^2, \
+         w_dot {w_dot:.3e} m/s^2, q_dot {q_dot:.3e} rad/s^2 (J {cost:.3e}){reason}"
+    )]
+    Untrimmable {
+        mach: f64,
+        altitude_m: f64,
+        alpha_deg: f64,
+        elevon_deg: f64,
+        phi: f64,
+        u_dot: f64,
+        w_dot: f64,
+        q_dot: f64,
+        cost: f64,
+        reason: String,
+    },
+}
+
+/// A model trim can drive: the accelerations of steady flight at given controls.
+pub trait SteadyFlight {
+    /// u̇, ẇ, q̇ and the loads at `controls` and the request's Mach and altitude.
+    fn steady_accelerations(
+        &mut self,
+        mach: f64,
+        altitude_m: f64,
+        controls: &Controls,
+    ) -> Result<(Accelerations, RigidLoads), hsv_core::ModelError>;
+
+    /// Mass of the vehicle, kg (reported).
+    fn mass_kg(&self) -> f64;
+}
+
+impl SteadyFlight for RigidVehicle {
+    fn steady_accelerations(
+        &mut self,
+        mach: f64,
+        altitude_m: f64,
+        controls: &Controls,
+    ) -> Result<(Accelerations, RigidLoads), hsv_core::ModelError> {
+        self.accelerations(mach, altitude_m, controls)
+    }
+
+    fn mass_kg(&self) -> f64 {
+        self.mass_properties().mass_kg
+    }
+}
+
+/// The cost function argmin minimizes; the vehicle's scratch is behind a `RefCell` because
+/// argmin's cost takes `&self`.
+struct Problem<'c, 'v> {
+    vehicle: &'c RefCell<&'v mut dyn SteadyFlight>,
+    mach: f64,
+    altitude_m: f64,
+    evaluations: &'c RefCell<u64>,
+    last_refusal: &'c RefCell<Option<String>>,
+}
+
+fn controls(p: &[f64]) -> Controls {
+    Controls {
+        alpha_rad: p[0].to_radians(),
+        elevon_rad: p[1].to_radians(),
+        fuel_equivalence_ratio: p[2],
+    }
+}
+
+impl CostFunction for Problem<'_, '_> {
+    type Param = Vec<f64>;
+    type Output = f64;
+
+    fn cost(&self, p: &Self::Param) -> Result<f64, ArgminError> {
+        *self.evaluations.borrow_mut() += 1;
+        let phi = p[2];
+        if !(PHI_RANGE.0..=PHI_RANGE.1).contains(&phi) {
+            // Outside the engine's range: a wall that grows with the distance, so the simplex
+            // turns back.
+            let outside = (PHI_RANGE.0 - phi).max(phi - PHI_RANGE.1);
+            return Ok(REFUSED_COST * (1.0 + outside));
+        }
+        let result = self.vehicle.borrow_mut().steady_accelerations(
+            self.mach,
+            self.altitude_m,
+            &controls(p),
+        );
+        match result {
+            Ok((acc, _)) => Ok(acc.cost()),
+            Err(e) => {
+                *self.last_refusal.borrow_mut() = Some(e.to_string());
+                Ok(REFUSED_COST)
+            }
+        }
+    }
+}
+
+/// Nelder-Mead from `start` with simplex steps `steps`.
+fn minimize(
+    vehicle: &mut dyn SteadyFlight,
+    request: &TrimRequest,
+    start: [f64; 3],
+) -> Result<(TrimPoint, Option<String>), TrimError> {
+    let search_error = |message: String| TrimError::Search {
+        mach: request.mach,
+        altitude_m: request.altitude_m,
+        message,
+    };
+    let mut simplex = vec![start.to_vec()];
+    for k in 0..3 {
+        let mut vertex = start.to_vec();
+        vertex[k] += request.steps[k];
+        simplex.push(vertex);
+    }
+    let evaluations = RefCell::new(0);
+    let last_refusal = RefCell::new(None);
+    let cell = RefCell::new(vehicle);
+    let problem = Problem {
+        vehicle: &cell,
+        mach: request.mach,
+        altitude_m: request.altitude_m,
+        evaluations: &evaluations,
+        last_refusal: &last_refusal,
+    };
+    let solver = NelderMead::new(simplex)
+        .with_sd_tolerance(request.tolerance)
+        .map_err(|e| search_error(e.to_string()))?;
+    let result = Executor::new(problem, solver)
+        .configure(|state| state.max_iters(request.max_iterations))
+        .run()
+        .map_err(|e| search_error(e.to_string()))?;
+    let best = result
+        .state()
+        .get_best_param()
+        .cloned()
+        .ok_or_else(|| search_error("Nelder-Mead returned no point".to_owned()))?;
+    // The result holds the problem, which borrows the cells.
+    drop(result);
+    let vehicle = cell.into_inner();
+    let c = controls(&best);
+    let refusal = last_refusal.into_inner();
+    let evaluations = evaluations.into_inner();
+    let (accelerations, loads) = vehicle
+        .steady_accelerations(request.mach, request.altitude_m, &c)
+        .map_err(|e| TrimError::Untrimmable {
+            mach: request.mach,
+            altitude_m: request.altitude_m,
+            alpha_deg: best[0],
+            elevon_deg: best[1],
+            phi: best[2],
+            u_dot: f64::NAN,
+            w_dot: f64::NAN,
+            q_dot: f64::NAN,
+            cost: f64::NAN,
+            reason: format!("; the models refuse the best point: {e}"),
+        })?;
+    Ok((
+        TrimPoint {
+            alpha_deg: best[0],
+            elevon_deg: best[1],
+            fuel_equivalence_ratio: best[2],
+            cost: accelerations.cost(),
+            accelerations,
+            loads,
+            evaluations,
+        },
+        refusal,
+    ))
+}
+
+/// A point of 10 % random perturbation around `p` (each parameter scaled by 1 + U(−0.1, 0.1)).
+fn perturbed(p: &TrimPoint, seed: u64) -> [f64; 3] {
+    let mut rng = Xoshiro256Plus::seed_from_u64(seed);
+    let mut unit = || (rng.next_u64() >> 11) as f64 / (1u64 << 53) as f64 * 2.0 - 1.0;
+    [
+        p.alpha_deg * (1.0 + 0.1 * unit()),
+        p.elevon_deg * (1.0 + 0.1 * unit()),
+        p.fuel_equivalence_ratio * (1.0 + 0.1 * unit()),
+    ]
+}
+
+/// Both minima agree within 1 % in each parameter (absolute 1e-3 deg or 1e-4 in φ near zero).
+fn agree(a: &TrimPoint, b: &TrimPoint) -> bool {
+    let close =
+        |x: f64, y: f64, floor: f64| (x - y).abs() <= (0.01 * x.abs().max(y.abs())).max(floor);
+    close(a.alpha_deg, b.alpha_deg, 1e-3)
+        && close(a.elevon_deg, b.elevon_deg, 1e-3)
+        && close(a.fuel_equivalence_ratio, b.fuel_equivalence_ratio, 1e-4)
+}
+
+/// Accelerations below which a point is trimmed: 1e-3 m/s² and 1e-4 rad/s² (our choice: four
+/// orders below g; the paper's rigid partitioned trim left 0.24 m/s²).
+pub const TRIMMED_ACCELERATION_M_S2: f64 = 1e-3;
+pub const TRIMMED_PITCH_ACCELERATION_RAD_S2: f64 = 1e-4;
+
+fn is_trimmed(a: &Accelerations) -> bool {
+    a.u_dot_m_s2.abs() <= TRIMMED_ACCELERATION_M_S2
+        && a.w_dot_m_s2.abs() <= TRIMMED_ACCELERATION_M_S2
+        && a.q_dot_rad_s2.abs() <= TRIMMED_PITCH_ACCELERATION_RAD_S2
+}
+
+/// Trims `vehicle` for steady level flight (module docs).
+pub fn trim(
+    vehicle: &mut dyn SteadyFlight,
+    request: &TrimRequest,
+) -> Result<TrimResult, TrimError> {
+    let start = Instant::now();
+    let (first, refusal) = minimize(vehicle, request, request.start)?;
+    if !is_trimmed(&first.accelerations) {
+        let a = first.accelerations;
+        return Err(TrimError::Untrimmable {
+            mach: request.mach,
+            altitude_m: request.altitude_m,
+            alpha_deg: first.alpha_deg,
+            elevon_deg: first.elevon_deg,
+            phi: first.fuel_equivalence_ratio,
+            u_dot: a.u_dot_m_s2,
+            w_dot: a.w_dot_m_s2,
+            q_dot: a.q_dot_rad_s2,
+            cost: first.cost,
+            reason: refusal.map_or_else(String::new, |r| {
+                format!("; the models refused some points on the way, last: {r}")
+            }),
+        });
+    }
+    let (restart, _) = minimize(vehicle, request, perturbed(&first, request.seed))?;
+    Ok(TrimResult {
+        mach: request.mach,
+        altitude_m: request.altitude_m,
+        agreed: agree(&first, &restart),
+        trim: first,
+        restart,
+        mass_kg: vehicle.mass_kg(),
+        wall_time_s: start.elapsed().as_secs_f64(),
+    })
+}

@@ -1,0 +1,155 @@
+//! `hsv-run trim`: steady level flight of the rigid vehicle (paper §IV.B), printed in the layout
+//! of the paper's Table 2: α, δe, φ, thrust, drag, J and each residual acceleration, with the
+//! restart check, evaluations and wall time.
+
+use anyhow::Result;
+use clap::Args;
+use hsv_core::registry::Registry;
+
+use super::{ConfigArg, JsonFlag, load_config};
+use crate::analysis::trim::{TrimRequest, TrimResult, trim};
+use crate::vehicle::assemble;
+use crate::vehicle::rigid::{RigidVehicle, rigid_needs};
+
+/// Arguments of `hsv-run trim`.
+#[derive(Args, Debug, Clone)]
+pub struct TrimArgs {
+    #[command(flatten)]
+    pub config: ConfigArg,
+    /// Trim the rigid vehicle (the only model trim has so far; the flexible vehicle needs the
+    /// coupled body-surface step).
+    #[arg(long, default_value_t = true)]
+    pub rigid: bool,
+    /// Freestream Mach number (default: the config's, 6 for the sample).
+    #[arg(long, allow_negative_numbers = true)]
+    pub mach: Option<f64>,
+    /// Geometric altitude, m (default: the config's, 26000 for the sample).
+    #[arg(long = "altitude-m", allow_negative_numbers = true)]
+    pub altitude_m: Option<f64>,
+    #[command(flatten)]
+    pub json: JsonFlag,
+}
+
+/// Trims the configured vehicle and prints the result.
+pub fn run(args: TrimArgs, registry: &Registry) -> Result<()> {
+    let (loaded, registry) = load_config(args.config.config.as_deref(), registry)?;
+    let mach = args.mach.unwrap_or(loaded.config.flight.mach);
+    let altitude_m = args.altitude_m.unwrap_or(loaded.config.flight.altitude_m);
+    for (flag, value) in [("--mach", mach), ("--altitude-m", altitude_m)] {
+        if !value.is_finite() {
+            anyhow::bail!("{flag} must be a finite number, got {value}");
+        }
+    }
+    let sets = assemble(
+        &loaded,
+        &registry,
+        &rigid_needs("trim of the rigid vehicle"),
+    )?;
+    let mut vehicle = RigidVehicle::new(sets)?;
+    let request = TrimRequest {
+        mach,
+        altitude_m,
+        ..TrimRequest::default()
+    };
+    let result = trim(&mut vehicle, &request)?;
+    if args.json.json {
+        println!("{}", serde_json::to_string_pretty(&summary(&result))?);
+    } else {
+        print_table(&result);
+    }
+    Ok(())
+}
+
+/// The JSON summary: keys name quantity and unit.
+fn summary(r: &TrimResult) -> serde_json::Value {
+    let point = |p: &crate::analysis::trim::TrimPoint| {
+        serde_json::json!({
+            "alpha_deg": p.alpha_deg,
+            "elevon_deg": p.elevon_deg,
+            "fuel_equivalence_ratio": p.fuel_equivalence_ratio,
+            "thrust_n": p.loads.thrust_n,
+            "drag_n": p.loads.drag_n,
+            "cost": p.cost,
+            "u_dot_m_s2": p.accelerations.u_dot_m_s2,
+            "w_dot_m_s2": p.accelerations.w_dot_m_s2,
+            "q_dot_rad_s2": p.accelerations.q_dot_rad_s2,
+            "engine_status": p.loads.engine_status,
+            "evaluations": p.evaluations,
+        })
+    };
+    serde_json::json!({
+        "model": "rigid",
+        "mach": r.mach,
+        "altitude_m": r.altitude_m,
+        "mass_kg": r.mass_kg,
+        "trim": point(&r.trim),
+        "restart": point(&r.restart),
+        "restart_agrees_within_1_percent": r.agreed,
+        "wall_time_s": r.wall_time_s,
+    })
+}
+
+fn print_table(r: &TrimResult) {
+    let t = &r.trim;
+    println!(
+        "Steady level flight, rigid vehicle, Mach {}, {} m ({:.0} kg)",
+        r.mach, r.altitude_m, r.mass_kg
+    );
+    println!(
+        "{:<8} {:<40} {:>14} {:>14}",
+        "symbol", "description", "trim", "restart"
+    );
+    let row = |symbol: &str, what: &str, a: f64, b: f64| {
+        println!("{symbol:<8} {what:<40} {a:>14.6} {b:>14.6}");
+    };
+    let e = &r.restart;
+    row("alpha", "angle of attack (deg)", t.alpha_deg, e.alpha_deg);
+    row(
+        "delta_e",
+        "elevon deflection (deg)",
+        t.elevon_deg,
+        e.elevon_deg,
+    );
+    row(
+        "phi",
+        "fuel equivalence ratio",
+        t.fuel_equivalence_ratio,
+        e.fuel_equivalence_ratio,
+    );
+    row("T", "thrust (N)", t.loads.thrust_n, e.loads.thrust_n);
+    row("D", "drag (N)", t.loads.drag_n, e.loads.drag_n);
+    println!("minimized parameters");
+    let sci = |symbol: &str, what: &str, a: f64, b: f64| {
+        println!("{symbol:<8} {what:<40} {a:>14.3e} {b:>14.3e}");
+    };
+    sci(
+        "u_dot",
+        "forward acceleration (m/s^2)",
+        t.accelerations.u_dot_m_s2,
+        e.accelerations.u_dot_m_s2,
+    );
+    sci(
+        "w_dot",
+        "vertical acceleration (m/s^2)",
+        t.accelerations.w_dot_m_s2,
+        e.accelerations.w_dot_m_s2,
+    );
+    sci(
+        "q_dot",
+        "pitch angular acceleration (deg/s^2)",
+        t.accelerations.q_dot_rad_s2.to_degrees(),
+        e.accelerations.q_dot_rad_s2.to_degrees(),
+    );
+    sci("J", "cost u_dot^2 + w_dot^2 + q_dot^2 (SI)", t.cost, e.cost);
+    println!(
+        "evaluations {} + {}, wall time {:.2} s; restart from a 10 % perturbation {}",
+        t.evaluations,
+        e.evaluations,
+        r.wall_time_s,
+        if r.agreed {
+            "agrees within 1 %"
+        } else {
+            "does NOT agree within 1 % (both minima shown)"
+        }
+    );
+}

@@ -1,0 +1,324 @@
+//! The vehicle as one rigid body in steady flight: every region's loads at a flight condition,
+//! elevon and fuel equivalence ratio, summed about the centre of mass, and the accelerations of
+//! paper Eq. 1 without the modal part (what trim drives to zero).
+//!
+//! Ownership of the wetted surface: the main body's aero model loads the panels tagged
+//! [`RegionKind::MainBody`], each lifting surface's aero model its [`RegionKind::LiftingSurface`]
+//! panels (deflected about the pivot by the elevon), and the engine the body panels tagged
+//! [`RegionKind::Propulsion`]; caps ([`RegionKind::Other`]) close meshes and carry no load. So no
+//! surface is counted twice.
+
+use hsv_core::aero::{AeroModel, AeroSolution, Loads, PanelMotion, integrate_pressure};
+use hsv_core::atmosphere::gravity;
+use hsv_core::coupling::{ElevonCommand, deflect_lifting_surface};
+use hsv_core::flow::{FlightCondition, Freestream};
+use hsv_core::gas::PerfectGas;
+use hsv_core::mesh::{PanelMesh, RegionKind};
+use hsv_core::propulsion::{EngineInputs, EngineStatus, PropulsionModel, PropulsionSolution};
+use hsv_core::region::RegionGeometry;
+use hsv_core::structure::{Capability, MassProperties};
+use hsv_core::vehicle::{LiftingSurfaceConfig, Side};
+use nalgebra::{Point3, Vector3};
+
+use super::{AnalysisNeeds, AssemblyError, RegionModelSet, RegionNeeds};
+use hsv_core::registry::Role;
+
+/// What the rigid vehicle needs of its regions: aero on the body and both surfaces, mass
+/// properties from every structure, an engine.
+pub fn rigid_needs(analysis: &str) -> AnalysisNeeds {
+    let with_mass = |roles: Vec<Role>| RegionNeeds {
+        roles,
+        structure: vec![Capability::MassProperties],
+    };
+    AnalysisNeeds {
+        analysis: analysis.to_owned(),
+        regions: vec![
+            ("main_body", with_mass(vec![Role::Aero, Role::Structure])),
+            ("left_surface", with_mass(vec![Role::Aero, Role::Structure])),
+            (
+                "right_surface",
+                with_mass(vec![Role::Aero, Role::Structure]),
+            ),
+            (
+                "propulsion",
+                RegionNeeds {
+                    roles: vec![Role::Propulsion],
+                    structure: Vec::new(),
+                },
+            ),
+        ],
+    }
+}
+
+/// The controls of steady flight.
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
+pub struct Controls {
+    /// Angle of attack, rad (level flight: also the pitch angle).
+    pub alpha_rad: f64,
+    /// Symmetric elevon deflection, rad (positive: trailing edge up, nose up).
+    pub elevon_rad: f64,
+    /// Fuel equivalence ratio φ.
+    pub fuel_equivalence_ratio: f64,
+}
+
+/// Loads of one evaluation, body axes, moments about the centre of mass.
+#[derive(Debug, Clone, Copy, PartialEq, Default, serde::Serialize)]
+pub struct RigidLoads {
+    pub body_aero: Loads,
+    pub surface_aero: Loads,
+    pub engine: Loads,
+    pub gravity: Loads,
+    pub total: Loads,
+    /// Drag (along −V) of the aero loads, N.
+    pub drag_n: f64,
+    /// Engine thrust (body x), N.
+    pub thrust_n: f64,
+    pub engine_status: EngineStatus,
+}
+
+/// Accelerations of steady wings-level flight (paper Eq. 2's minimized set): u̇, ẇ (m/s², body
+/// axes) and q̇ (rad/s²).
+#[derive(Debug, Clone, Copy, PartialEq, Default, serde::Serialize)]
+pub struct Accelerations {
+    pub u_dot_m_s2: f64,
+    pub w_dot_m_s2: f64,
+    pub q_dot_rad_s2: f64,
+}
+
+impl Accelerations {
+    /// J = u̇² + ẇ² + q̇² (paper Eq. 2, identity weights; SI units).
+    pub fn cost(&self) -> f64 {
+        self.u_dot_m_s2.powi(2) + self.w_dot_m_s2.powi(2) + self.q_dot_rad_s2.powi(2)
+    }
+}
+
+/// One lifting surface: its undeflected mesh, planform, side and aero model.
+struct Surface {
+    mesh: PanelMesh,
+    deflected: PanelMesh,
+    planform: LiftingSurfaceConfig,
+    side: Side,
+    aero: Box<dyn AeroModel>,
+}
+
+/// The whole vehicle as a rigid body (module docs).
+pub struct RigidVehicle {
+    body_mesh: PanelMesh,
+    body_aero: Box<dyn AeroModel>,
+    surfaces: Vec<Surface>,
+    engine: Box<dyn PropulsionModel>,
+    mass: MassProperties,
+    reference_point_m: Point3<f64>,
+    gas: PerfectGas,
+    solution: AeroSolution,
+    engine_solution: PropulsionSolution,
+}
+
+fn missing(region: &str, what: &str) -> AssemblyError {
+    AssemblyError::Model {
+        file: String::new(),
+        region: region.to_owned(),
+        source: format!("the rigid vehicle needs {what}").into(),
+    }
+}
+
+impl RigidVehicle {
+    /// The rigid vehicle from assembled regions (checked with [`rigid_needs`]).
+    pub fn new(sets: Vec<RegionModelSet>) -> Result<Self, AssemblyError> {
+        let mut body = None;
+        let mut engine = None;
+        let mut surfaces = Vec::new();
+        let mut mass: Option<MassProperties> = None;
+        let mut reference_point_m = Point3::origin();
+        let mut gas = PerfectGas::AIR;
+        for set in sets {
+            let region = set.info.name.clone();
+            if let Some(structure) = &set.structure
+                && let Some(m) = structure.mass_properties()
+            {
+                let m = m.mass_properties();
+                mass = Some(mass.map_or(m, |total| total.combined(&m)));
+            }
+            reference_point_m = set.info.reference.moment_point();
+            gas = set.info.gas;
+            match (&set.info.geometry, region.as_str()) {
+                (_, "main_body") => {
+                    let aero = set.aero.ok_or_else(|| missing(&region, "an aero model"))?;
+                    body = Some((set.info.mesh, aero));
+                }
+                (_, "propulsion") => {
+                    engine = Some(
+                        set.propulsion
+                            .ok_or_else(|| missing(&region, "a propulsion model"))?,
+                    );
+                }
+                (RegionGeometry::LiftingSurface { planform, side }, _) => {
+                    let aero = set.aero.ok_or_else(|| missing(&region, "an aero model"))?;
+                    surfaces.push(Surface {
+                        deflected: set.info.mesh.clone(),
+                        mesh: set.info.mesh,
+                        planform: planform.clone(),
+                        side: *side,
+                        aero,
+                    });
+                }
+                _ => {}
+            }
+        }
+        let (body_mesh, body_aero) = body.ok_or_else(|| missing("main_body", "the region"))?;
+        Ok(Self {
+            body_mesh,
+            body_aero,
+            surfaces,
+            engine: engine.ok_or_else(|| missing("propulsion", "the region"))?,
+            mass: mass.ok_or_else(|| missing("main_body", "mass properties"))?,
+            reference_point_m,
+            gas,
+            solution: AeroSolution::default(),
+            engine_solution: PropulsionSolution::default(),
+        })
+    }
+
+    /// Mass, centre of mass and inertia of the whole vehicle.
+    pub fn mass_properties(&self) -> &MassProperties {
+        &self.mass
+    }
+
+    /// The flight condition of steady flight at `mach`, `altitude_m` and `alpha_rad`, rotating
+    /// about the centre of mass.
+    pub fn flight(
+        &self,
+        mach: f64,
+        altitude_m: f64,
+        alpha_rad: f64,
+    ) -> Result<FlightCondition, hsv_core::ModelError> {
+        let freestream = Freestream::standard(mach, altitude_m, self.gas)?;
+        let mut flight = FlightCondition::steady(freestream, alpha_rad, 0.0);
+        flight.rotation_center_m = self.mass.center_of_mass_m;
+        Ok(flight)
+    }
+
+    /// Every region's loads and their sum about the centre of mass in steady level flight
+    /// (pitch angle = α, no rates).
+    pub fn loads(
+        &mut self,
+        mach: f64,
+        altitude_m: f64,
+        controls: &Controls,
+    ) -> Result<RigidLoads, hsv_core::ModelError> {
+        let flight = self.flight(mach, altitude_m, controls.alpha_rad)?;
+        let cg = self.mass.center_of_mass_m;
+        let p_inf = flight.freestream.pressure_pa;
+        self.body_aero.evaluate(
+            &self.body_mesh,
+            &flight,
+            &PanelMotion::default(),
+            &mut self.solution,
+        )?;
+        let body_aero = integrate_pressure(
+            &self.body_mesh,
+            &self.solution.pressure_pa,
+            p_inf,
+            &cg,
+            |r| r == RegionKind::MainBody,
+        );
+        let elevon = ElevonCommand {
+            symmetric_rad: controls.elevon_rad,
+            differential_rad: 0.0,
+        };
+        let mut surface_aero = Loads::default();
+        for s in &mut self.surfaces {
+            deflect_lifting_surface(
+                &s.mesh,
+                &s.planform,
+                s.side,
+                elevon.deflection_rad(s.side),
+                &mut s.deflected,
+            )
+            .map_err(|e| hsv_core::ModelError::inconsistent("elevon", e.to_string()))?;
+            s.aero.evaluate(
+                &s.deflected,
+                &flight,
+                &PanelMotion::default(),
+                &mut self.solution,
+            )?;
+            surface_aero = surface_aero
+                + integrate_pressure(&s.deflected, &self.solution.pressure_pa, p_inf, &cg, |r| {
+                    r == RegionKind::LiftingSurface
+                });
+        }
+        self.engine.evaluate(
+            &EngineInputs {
+                flight: &flight,
+                body: &self.body_mesh,
+                fuel_equivalence_ratio: controls.fuel_equivalence_ratio,
+            },
+            &mut self.engine_solution,
+        )?;
+        // The engine gives its moment about the vehicle's reference point: move it to the CG.
+        let engine_ref = self.engine_solution.loads;
+        let engine = Loads {
+            force_n: engine_ref.force_n,
+            moment_nm: engine_ref.moment_nm
+                + (self.reference_point_m - cg).cross(&engine_ref.force_n),
+        };
+        let (st, ct) = controls.alpha_rad.sin_cos();
+        let weight = self.mass.mass_kg * gravity(altitude_m);
+        let gravity_loads = Loads {
+            force_n: Vector3::new(-weight * st, 0.0, weight * ct),
+            moment_nm: Vector3::zeros(),
+        };
+        let aero = body_aero + surface_aero;
+        let (sa, ca) = controls.alpha_rad.sin_cos();
+        let drag_n = -(aero.force_n.x * ca + aero.force_n.z * sa);
+        let total = aero + engine + gravity_loads;
+        for (what, v) in [
+            ("total force", total.force_n),
+            ("total moment", total.moment_nm),
+        ] {
+            if v.iter().any(|x| !x.is_finite()) {
+                return Err(hsv_core::ModelError::NonFinite {
+                    model: "rigid vehicle".to_owned(),
+                    quantity: what.to_owned(),
+                    location: format!(
+                        " at alpha {:.4} deg, elevon {:.4} deg, phi {:.4}",
+                        controls.alpha_rad.to_degrees(),
+                        controls.elevon_rad.to_degrees(),
+                        controls.fuel_equivalence_ratio
+                    ),
+                });
+            }
+        }
+        Ok(RigidLoads {
+            body_aero,
+            surface_aero,
+            engine,
+            gravity: gravity_loads,
+            total,
+            drag_n,
+            thrust_n: engine.force_n.x,
+            engine_status: self.engine_solution.status,
+        })
+    }
+
+    /// u̇, ẇ and q̇ of steady level flight (paper Eq. 1 with zero rates: u̇ = F_x/m,
+    /// ẇ = F_z/m, q̇ = M_y/I_yy about the centre of mass).
+    pub fn accelerations(
+        &mut self,
+        mach: f64,
+        altitude_m: f64,
+        controls: &Controls,
+    ) -> Result<(Accelerations, RigidLoads), hsv_core::ModelError> {
+        let loads = self.loads(mach, altitude_m, controls)?;
+        let m = self.mass.mass_kg;
+        let i_yy = self.mass.inertia_kg_m2[(1, 1)];
+        Ok((
+            Accelerations {
+                u_dot_m_s2: loads.total.force_n.x / m,
+                w_dot_m_s2: loads.total.force_n.z / m,
+                q_dot_rad_s2: loads.total.moment_nm.y / i_yy,
+            },
+            loads,
+        ))
+    }
+}

@@ -1,0 +1,99 @@
+//! Trim of steady level flight (paper §IV.B, Eq. 2): the search against a model whose trim is
+//! known in closed form, a model that cannot be trimmed, and the sample vehicle.
+
+use hsv_core::config::LoadedConfig;
+use hsv_run::analysis::trim::{
+    SteadyFlight, TRIMMED_ACCELERATION_M_S2, TRIMMED_PITCH_ACCELERATION_RAD_S2, TrimRequest, trim,
+};
+use hsv_run::vehicle::assemble;
+use hsv_run::vehicle::rigid::{Accelerations, Controls, RigidLoads, RigidVehicle, rigid_needs};
+
+/// Accelerations linear in (α deg, δe deg, φ): a = A x − b, so the trim is x* = A⁻¹ b exactly.
+struct Linear {
+    a: [[f64; 3]; 3],
+    b: [f64; 3],
+}
+
+impl SteadyFlight for Linear {
+    fn steady_accelerations(
+        &mut self,
+        _mach: f64,
+        _altitude_m: f64,
+        c: &Controls,
+    ) -> Result<(Accelerations, RigidLoads), hsv_core::ModelError> {
+        let x = [
+            c.alpha_rad.to_degrees(),
+            c.elevon_rad.to_degrees(),
+            c.fuel_equivalence_ratio,
+        ];
+        let row = |i: usize| (0..3).map(|j| self.a[i][j] * x[j]).sum::<f64>() - self.b[i];
+        Ok((
+            Accelerations {
+                u_dot_m_s2: row(0),
+                w_dot_m_s2: row(1),
+                q_dot_rad_s2: row(2),
+            },
+            RigidLoads::default(),
+        ))
+    }
+
+    fn mass_kg(&self) -> f64 {
+        1.0
+    }
+}
+
+#[test]
+fn the_search_finds_the_closed_form_trim_of_a_linear_model() {
+    // A coupled, non-symmetric A with a trim at α = 1.5°, δe = −3°, φ = 0.4 by construction.
+    let a = [[0.2, 0.05, -9.0], [-3.0, 0.4, 1.0], [0.8, 1.2, 0.3]];
+    let x_star = [1.5, -3.0, 0.4];
+    let b = [0, 1, 2].map(|i| (0..3).map(|j| a[i][j] * x_star[j]).sum::<f64>());
+    let mut model = Linear { a, b };
+    let result = trim(&mut model, &TrimRequest::default()).expect("trims");
+    let t = &result.trim;
+    assert!((t.alpha_deg - 1.5).abs() < 1e-5, "{t:?}");
+    assert!((t.elevon_deg + 3.0).abs() < 1e-5, "{t:?}");
+    assert!((t.fuel_equivalence_ratio - 0.4).abs() < 1e-6, "{t:?}");
+    assert!(result.agreed, "{result:?}");
+}
+
+#[test]
+fn a_residual_no_control_removes_is_reported_with_where_the_search_stalled() {
+    // u̇ = 2 m/s² whatever the controls: no trim exists.
+    let mut model = Linear {
+        a: [[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]],
+        b: [-2.0, 0.0, 0.0],
+    };
+    let err = trim(&mut model, &TrimRequest::default())
+        .expect_err("untrimmable")
+        .to_string();
+    assert!(
+        err.contains("stalled at") && err.contains("u_dot 2.000e0"),
+        "{err}"
+    );
+}
+
+#[test]
+fn the_sample_vehicle_trims_at_mach_6_26_km_with_a_physical_fuel_ratio() {
+    let registry = hsv_run::registry().expect("registry");
+    let loaded = LoadedConfig::sample().expect("sample");
+    let sets = assemble(&loaded, &registry, &rigid_needs("trim")).expect("assembles");
+    let mut vehicle = RigidVehicle::new(sets).expect("rigid vehicle");
+    let result = trim(&mut vehicle, &TrimRequest::default()).expect("trims");
+    let t = &result.trim;
+    assert!(
+        t.fuel_equivalence_ratio > 0.0 && t.fuel_equivalence_ratio <= 1.0,
+        "{t:?}"
+    );
+    let a = t.accelerations;
+    assert!(a.u_dot_m_s2.abs() <= TRIMMED_ACCELERATION_M_S2, "{a:?}");
+    assert!(a.w_dot_m_s2.abs() <= TRIMMED_ACCELERATION_M_S2, "{a:?}");
+    assert!(a.q_dot_rad_s2.abs() <= TRIMMED_PITCH_ACCELERATION_RAD_S2, "{a:?}");
+    assert!(result.agreed, "restart disagrees: {result:?}");
+    // Level flight: lift balances weight and thrust balances drag, each to the trim residual.
+    let m = result.mass_kg;
+    let weight = m * hsv_core::atmosphere::gravity(26_000.0);
+    let l = &t.loads;
+    let lift = -(l.body_aero.force_n.z + l.surface_aero.force_n.z + l.engine.force_n.z);
+    assert!((lift * t.alpha_deg.to_radians().cos() - weight).abs() < 0.01 * weight);
+}

@@ -1,5 +1,6 @@
 //! `hsv-run`: the command-line front end of the hsv simulator.
 
+use std::io::Write as _;
 use std::path::PathBuf;
 use std::process::ExitCode;
 
@@ -7,8 +8,9 @@ use anyhow::Result;
 use clap::{Parser, Subcommand};
 use hsv_run::commands::{
     self, ConfigArg, JsonFlag, aero::AeroArgs, engine::EngineArgs, heat::HeatArgs,
-    modes::ModesArgs, trim::TrimArgs,
+    modes::ModesArgs, trim::TrimArgs, vehicle::VehicleArgs,
 };
+use hsv_run::output;
 
 #[derive(Parser)]
 #[command(
@@ -39,10 +41,15 @@ enum Command {
         #[command(flatten)]
         json: JsonFlag,
     },
-    /// Print the embedded sample-vehicle config (TOML, commented) to start your own from.
+    /// Print the embedded sample-vehicle config (TOML, commented) to start your own from, or
+    /// check a config (--check FILE).
     Config {
         #[command(flatten)]
         config: ConfigArg,
+        /// Validate this config as every command would before running (keys, values, plugins,
+        /// geometry, region model names and roles); prints `FILE: OK` or the first error.
+        #[arg(long, value_name = "FILE", conflicts_with = "config")]
+        check: Option<PathBuf>,
         #[command(flatten)]
         json: JsonFlag,
     },
@@ -54,19 +61,56 @@ enum Command {
     Heat(HeatArgs),
     /// Scramjet thrust, lift, moment, mass flow and station states, one row per propulsion model.
     Engine(EngineArgs),
+    /// The assembled vehicle: regions, models, mass, centre of mass, inertia, modal frequencies.
+    Vehicle(VehicleArgs),
     /// Trim steady level flight (rigid vehicle): alpha, elevon and fuel equivalence ratio.
     Trim(TrimArgs),
 }
 
+/// Exit status when standard output was closed early: 128 + SIGPIPE, as a Unix tool killed by
+/// the signal reports it.
+const CLOSED_STDOUT_EXIT: u8 = 141;
+
 fn main() -> ExitCode {
+    quiet_on_closed_stdout();
     let cli = Cli::parse();
-    match run(cli) {
+    match run(cli).and_then(|()| output::flush_stdout()) {
         Ok(()) => ExitCode::SUCCESS,
+        Err(error) if error.chain().any(|e| e.is::<output::StdoutClosed>()) => {
+            ExitCode::from(CLOSED_STDOUT_EXIT)
+        }
         Err(error) => {
-            eprintln!("error: {}", chain(&error));
+            // Nothing more to do if stderr is gone too.
+            let _ = writeln!(std::io::stderr(), "error: {}", chain(&error));
             ExitCode::FAILURE
         }
     }
+}
+
+/// A `println!` left anywhere that fails no longer panics: a closed pipe exits quietly, another
+/// failure (a full disk) is one error line. Commands print through `outln!`, which returns the
+/// failure as an error; this catches what still prints with `println!`.
+fn quiet_on_closed_stdout() {
+    let default = std::panic::take_hook();
+    std::panic::set_hook(Box::new(move |info| {
+        let payload = info.payload();
+        let message = payload
+            .downcast_ref::<String>()
+            .map(String::as_str)
+            .or_else(|| payload.downcast_ref::<&str>().copied())
+            .unwrap_or_default();
+        if let Some(cause) = message.strip_prefix("failed printing to stdout: ") {
+            if cause.contains("os error 32") {
+                std::process::exit(i32::from(CLOSED_STDOUT_EXIT));
+            }
+            let _ = writeln!(
+                std::io::stderr(),
+                "error: cannot write to standard output: {cause}"
+            );
+            std::process::exit(1);
+        }
+        default(info);
+    }));
 }
 
 /// One line: the error and its causes, outermost first.
@@ -88,7 +132,12 @@ fn run(cli: Cli) -> Result<()> {
         Command::Describe { name, json } => {
             commands::catalog::describe(&registry, &name, json.json)
         }
-        Command::Config { config, json } => {
+        Command::Config {
+            check: Some(file),
+            json,
+            ..
+        } => commands::config::check_config(&file, &registry, json.json),
+        Command::Config { config, json, .. } => {
             commands::config::print_config(config.config.as_deref(), json.json)
         }
         Command::Aero(args) => commands::aero::run(args, &registry),
@@ -96,5 +145,6 @@ fn run(cli: Cli) -> Result<()> {
         Command::Heat(args) => commands::heat::run(args, &registry),
         Command::Engine(args) => commands::engine::run(args, &registry),
         Command::Trim(args) => commands::trim::run(args, &registry),
+        Command::Vehicle(args) => commands::vehicle::run(args, &registry),
     }
 }

@@ -971,3 +971,59 @@ fn bad_input_is_reported_by_name() {
         .expect_err("gimbal lock");
     assert!(err.to_string().contains("gimbal lock"), "{err}");
 }
+
+/// The mean-axes assumption of the body's equations, checked on the sample vehicle's
+/// free-free beam: its elastic modes are M-orthogonal to the six rigid motions (Meirovitch,
+/// *Fundamentals of Vibrations*, 2001: orthogonality of free-free modes to rigid-body modes),
+/// so every mode-rigid cosine is ~0 (< 1e-8); a ritz-plate surface, clamped to its torque tube,
+/// is not (its first bending mode moves with the tube's z translation: cosine > 0.1), which is
+/// why the surfaces take the −C a_root term.
+#[test]
+fn the_sample_beam_satisfies_the_mean_axes_assumption_and_the_surfaces_do_not() {
+    use hsv_core::config::{SAMPLE_CONFIG_TOML, parse_config};
+    use hsv_run::dynamics::mean_axes_cosine;
+    use hsv_run::vehicle::{AnalysisNeeds, assemble};
+    let text = SAMPLE_CONFIG_TOML.replace("conduction = \"pod\"", "conduction = \"full-order\"");
+    let loaded = parse_config(&text, "test.toml").expect("config parses");
+    let registry = hsv_run::registry().expect("registry");
+    let needs = AnalysisNeeds::aerothermoelastic("the mean-axes check");
+    let sets = assemble(&loaded, &registry, &needs).expect("assembles");
+    let cosine = |i: usize| {
+        let structure = sets[i].structure.as_ref().expect("structure");
+        let coupling = structure.rigid_body_coupling().expect("coupling");
+        let mass = structure.mass_properties().expect("mass").mass_properties();
+        mean_axes_cosine(coupling, &structure.modal_model().mass, &mass)
+    };
+    let (body, surface) = (cosine(0), cosine(2));
+    println!("mean-axes cosine: main body {body:.1e}, right surface {surface:.3}");
+    assert!(body < 1e-8, "body modes couple with rigid motion: {body:e}");
+    assert!(surface > 0.1 && surface <= 1.0 + 1e-12);
+}
+
+/// Simulation state is plain data: a vehicle state survives a JSON round trip (checkpoint,
+/// rollback) to 1 ulp (serde_json's default float parser, without `float_roundtrip`, may round
+/// the last bit).
+#[test]
+fn vehicle_state_round_trips_through_json() {
+    let mut state = VehicleState {
+        rigid: RigidBodyState::level_flight(26_000.0, 1790.0, -0.011),
+        body_modes: ModalState::zeros(3),
+        surface_modes: vec![ModalState::zeros(2), ModalState::zeros(2)],
+    };
+    state.rigid.angular_velocity_body_rad_s.y = 1e-3;
+    state.body_modes.q[1] = -3e-3;
+    state.surface_modes[1].q_dot[0] = 0.25;
+    let text = serde_json::to_string(&state).expect("serialize");
+    let back: VehicleState = serde_json::from_str(&text).expect("deserialize");
+    let layout = StateLayout {
+        attitude: AttitudeCoordinates::Quaternion,
+        n_body_modes: 3,
+        n_surface_modes: vec![2, 2],
+    };
+    let (mut a, mut b) = (DVector::zeros(layout.len()), DVector::zeros(layout.len()));
+    layout.pack(&state, &mut a).expect("pack");
+    layout.pack(&back, &mut b).expect("pack");
+    for (x, y) in a.iter().zip(b.iter()) {
+        assert!((x - y).abs() <= f64::EPSILON * x.abs(), "{x} vs {y}");
+    }
+}

@@ -88,7 +88,10 @@ fn the_sample_vehicle_trims_at_mach_6_26_km_with_a_physical_fuel_ratio() {
     let a = t.accelerations;
     assert!(a.u_dot_m_s2.abs() <= TRIMMED_ACCELERATION_M_S2, "{a:?}");
     assert!(a.w_dot_m_s2.abs() <= TRIMMED_ACCELERATION_M_S2, "{a:?}");
-    assert!(a.q_dot_rad_s2.abs() <= TRIMMED_PITCH_ACCELERATION_RAD_S2, "{a:?}");
+    assert!(
+        a.q_dot_rad_s2.abs() <= TRIMMED_PITCH_ACCELERATION_RAD_S2,
+        "{a:?}"
+    );
     assert!(result.agreed, "restart disagrees: {result:?}");
     // Level flight: lift balances weight and thrust balances drag, each to the trim residual.
     let m = result.mass_kg;

@@ -1,6 +1,7 @@
 //! `hsv-run aero`: forces, moments and coefficients of the vehicle or an STL mesh, per aero model.
 
-use std::path::PathBuf;
+use std::io::Write as _;
+use std::path::{Path, PathBuf};
 
 use anyhow::{Context, Result, bail};
 use clap::Args;
@@ -8,15 +9,27 @@ use hsv_core::registry::Registry;
 
 use super::{ConfigArg, JsonFlag, load_config};
 use crate::aero_job::{self, AeroMesh, AeroRequest, FrictionRequest};
+use crate::{outln, output};
 
 /// Arguments of `hsv-run aero`.
 #[derive(Args, Debug, Clone)]
 pub struct AeroArgs {
     #[command(flatten)]
     pub config: ConfigArg,
-    /// Evaluate this closed STL mesh (ASCII or binary) instead of the vehicle.
+    /// Evaluate this closed STL mesh (ASCII or binary, metres, body axes) instead of the
+    /// vehicle. It must be watertight with consistently oriented facets; one facing inward
+    /// throughout is turned outward with a warning.
     #[arg(long, value_name = "FILE.stl")]
     pub mesh: Option<PathBuf>,
+    /// Evaluate an open or inconsistently oriented --mesh anyway (loads on an open surface are
+    /// not those of a closed body).
+    #[arg(long, requires = "mesh")]
+    pub allow_open: bool,
+    /// Moment reference point, body axes, m, as X,Y,Z (default: the config's
+    /// [reference] moment_point_m for the vehicle; the centre of the mesh's bounding box for
+    /// --mesh).
+    #[arg(long = "moment-point-m", value_name = "X,Y,Z", value_parser = parse_point, allow_hyphen_values = true)]
+    pub moment_point_m: Option<[f64; 3]>,
     /// Aero model to evaluate (repeatable); default: the main body's model from the config.
     #[arg(long = "model", value_name = "NAME", conflicts_with = "all")]
     pub models: Vec<String>,
@@ -41,6 +54,10 @@ pub struct AeroArgs {
     /// Reference length for the pitching moment, m (default: config, or the STL mesh length).
     #[arg(long = "lref-m", allow_negative_numbers = true)]
     pub lref_m: Option<f64>,
+    /// Reference span for the rolling and yawing moments, m (default: config, or the STL mesh
+    /// width).
+    #[arg(long = "bref-m", allow_negative_numbers = true)]
+    pub bref_m: Option<f64>,
     /// Also integrate the surfaces the engine model owns (inlet ramp, external nozzle) with the
     /// aero model, as an unpowered vehicle.
     #[arg(long)]
@@ -68,14 +85,18 @@ pub fn run(args: AeroArgs, registry: &Registry) -> Result<()> {
     let (loaded, registry) = load_config(args.config.config.as_deref(), registry)?;
     let registry = &registry;
     let flight = loaded.config.flight;
+    let mut warnings = Vec::new();
     let mesh = match &args.mesh {
         None => aero_job::vehicle_mesh(&loaded)?,
         Some(path) => AeroMesh {
-            mesh: hsv_core::stl::read_stl(path)?,
+            mesh: read_closed_mesh(path, args.allow_open, &mut warnings)?,
             source: path.display().to_string(),
             has_engine_surfaces: false,
         },
     };
+    for warning in &warnings {
+        let _ = writeln!(std::io::stderr(), "warning: {warning}");
+    }
     let mut reference = match &args.mesh {
         None => loaded.config.reference,
         Some(_) => aero_job::mesh_reference(&mesh.mesh),
@@ -92,6 +113,16 @@ pub fn run(args: AeroArgs, registry: &Registry) -> Result<()> {
         }
         reference.chord_m = l;
     }
+    if let Some(b) = args.bref_m {
+        if !(b.is_finite() && b > 0.0) {
+            bail!("--bref-m must be a positive length in metres, got {b}");
+        }
+        reference.span_m = b;
+    }
+    if let Some(point) = args.moment_point_m {
+        reference.moment_point_m = point;
+    }
+    check_reference(&reference, args.mesh.is_some())?;
     let models = if args.all {
         aero_job::all_aero_models(registry)
     } else if !args.models.is_empty() {
@@ -161,6 +192,9 @@ pub fn run(args: AeroArgs, registry: &Registry) -> Result<()> {
             "moment_point_m": request.reference.moment_point_m,
             "engine_surfaces_included": request.include_engine_surfaces || !mesh.has_engine_surfaces,
             "models": models,
+            "warnings": warnings,
+            "status": output::RunStatus::Completed.to_json(),
+            "files": Vec::<String>::new(),
         });
         outln!("{}", serde_json::to_string_pretty(&summary)?)?;
         return Ok(());
@@ -237,7 +271,76 @@ pub fn run(args: AeroArgs, registry: &Registry) -> Result<()> {
             outln!("{:<24} note: {}", "", notes.join(", "))?;
         }
         if let Some(f) = &r.friction {
-            print_friction_rows(r, f, &flight_condition);
+            print_friction_rows(r, f, &flight_condition)?;
+        }
+    }
+    Ok(())
+}
+
+/// `X,Y,Z` in metres.
+fn parse_point(text: &str) -> Result<[f64; 3], String> {
+    let values: Vec<f64> = text
+        .split(',')
+        .map(|v| v.trim().parse::<f64>())
+        .collect::<Result<_, _>>()
+        .map_err(|e| format!("`{text}` is not three numbers X,Y,Z in metres: {e}"))?;
+    match values[..] {
+        [x, y, z] if values.iter().all(|v| v.is_finite()) => Ok([x, y, z]),
+        [_, _, _] => Err(format!("`{text}`: coordinates must be finite")),
+        _ => Err(format!(
+            "`{text}` has {} values; give three, X,Y,Z in metres",
+            values.len()
+        )),
+    }
+}
+
+/// Reads an STL and checks it is the closed, outward-facing surface of a solid: a mesh facing
+/// inward throughout is turned outward (a warning says so); an open or inconsistently oriented
+/// one is refused unless `allow_open` (then a warning).
+pub fn read_closed_mesh(
+    path: &Path,
+    allow_open: bool,
+    warnings: &mut Vec<String>,
+) -> Result<hsv_core::mesh::PanelMesh> {
+    let mut mesh = hsv_core::stl::read_stl(path)?;
+    let closure = mesh.closure();
+    let shown = path.display();
+    if closure.is_closed_inward() {
+        mesh.reverse_orientation();
+        warnings.push(format!(
+            "{shown}: every facet faced into the solid (enclosed volume {:.6e} m³); turned them outward",
+            closure.enclosed_volume_m3
+        ));
+    } else if !closure.is_closed_outward() {
+        let problems = closure.problems().join(", ");
+        if !allow_open {
+            bail!(
+                "{shown}: not the closed, consistently oriented surface of a solid ({problems}); fix the mesh or pass --allow-open to evaluate it as it is"
+            );
+        }
+        warnings.push(format!(
+            "{shown}: evaluated as it is with --allow-open ({problems})"
+        ));
+    }
+    Ok(mesh)
+}
+
+/// Reference values must be positive (they divide the coefficients) and the moment point finite.
+fn check_reference(reference: &hsv_core::aero::ReferenceValues, from_mesh: bool) -> Result<()> {
+    let source = if from_mesh {
+        "from the mesh's extent"
+    } else {
+        "from the config"
+    };
+    for (what, flag, value) in [
+        ("reference area", "--sref-m2", reference.area_m2),
+        ("reference length", "--lref-m", reference.chord_m),
+        ("reference span", "--bref-m", reference.span_m),
+    ] {
+        if !(value.is_finite() && value > 0.0) {
+            bail!(
+                "the {what} {source} is {value}; it must be positive (it divides the coefficients): set it with {flag}"
+            );
         }
     }
     Ok(())
@@ -279,7 +382,7 @@ fn print_friction_rows(
     r: &aero_job::AeroRow,
     f: &aero_job::FrictionLoads,
     flight: &hsv_core::flow::FlightCondition,
-) {
+) -> Result<()> {
     let total = r.total_loads();
     for (label, loads, cl, cd, cm) in [
         (
@@ -300,7 +403,12 @@ fn print_friction_rows(
         let (fo, m) = (loads.force_n, loads.moment_nm);
         outln!(
             "{label:<24} {:>12.4e} {:>12.4e} {:>12.4e} {:>13.4e} {:>13.4e} {:>13.4e} {cl:>9.5} {cd:>9.5} {cm:>9.5}",
-            fo.x, fo.y, fo.z, m.x, m.y, m.z
+            fo.x,
+            fo.y,
+            fo.z,
+            m.x,
+            m.y,
+            m.z
         )?;
     }
     outln!(
@@ -311,4 +419,5 @@ fn print_friction_rows(
         f.wall_temperature_k,
         aero_job::drag_n(&total, flight)
     )?;
+    Ok(())
 }

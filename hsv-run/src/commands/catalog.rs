@@ -26,7 +26,10 @@ pub fn models(registry: &Registry, json: bool) -> Result<()> {
     }
     outln!(
         "{:<24} {:<11} {:<11} {:>8}  summary",
-        "name", "family", "role", "fidelity"
+        "name",
+        "family",
+        "role",
+        "fidelity"
     )?;
     for e in registry.iter() {
         outln!(

@@ -14,8 +14,9 @@ use hsv_core::propulsion::{EngineInputs, PropulsionModel, PropulsionSolution};
 use hsv_core::registry::{ModelContext, Registry, Role};
 use hsv_core::vehicle::build_vehicle;
 
-use super::{ConfigArg, JsonFlag, load_config};
-use crate::output::{self, LinePlot, Series};
+use super::{ConfigArg, JsonFlag, OutArgs, load_config};
+use crate::output::{self, LinePlot, RunFolder, RunStatus, Series};
+use crate::{out, outln};
 
 /// Paper Table 2: trimmed fuel equivalence ratio at Mach 6, 26 km (0.126 to 0.139).
 pub const DEFAULT_PHI: f64 = 0.13;
@@ -50,19 +51,143 @@ pub struct EngineArgs {
     /// Fuel equivalence ratio φ >= 0 (paper Table 2: about 0.13 at trim).
     #[arg(long, allow_negative_numbers = true, default_value_t = DEFAULT_PHI)]
     pub phi: f64,
-    /// Run folder for the sweep CSVs, plot and summary (default: runs/engine-<UTC time>).
-    #[arg(long, value_name = "DIR")]
-    pub out: Option<PathBuf>,
+    /// Run folder for the sweep CSVs, plot and summary.json.
+    #[command(flatten)]
+    pub output: OutArgs,
     #[command(flatten)]
     pub json: JsonFlag,
 }
 
 /// One model's result at the requested condition.
 #[derive(Debug, Clone)]
-struct EngineRow {
-    model: String,
-    solution: PropulsionSolution,
-    evaluation_time_s: f64,
+pub struct EngineRow {
+    pub model: String,
+    pub solution: PropulsionSolution,
+    /// Wall time of the evaluation, s.
+    pub evaluation_time_s: f64,
+}
+
+/// What to evaluate: flight condition, fuel equivalence ratio and models.
+#[derive(Debug, Clone)]
+pub struct EngineRequest {
+    pub mach: f64,
+    pub altitude_m: f64,
+    pub alpha_deg: f64,
+    /// Fuel equivalence ratio φ ≥ 0.
+    pub phi: f64,
+    /// Registered propulsion model names; empty: every registered one.
+    pub models: Vec<String>,
+}
+
+impl EngineRequest {
+    /// The config's flight condition overridden by the command-line values given.
+    fn from_args(args: &EngineArgs, loaded: &LoadedConfig) -> Self {
+        let flight = loaded.config.flight;
+        Self {
+            mach: args.mach.unwrap_or(flight.mach),
+            altitude_m: args.altitude_m.unwrap_or(flight.altitude_m),
+            alpha_deg: args.alpha_deg.unwrap_or(flight.alpha_deg),
+            phi: args.phi,
+            models: args.models.clone(),
+        }
+    }
+}
+
+/// The engine job: every requested model evaluated at the request's condition (no files); a
+/// non-finite result is an error naming the model and quantity.
+pub fn run_engine(
+    loaded: &LoadedConfig,
+    registry: &Registry,
+    request: &EngineRequest,
+) -> Result<Vec<EngineRow>> {
+    Ok(evaluate_models(loaded, registry, request)?.0)
+}
+
+type Evaluated<'a> = (Vec<EngineRow>, Vec<Box<dyn PropulsionModel>>, Setup<'a>);
+
+fn evaluate_models<'a>(
+    loaded: &'a LoadedConfig,
+    registry: &Registry,
+    request: &EngineRequest,
+) -> Result<Evaluated<'a>> {
+    for (name, value) in [
+        ("--mach", request.mach),
+        ("--altitude-m", request.altitude_m),
+        ("--alpha-deg", request.alpha_deg),
+    ] {
+        if !value.is_finite() {
+            bail!("{name} must be a finite number, got {value}");
+        }
+    }
+    if !(request.phi.is_finite() && request.phi >= 0.0) {
+        bail!(
+            "--phi must be a finite fuel equivalence ratio >= 0, got {}",
+            request.phi
+        );
+    }
+    let models: Vec<String> = if request.models.is_empty() {
+        registry
+            .names(Role::Propulsion)
+            .into_iter()
+            .map(str::to_owned)
+            .collect()
+    } else {
+        request.models.clone()
+    };
+    if models.is_empty() {
+        bail!("no propulsion model is registered; load a plugin or name one with --model");
+    }
+    let body = build_vehicle(&loaded.config.geometry, &loaded.config.lifting_surface)
+        .with_context(|| format!("{}: building the vehicle geometry", loaded.file))?
+        .body;
+    let setup = Setup {
+        loaded,
+        body,
+        mach: request.mach,
+        altitude_m: request.altitude_m,
+    };
+    setup.flight(request.alpha_deg)?;
+    let mut rows = Vec::with_capacity(models.len());
+    let mut built = Vec::with_capacity(models.len());
+    for name in &models {
+        let mut model = setup.model(registry, name)?;
+        let mut solution = PropulsionSolution::default();
+        let start = Instant::now();
+        setup
+            .evaluate(
+                model.as_mut(),
+                request.alpha_deg,
+                request.phi,
+                &mut solution,
+            )
+            .with_context(|| format!("propulsion model `{name}`"))?;
+        check_finite(name, &solution)?;
+        rows.push(EngineRow {
+            model: name.clone(),
+            solution,
+            evaluation_time_s: start.elapsed().as_secs_f64(),
+        });
+        built.push(model);
+    }
+    Ok((rows, built, setup))
+}
+
+/// A model that returns NaN or infinity has failed, whatever it says.
+fn check_finite(name: &str, s: &PropulsionSolution) -> Result<()> {
+    let (f, m) = (s.loads.force_n, s.loads.moment_nm);
+    let values = [
+        ("thrust", f.x),
+        ("side force", f.y),
+        ("normal force", f.z),
+        ("rolling moment", m.x),
+        ("pitching moment", m.y),
+        ("yawing moment", m.z),
+        ("mass flow", s.mass_flow_kg_s),
+    ];
+    if let Some((what, value)) = values.iter().find(|(_, v)| !v.is_finite()) {
+        bail!("propulsion model `{name}` returned a non-finite {what} ({value})");
+    }
+    Ok(())
 }
 
 /// The engine problem: vehicle body, config and a flight condition builder.
@@ -135,91 +260,36 @@ fn status_name(solution: &PropulsionSolution) -> String {
 /// Evaluates the requested propulsion models, prints one row per model and writes the sweeps.
 pub fn run(args: EngineArgs, registry: &Registry) -> Result<()> {
     let (loaded, registry) = load_config(args.config.config.as_deref(), registry)?;
-    let registry = &registry;
-    let flight_config = loaded.config.flight;
-    let mach = args.mach.unwrap_or(flight_config.mach);
-    let altitude_m = args.altitude_m.unwrap_or(flight_config.altitude_m);
-    let alpha_deg = args.alpha_deg.unwrap_or(flight_config.alpha_deg);
-    for (name, value) in [
-        ("--mach", mach),
-        ("--altitude-m", altitude_m),
-        ("--alpha-deg", alpha_deg),
-    ] {
-        if !value.is_finite() {
-            bail!("{name} must be a finite number, got {value}");
-        }
-    }
-    if !(args.phi.is_finite() && args.phi >= 0.0) {
-        bail!(
-            "--phi must be a finite fuel equivalence ratio >= 0, got {}",
-            args.phi
-        );
-    }
-    let phi = args.phi;
-    let models: Vec<String> = if args.models.is_empty() {
-        registry
-            .names(Role::Propulsion)
-            .into_iter()
-            .map(str::to_owned)
-            .collect()
-    } else {
-        args.models.clone()
-    };
-    if models.is_empty() {
-        bail!("no propulsion model is registered; load a plugin or name one with --model");
-    }
-    let body = build_vehicle(&loaded.config.geometry, &loaded.config.lifting_surface)
-        .with_context(|| format!("{}: building the vehicle geometry", loaded.file))?
-        .body;
-    let setup = Setup {
-        loaded: &loaded,
-        body,
-        mach,
-        altitude_m,
-    };
-    setup.flight(alpha_deg)?;
-
-    let mut rows = Vec::with_capacity(models.len());
-    let mut built = Vec::with_capacity(models.len());
-    for name in &models {
-        let mut model = setup.model(registry, name)?;
-        let mut solution = PropulsionSolution::default();
-        let start = Instant::now();
-        setup
-            .evaluate(model.as_mut(), alpha_deg, phi, &mut solution)
-            .with_context(|| format!("propulsion model `{name}`"))?;
-        rows.push(EngineRow {
-            model: name.clone(),
-            solution,
-            evaluation_time_s: start.elapsed().as_secs_f64(),
-        });
-        built.push(model);
-    }
-
-    let folder = output::run_folder("engine", args.out.as_deref())?;
-    let plot = write_sweeps(&folder, &setup, &models, &mut built, alpha_deg, phi)?;
+    let request = EngineRequest::from_args(&args, &loaded);
+    let (rows, mut built, setup) = evaluate_models(&loaded, &registry, &request)?;
+    let models: Vec<String> = rows.iter().map(|r| r.model.clone()).collect();
+    let (alpha_deg, phi) = (request.alpha_deg, request.phi);
     let reference = loaded.config.reference.moment_point_m;
-    let summary = serde_json::json!({
-        "vehicle": loaded.file,
-        "mach": mach,
-        "altitude_m": altitude_m,
-        "alpha_deg": alpha_deg,
-        "phi": phi,
-        "moment_point_m": reference,
-        "run_folder": folder.display().to_string(),
-        "plot": plot.display().to_string(),
-        "models": rows.iter().map(row_json).collect::<Vec<_>>(),
-    });
-    let summary_path = folder.join("summary.json");
-    std::fs::write(&summary_path, serde_json::to_string_pretty(&summary)?)
-        .with_context(|| format!("cannot write {}", summary_path.display()))?;
+    let summary = || {
+        serde_json::json!({
+            "vehicle": loaded.file,
+            "mach": request.mach,
+            "altitude_m": request.altitude_m,
+            "alpha_deg": alpha_deg,
+            "phi": phi,
+            "moment_point_m": reference,
+            "models": rows.iter().map(row_json).collect::<Vec<_>>(),
+        })
+    };
+    let mut run = RunFolder::create("engine", args.output.out.as_deref(), args.output.force)?;
+    let plot = run.run(
+        |run| write_sweeps(run, &setup, &models, &mut built, alpha_deg, phi),
+        summary,
+    )?;
+    let mut completed = summary();
+    completed["plot"] = plot.display().to_string().into();
+    let completed = run.write_summary(completed, &RunStatus::Completed)?;
 
     if args.json.json {
-        println!("{}", serde_json::to_string_pretty(&summary)?);
+        outln!("{}", serde_json::to_string_pretty(&completed)?)?;
         return Ok(());
     }
-    print_table(&rows, mach, altitude_m, alpha_deg, phi, reference, &folder);
-    Ok(())
+    print_table(&rows, &request, reference, &run.path)
 }
 
 fn row_json(r: &EngineRow) -> serde_json::Value {
@@ -243,7 +313,7 @@ fn row_json(r: &EngineRow) -> serde_json::Value {
 /// Thrust versus φ (at the requested α) and versus α (at the requested φ), one line per model:
 /// CSVs and one PNG in `folder`; returns the PNG path.
 fn write_sweeps(
-    folder: &Path,
+    run: &mut RunFolder,
     setup: &Setup<'_>,
     models: &[String],
     built: &mut [Box<dyn PropulsionModel>],
@@ -259,12 +329,15 @@ fn write_sweeps(
         by_alpha.push(setup.thrust_sweep(model.as_mut(), alphas.iter().map(|&a| (a, phi))));
     }
     let headers: Vec<String> = models.iter().map(|m| format!("{m}_thrust_n")).collect();
-    let write = |file: &str, x_header: &str, x: &[f64], ys: &[Vec<f64>]| -> Result<()> {
+    let mut write = |file: &str, x_header: &str, x: &[f64], ys: &[Vec<f64>]| -> Result<()> {
         let mut h: Vec<&str> = vec![x_header];
         h.extend(headers.iter().map(String::as_str));
         let mut columns: Vec<&[f64]> = vec![x];
         columns.extend(ys.iter().map(Vec::as_slice));
-        output::write_csv(&folder.join(file), &h, &columns)
+        let path = run.join(file);
+        output::write_csv(&path, &h, &columns)?;
+        run.record(path);
+        Ok(())
     };
     write("thrust_vs_phi.csv", "phi", &phis, &by_phi)?;
     write("thrust_vs_alpha.csv", "alpha_deg", &alphas, &by_alpha)?;
@@ -300,32 +373,45 @@ fn write_sweeps(
             series: series(&alphas, &by_alpha),
         },
     ];
-    let path = folder.join("thrust_vs_phi_alpha.png");
+    let path = run.join("thrust_vs_phi_alpha.png");
     output::write_line_plots_png(&path, &plots, 2, (1400, 560))?;
+    run.record(path.clone());
     Ok(path)
 }
 
 fn print_table(
     rows: &[EngineRow],
-    mach: f64,
-    altitude_m: f64,
-    alpha_deg: f64,
-    phi: f64,
+    request: &EngineRequest,
     reference: [f64; 3],
     folder: &Path,
-) {
-    println!("engine at Mach {mach}, {altitude_m} m, alpha {alpha_deg} deg, phi {phi}");
-    println!(
+) -> Result<()> {
+    let EngineRequest {
+        mach,
+        altitude_m,
+        alpha_deg,
+        phi,
+        ..
+    } = request;
+    outln!("engine at Mach {mach}, {altitude_m} m, alpha {alpha_deg} deg, phi {phi}")?;
+    outln!(
         "loads on the vehicle: thrust = body Fx (forward), lift = -Fz (up), pitching moment My about ({:.3}, {:.3}, {:.3}) m (nose up +)",
-        reference[0], reference[1], reference[2]
-    );
-    println!(
+        reference[0],
+        reference[1],
+        reference[2]
+    )?;
+    outln!(
         "{:<16} {:>12} {:>12} {:>13} {:>12} {:>16} {:>9}",
-        "model", "thrust [N]", "lift [N]", "My [N m]", "mdot [kg/s]", "status", "time"
-    );
+        "model",
+        "thrust [N]",
+        "lift [N]",
+        "My [N m]",
+        "mdot [kg/s]",
+        "status",
+        "time"
+    )?;
     for r in rows {
         let s = &r.solution;
-        println!(
+        outln!(
             "{:<16} {:>12.4e} {:>12.4e} {:>13.4e} {:>12.3} {:>16} {:>7.0}us",
             r.model,
             s.loads.force_n.x,
@@ -334,20 +420,20 @@ fn print_table(
             s.mass_flow_kg_s,
             status_name(s),
             r.evaluation_time_s * 1e6
-        );
+        )?;
     }
-    println!();
-    println!("station states (middle spanwise section):");
-    print!("{:<16}", "station");
+    outln!()?;
+    outln!("station states (middle spanwise section):")?;
+    out!("{:<16}", "station")?;
     for r in rows {
-        print!(" {:>36}", r.model);
+        out!(" {:>36}", r.model)?;
     }
-    println!();
-    print!("{:<16}", "");
+    outln!()?;
+    out!("{:<16}", "")?;
     for _ in rows {
-        print!(" {:>8} {:>13} {:>13}", "Mach", "p [Pa]", "T [K]");
+        out!(" {:>8} {:>13} {:>13}", "Mach", "p [Pa]", "T [K]")?;
     }
-    println!();
+    outln!()?;
     let names: Vec<&str> = rows
         .iter()
         .max_by_key(|r| r.solution.stations.len())
@@ -360,21 +446,24 @@ fn print_table(
         })
         .unwrap_or_default();
     for name in names {
-        print!("{name:<16}");
+        out!("{name:<16}")?;
         for r in rows {
             match r.solution.stations.iter().find(|s| s.station == name) {
-                Some(s) => print!(
+                Some(s) => out!(
                     " {:>8.3} {:>13.4e} {:>13.1}",
-                    s.mach, s.pressure_pa, s.temperature_k
-                ),
-                None => print!(" {:>8} {:>13} {:>13}", "-", "-", "-"),
+                    s.mach,
+                    s.pressure_pa,
+                    s.temperature_k
+                )?,
+                None => out!(" {:>8} {:>13} {:>13}", "-", "-", "-")?,
             }
         }
-        println!();
+        outln!()?;
     }
-    println!();
-    println!(
+    outln!()?;
+    outln!(
         "thrust versus phi and alpha: {}",
         folder.join("thrust_vs_phi_alpha.png").display()
-    );
+    )?;
+    Ok(())
 }

@@ -8,6 +8,7 @@ pub mod heat;
 pub mod modes;
 pub mod steps;
 pub mod trim;
+pub mod vehicle;
 
 use std::path::{Path, PathBuf};
 

@@ -20,8 +20,9 @@ use hsv_core::structure::StructureModel;
 use hsv_core::vehicle::Side;
 use nalgebra::{DVector, Vector3};
 
-use super::{ConfigArg, JsonFlag, load_config};
-use crate::output::{self, LinePlot, Series};
+use super::{ConfigArg, JsonFlag, OutArgs, load_config};
+use crate::outln;
+use crate::output::{self, LinePlot, RunFolder, RunStatus, Series};
 
 /// Reference (unheated) structure temperature, K.
 pub const REFERENCE_TEMPERATURE_K: f64 = 293.0;
@@ -57,9 +58,9 @@ pub struct ModesArgs {
     /// Lifting-surface node temperatures from a CSV file `node,temperature_k` (see below).
     #[arg(long = "temperature-field", value_name = "FILE.csv")]
     pub temperature_field: Option<PathBuf>,
-    /// Run folder for the VTK and PNG files (default: runs/modes-<UTC time>).
-    #[arg(long, value_name = "DIR")]
-    pub out: Option<PathBuf>,
+    /// Run folder for the VTK and PNG files and summary.json.
+    #[command(flatten)]
+    pub output: OutArgs,
     #[command(flatten)]
     pub json: JsonFlag,
 }
@@ -723,7 +724,7 @@ pub fn summary_json(report: &ModesReport, folder: &Path, files: &[PathBuf]) -> s
     })
 }
 
-fn print_structure(s: &StructureModes) {
+fn print_structure(s: &StructureModes) -> Result<()> {
     match &s.outcome {
         ModesOutcome::Modes(rows) => {
             outln!("{} ({}): {} modes", s.component, s.model, rows.len())?;
@@ -739,6 +740,7 @@ fn print_structure(s: &StructureModes) {
     for note in &s.notes {
         outln!("  note: {note}")?;
     }
+    Ok(())
 }
 
 /// Computes and reports the modes; writes VTK and PNG files to the run folder.
@@ -758,33 +760,44 @@ pub fn run(args: ModesArgs, registry: &Registry) -> Result<()> {
         (None, None) => Temperature::Uniform(REFERENCE_TEMPERATURE_K),
     };
     let report = compute(&loaded, &registry, temperature)?;
-    let folder = output::run_folder("modes", args.out.as_deref())?;
-    let files = write_outputs(&report, &folder)?;
+    let mut run = RunFolder::create("modes", args.output.out.as_deref(), args.output.force)?;
+    let folder = run.path.clone();
+    let files = run.run(
+        |run| {
+            let files = write_outputs(&report, &run.path)?;
+            for file in &files {
+                run.record(file.clone());
+            }
+            Ok(files)
+        },
+        || summary_json(&report, &folder, &[]),
+    )?;
+    let summary = run.write_summary(
+        summary_json(&report, &folder, &files),
+        &RunStatus::Completed,
+    )?;
 
     if args.json.json {
-        outln!(
-            "{}",
-            serde_json::to_string_pretty(&summary_json(&report, &folder, &files))?
-        )?;
+        outln!("{}", serde_json::to_string_pretty(&summary)?)?;
         return Ok(());
     }
     outln!("structure modes of {}", report.config_file)?;
     if let Some(body) = &report.body {
-        print_structure(body);
+        print_structure(body)?;
     }
     if !report.surfaces.is_empty() {
         outln!("lifting surfaces at {}:", report.temperature.describe())?;
         for (_, s) in &report.surfaces {
-            print_structure(s);
+            print_structure(s)?;
         }
     }
     for note in &report.notes {
         outln!("note: {note}")?;
     }
     outln!(
-        "mode shapes: {} ({} files: VTK per mode with .pvd collections for ParaView, PNG plots)",
+        "mode shapes: {} ({} files: VTK per mode with .pvd collections for ParaView, PNG plots, summary.json)",
         folder.display(),
-        files.len()
+        run.files().len()
     )?;
     Ok(())
 }

@@ -157,7 +157,10 @@ mod tests {
         let err = time_steps(1e6, 1e-6).unwrap_err();
         assert!(matches!(err, StepError::TooMany { .. }));
         let text = err.to_string();
-        assert!(text.contains("1.000e12 steps") && text.contains("100000000"), "{text}");
+        assert!(
+            text.contains("1.000e12 steps") && text.contains("100000000"),
+            "{text}"
+        );
         // Exactly the limit is allowed.
         assert_eq!(time_steps(1e8, 1.0).expect("limit").steps, 100_000_000);
         assert!(time_steps(1e8 + 1.0, 1.0).is_err());
@@ -176,7 +179,10 @@ mod tests {
             (f64::INFINITY, 1.0),
         ] {
             let err = time_steps(d, dt).unwrap_err();
-            assert!(matches!(err, StepError::NotPositive { .. }), "{d} {dt}: {err}");
+            assert!(
+                matches!(err, StepError::NotPositive { .. }),
+                "{d} {dt}: {err}"
+            );
         }
     }
 }

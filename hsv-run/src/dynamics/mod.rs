@@ -28,7 +28,9 @@ pub mod vehicle;
 pub use flight_modes::{FlightMode, ModeName, ModeScales, StateRole, flight_modes};
 pub use integrate::Rk4;
 pub use linearize::{LinearModel, PerturbationRule, linearize, linearize_outputs};
-pub use modal::{ModalDynamics, ModalRate, ModalState, RootMotion, SurfaceAttachment};
+pub use modal::{
+    ModalDynamics, ModalRate, ModalState, RootMotion, SurfaceAttachment, mean_axes_cosine,
+};
 pub use rigid_body::{GravityModel, RigidBody, RigidBodyDerivative, RigidBodyState};
 pub use vehicle::{
     AttitudeCoordinates, StateLayout, VehicleDerivative, VehicleDynamics, VehicleLoads,

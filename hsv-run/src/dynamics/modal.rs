@@ -29,7 +29,7 @@
 //! the surface's own elastic displacements (second order in ζ times q), and y-translation, which
 //! the paper neglects and `ritz-plate` does not list.
 
-use hsv_core::structure::{ModalModel, RigidBodyCoupling, RigidDof};
+use hsv_core::structure::{MassProperties, ModalModel, RigidBodyCoupling, RigidDof};
 use nalgebra::{Cholesky, DMatrix, DVector, Dyn, Point3, Vector3};
 use serde::{Deserialize, Serialize};
 
@@ -299,4 +299,35 @@ impl RootMotion {
                 + rotation_acceleration,
         }
     }
+}
+
+/// How far a structure's modes are from mean axes: the largest |C_ij| / √(M_ii R_jj), the cosine
+/// (in the mass inner product) between mode i and rigid motion j, with C = Φᵀ M R the rigid
+/// coupling, M_ii the generalized mass and R_jj = ‖r_j‖²_M the rigid mass of DOF j (the mass for
+/// a translation, the inertia about the reference point for a rotation). It lies in [0, 1] by
+/// the Cauchy-Schwarz inequality; 0 means the modes are M-orthogonal to rigid motion and the
+/// decoupled mean-axes equations are exact. The coordinator checks it at assembly.
+pub fn mean_axes_cosine(
+    coupling: &dyn RigidBodyCoupling,
+    modal_mass: &DMatrix<f64>,
+    mass: &MassProperties,
+) -> f64 {
+    let c = coupling.rigid_coupling();
+    let inertia = mass.inertia_about(&coupling.rigid_reference_point_m());
+    let rigid_mass = |dof: RigidDof| match dof {
+        RigidDof::TranslationX | RigidDof::TranslationY | RigidDof::TranslationZ => mass.mass_kg,
+        RigidDof::RotationX => inertia[(0, 0)],
+        RigidDof::RotationY => inertia[(1, 1)],
+        RigidDof::RotationZ => inertia[(2, 2)],
+    };
+    let mut worst: f64 = 0.0;
+    for (j, &dof) in coupling.rigid_dofs().iter().enumerate().take(c.ncols()) {
+        for i in 0..c.nrows().min(modal_mass.nrows()) {
+            let norm = (modal_mass[(i, i)] * rigid_mass(dof)).sqrt();
+            if norm > 0.0 {
+                worst = worst.max(c[(i, j)].abs() / norm);
+            }
+        }
+    }
+    worst
 }

@@ -150,6 +150,76 @@ pub trait AeroModel: Send {
         motion: &PanelMotion<'_>,
         out: &mut AeroSolution,
     ) -> Result<(), ModelError>;
+
+    /// Generalized forces from the history of the modal motion, if the model has memory of it
+    /// (a convolution ROM); `None` by default. Regions that find it own a [`ModalHistory`] and
+    /// call [`ModalHistoryAero::evaluate_modal`] instead of [`Self::evaluate`].
+    fn modal_history(&mut self) -> Option<&mut dyn ModalHistoryAero> {
+        None
+    }
+}
+
+/// The modal-input history an aero model with memory convolves: simulation state owned by the
+/// region (plain data, so coupling iterations and linearizations clone it), not by the model.
+///
+/// Inputs are the model's own (for `convolution-rom`: modal coordinates, then modal velocities
+/// over the freestream speed of sound); only the model that made a history interprets it.
+#[derive(Debug, Clone, PartialEq, Default, serde::Serialize, serde::Deserialize)]
+pub struct ModalHistory {
+    /// Time of the latest committed sample, s.
+    pub time_s: f64,
+    /// The inputs committed at `time_s`.
+    pub input: Vec<f64>,
+    /// Times of the committed input increments still in the model's memory, oldest first, s.
+    pub increment_times_s: std::collections::VecDeque<f64>,
+    /// Those increments, `input.len()` values each, in the order of `increment_times_s`.
+    pub increments: std::collections::VecDeque<f64>,
+}
+
+/// An aero model whose generalized forces depend on the history of the modal motion (the
+/// [`AeroModel::modal_history`] capability).
+///
+/// A time step is: [`Self::evaluate_modal`] at the trial modal state as often as the coupling
+/// iterates (the history is not changed), then [`Self::commit`] once for the accepted state.
+pub trait ModalHistoryAero {
+    /// Number of modes the model takes (length of the modal coordinates and velocities).
+    fn n_modes(&self) -> usize;
+
+    /// A history at rest: the modal state held at `modal_coordinates` (velocities zero) for all
+    /// time before `time_s`.
+    fn initial_history(
+        &self,
+        time_s: f64,
+        modal_coordinates: &nalgebra::DVector<f64>,
+    ) -> Result<ModalHistory, ModelError>;
+
+    /// Generalized forces Q_k = −∫ (p − p∞) n·φ_k dA (one per mode, summed on the reference
+    /// geometry) and, if `pressures` is given, panel pressures and edge states, at time
+    /// `history.time_s + dt_s` for the trial modal coordinates and velocities. `rigid_mesh` is
+    /// the region's undeformed mesh in its current rigid position (an elevon rotation applied),
+    /// in the panel order of the region's mesh.
+    #[allow(clippy::too_many_arguments)]
+    fn evaluate_modal(
+        &mut self,
+        rigid_mesh: &PanelMesh,
+        flight: &FlightCondition,
+        history: &ModalHistory,
+        dt_s: f64,
+        modal_coordinates: &nalgebra::DVector<f64>,
+        modal_velocities: &nalgebra::DVector<f64>,
+        generalized_forces: &mut [f64],
+        pressures: Option<&mut AeroSolution>,
+    ) -> Result<(), ModelError>;
+
+    /// Commits the accepted modal state at `history.time_s + dt_s` into `history`.
+    fn commit(
+        &self,
+        history: &mut ModalHistory,
+        flight: &FlightCondition,
+        dt_s: f64,
+        modal_coordinates: &nalgebra::DVector<f64>,
+        modal_velocities: &nalgebra::DVector<f64>,
+    ) -> Result<(), ModelError>;
 }
 
 /// Force and moment, body axes.

@@ -1,116 +1,99 @@
-//! The dylib plugin ABI: a C header and function table over plain numeric buffers, the host
-//! that loads and checks it, and the adapter that makes a plugin model a normal trait object.
+//! The dylib plugin ABI: a C header with role-tagged function tables over plain numeric buffers,
+//! the host that loads and checks it, and safe adapters that make plugin models normal trait
+//! objects.
 //!
 //! Rust trait objects have no stable ABI and `inventory` does not cross a dylib boundary, so a
 //! plugin exports one `extern "C"` function, [`PLUGIN_ENTRY_SYMBOL`], returning a
-//! [`PluginHeader`]: magic bytes, ABI version, plugin-API semver and a table of models, each with
-//! `extern "C"` create / evaluate / destroy / last-error functions. The host checks the header
-//! before calling anything, never unloads the library, and turns every mismatch into an error.
-//! ABI version 1 carries aero models; other roles get their own table entries in later versions.
+//! [`PluginHeader`]: magic bytes, ABI version, plugin-API semver and a table of models. The
+//! header layout is the same in every ABI version, so the host reads `abi_version` before it
+//! decides what `models` points at:
 //!
-//! Plugin authors use [`export_aero_plugin!`], which writes the `extern "C"` functions and catches
-//! panics at the boundary, so a bug in a plugin is an error in the host, never an abort.
+//! * **ABI 2** ([`PluginModel`], module [`abi`]): any number of models of the five roles (aero,
+//!   heat flux, conduction, structure, propulsion). Each entry has a role code, descriptor
+//!   strings, `create` (settings as JSON plus the region's name, kind, side, mesh, reference
+//!   values, gas and parametric geometry as plain data), `destroy`, `last_error`,
+//!   `capabilities`, and a pointer to its role's function table ([`AeroFunctions`],
+//!   [`HeatFluxFunctions`], [`ConductionFunctions`], [`StructureFunctions`],
+//!   [`PropulsionFunctions`]) carrying what coupling needs: panel geometry and elastic panel
+//!   velocities in and pressures and edge states out (aero); edge states and wall temperatures
+//!   in, heat flux or wall shear out (heat flux); state, surface heat flux and the three
+//!   temperature read-outs (conduction); modal matrices, mode names, frequencies, mode shapes on
+//!   a mesh's vertices, temperature updates, thermal generalized forces, root loads, mass
+//!   properties and rigid-body coupling (structure); engine loads, mass flow, status, owned-panel
+//!   pressures and station states (propulsion).
+//! * **ABI 1** ([`v1`]): one or more aero models over panel geometry; still loaded.
+//!
+//! The host checks magic, ABI and API versions before calling anything else, never unloads the
+//! library, wraps each model in an adapter implementing the same role trait as built-in models
+//! (module [`host`]) that checks buffer sizes before each call and rejects non-finite outputs
+//! after it, and turns every mismatch into an error. Plugin authors write an ordinary model and
+//! constructor (as for [`crate::register_model!`]) and export it with [`crate::export_plugin!`],
+//! whose glue (module [`guest`]) catches panics at the boundary, so a bug in a plugin is an error
+//! in the host, never an abort.
 
-use std::ffi::{CStr, c_char, c_void};
+pub mod abi;
+mod convert;
+pub mod guest;
+pub mod host;
+pub mod v1;
+
+use std::ffi::c_void;
 use std::path::Path;
 use std::sync::Arc;
 
-use nalgebra::Vector3;
+pub use abi::*;
+pub use host::{PluginAero, PluginConduction, PluginHeatFlux, PluginPropulsion, PluginStructure};
+pub use v1::{PluginAeroInput, PluginAeroOutput};
+/// The ABI-1 plugin-side trait, kept so v1 plugin sources compile.
+pub use v1::PluginAero as PluginAeroV1;
 
-use crate::aero::{AeroModel, AeroSolution, EdgeState, PanelMotion};
-use crate::error::ModelError;
-use crate::flow::FlightCondition;
-use crate::mesh::PanelMesh;
+use crate::aero::AeroModel;
+use crate::propulsion::PropulsionModel;
 use crate::registry::{Factory, Origin, Registry, RegistryEntry, RegistryError};
+use crate::structure::StructureModel;
+use crate::thermal::{ConductionModel, HeatFluxModel};
 
 /// First bytes of every [`PluginHeader`].
 pub const PLUGIN_MAGIC: [u8; 8] = *b"HSVPLUG\0";
-/// Layout version of the structs in this module; the host accepts exactly this version.
-pub const PLUGIN_ABI_VERSION: u32 = 1;
-/// Semver of the plugin API (the meaning of the fields); the host accepts the same major.
-pub const PLUGIN_API_VERSION: (u32, u32, u32) = (1, 0, 0);
+/// Layout version of the tables this hsv-core writes ([`PluginModel`]); it also reads
+/// version 1 ([`v1`]).
+pub const PLUGIN_ABI_VERSION: u32 = 2;
+/// Semver of the ABI-2 plugin API (the meaning of the fields): the host accepts the same major
+/// and a minor up to its own.
+pub const PLUGIN_API_VERSION: (u32, u32, u32) = (2, 0, 0);
 /// Name of the entry point a plugin exports: `extern "C" fn() -> *const PluginHeader`.
 pub const PLUGIN_ENTRY_SYMBOL: &str = "hsv_plugin_entry";
-/// Role code of an aero model in [`PluginModelTable::role`].
-pub const PLUGIN_ROLE_AERO: u32 = 0;
 
-/// What a plugin's entry point returns; must live for the life of the process.
+/// What a plugin's entry point returns; must live for the life of the process. The layout is
+/// the same in every ABI version; `models` points at `model_count` tables of the version's type.
 #[repr(C)]
 pub struct PluginHeader {
     pub magic: [u8; 8],
     pub abi_version: u32,
     pub api_version: [u32; 3],
     pub model_count: u32,
-    pub models: *const PluginModelTable,
+    /// `*const PluginModel` (ABI 2) or `*const v1::PluginModelTable` (ABI 1).
+    pub models: *const c_void,
 }
 
-// The header is immutable static data.
+// SAFETY: the header is immutable static data.
 unsafe impl Sync for PluginHeader {}
 
-/// One model of a plugin: descriptor strings and its functions.
-#[repr(C)]
-pub struct PluginModelTable {
-    pub role: u32,
-    /// NUL-terminated UTF-8, static.
-    pub name: *const c_char,
-    pub summary: *const c_char,
-    pub settings_doc: *const c_char,
-    pub fidelity: u32,
-    /// Builds a model from its settings as JSON bytes; null on error (then `last_error(null)`).
-    pub create: unsafe extern "C" fn(settings_json: *const u8, len: usize) -> *mut c_void,
-    /// Evaluates an aero model; 0 on success, non-zero on error (then `last_error(handle)`).
-    pub evaluate_aero: unsafe extern "C" fn(
-        handle: *mut c_void,
-        input: *const AeroInputAbi,
-        output: *mut AeroOutputAbi,
-    ) -> i32,
-    pub destroy: unsafe extern "C" fn(handle: *mut c_void),
-    /// Copies the last error message (UTF-8, no NUL) of `handle` (or of the last failed
-    /// `create` when null) into `buffer`; returns its full length.
-    pub last_error:
-        unsafe extern "C" fn(handle: *mut c_void, buffer: *mut u8, capacity: usize) -> usize,
-}
-
-unsafe impl Sync for PluginModelTable {}
-
-/// Freestream and vehicle motion, SI units.
-#[repr(C)]
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct FreestreamAbi {
-    pub mach: f64,
-    pub pressure_pa: f64,
-    pub temperature_k: f64,
-    pub density_kg_m3: f64,
-    pub speed_of_sound_m_s: f64,
-    pub velocity_m_s: f64,
-    pub gamma: f64,
-    pub gas_constant_j_kg_k: f64,
-    /// Vehicle velocity relative to the air, body axes, m/s.
-    pub vehicle_velocity_body_m_s: [f64; 3],
-}
-
-/// Panel geometry and motion as flat arrays (x, y, z interleaved).
-#[repr(C)]
-pub struct AeroInputAbi {
-    pub freestream: FreestreamAbi,
-    pub n_panels: usize,
-    pub centroid_m: *const f64,
-    pub normal: *const f64,
-    pub area_m2: *const f64,
-    /// Velocity of each panel relative to the air (rigid-body plus elastic), body axes, m/s.
-    pub panel_velocity_m_s: *const f64,
-    /// Strip `s` holds `strip_panels[strip_offsets[s]..strip_offsets[s + 1]]`, upstream first.
-    pub n_strips: usize,
-    pub strip_offsets: *const usize,
-    pub strip_panels: *const usize,
-}
-
-/// Where a plugin writes its results: `n_panels` pressures (Pa) and `5 n_panels` edge values
-/// (Mach, pressure Pa, temperature K, density kg/m³, velocity m/s per panel).
-#[repr(C)]
-pub struct AeroOutputAbi {
-    pub pressure_pa: *mut f64,
-    pub edge: *mut f64,
+impl PluginHeader {
+    /// An ABI-2 header over `models` (what [`crate::plugin_header!`] builds).
+    pub const fn v2(models: &'static [PluginModel]) -> Self {
+        Self {
+            magic: PLUGIN_MAGIC,
+            abi_version: PLUGIN_ABI_VERSION,
+            api_version: [
+                PLUGIN_API_VERSION.0,
+                PLUGIN_API_VERSION.1,
+                PLUGIN_API_VERSION.2,
+            ],
+            model_count: models.len() as u32,
+            models: models.as_ptr() as *const c_void,
+        }
+    }
 }
 
 /// Why a plugin could not be loaded.
@@ -129,32 +112,44 @@ pub enum PluginError {
     Register(#[from] RegistryError),
 }
 
-/// Reads a static C string from a plugin.
-fn plugin_str(pointer: *const c_char, what: &str, path: &str) -> Result<String, PluginError> {
-    if pointer.is_null() {
-        return Err(PluginError::BadHeader {
-            path: path.to_owned(),
-            message: format!("{what} is null"),
-        });
+fn bad_header(origin: &str, message: impl Into<String>) -> PluginError {
+    PluginError::BadHeader {
+        path: origin.to_owned(),
+        message: message.into(),
     }
-    // SAFETY: the header contract says these are NUL-terminated static strings.
-    let text = unsafe { CStr::from_ptr(pointer) };
-    text.to_str()
-        .map(str::to_owned)
-        .map_err(|_| PluginError::BadHeader {
-            path: path.to_owned(),
-            message: format!("{what} is not UTF-8"),
-        })
 }
 
 impl Registry {
     /// Loads the dylib plugin at `path` and registers its models; returns how many.
     pub fn load_plugin(&mut self, path: &Path) -> Result<usize, PluginError> {
         let entries = load_plugin(path)?;
+        self.insert_plugin_entries(entries)
+    }
+
+    /// Registers the models of a plugin header that is already in this process (a plugin
+    /// linked statically, or a table built in a test); `origin` names it in messages.
+    ///
+    /// # Safety
+    /// `header` must satisfy the plugin ABI: its tables and functions are trusted as a loaded
+    /// plugin's would be.
+    pub unsafe fn register_plugin_header(
+        &mut self,
+        header: &'static PluginHeader,
+        origin: &str,
+    ) -> Result<usize, PluginError> {
+        // SAFETY: forwarded contract.
+        let entries = unsafe { plugin_entries(header, origin)? };
+        self.insert_plugin_entries(entries)
+    }
+
+    /// Inserts all of `entries` or none (a duplicate name leaves the registry unchanged).
+    fn insert_plugin_entries(&mut self, entries: Vec<RegistryEntry>) -> Result<usize, PluginError> {
+        let mut staged = self.clone();
         let count = entries.len();
         for entry in entries {
-            self.insert(entry)?;
+            staged.insert(entry)?;
         }
+        *self = staged;
         Ok(count)
     }
 }
@@ -192,470 +187,160 @@ pub fn load_plugin(path: &Path) -> Result<Vec<RegistryEntry>, PluginError> {
         })?;
     // SAFETY: calling the entry point the plugin exported for this purpose.
     let header = unsafe { entry() };
-    if header.is_null() {
-        return Err(PluginError::BadHeader {
-            path: shown,
-            message: "entry point returned null".to_owned(),
-        });
-    }
-    // SAFETY: non-null and, by contract, a static header; the magic is checked first.
-    let header: &'static PluginHeader = unsafe { &*header };
+    // SAFETY: null or, by contract, a static header; checked field by field before use.
+    let header = unsafe { header.as_ref() }
+        .ok_or_else(|| bad_header(&shown, "entry point returned null"))?;
+    // SAFETY: the header came from the plugin's own entry point.
+    unsafe { plugin_entries(header, &shown) }
+}
+
+/// Checks `header` (magic, ABI version, API version, model table) and returns one registry
+/// entry per model.
+///
+/// # Safety
+/// `header` must point at static plugin data that follows the ABI its `abi_version` names.
+pub unsafe fn plugin_entries(
+    header: &'static PluginHeader,
+    origin: &str,
+) -> Result<Vec<RegistryEntry>, PluginError> {
     if header.magic != PLUGIN_MAGIC {
-        return Err(PluginError::BadHeader {
-            path: shown,
-            message: "wrong magic bytes: not an hsv plugin".to_owned(),
-        });
-    }
-    if header.abi_version != PLUGIN_ABI_VERSION {
-        return Err(PluginError::BadHeader {
-            path: shown,
-            message: format!(
-                "ABI version {} but this hsv-run speaks version {PLUGIN_ABI_VERSION}; rebuild the plugin against this hsv-core",
-                header.abi_version
-            ),
-        });
+        return Err(bad_header(origin, "wrong magic bytes: not an hsv plugin"));
     }
     let [major, minor, patch] = header.api_version;
-    if major != PLUGIN_API_VERSION.0 {
-        return Err(PluginError::BadHeader {
-            path: shown,
-            message: format!(
-                "plugin API {major}.{minor}.{patch} is incompatible with {}.{}.{}",
-                PLUGIN_API_VERSION.0, PLUGIN_API_VERSION.1, PLUGIN_API_VERSION.2
-            ),
-        });
-    }
-    if header.model_count == 0 || header.models.is_null() {
-        return Err(PluginError::BadHeader {
-            path: shown,
-            message: "declares no models".to_owned(),
-        });
-    }
-    // SAFETY: `models` points at `model_count` static tables, per the header contract.
-    let tables: &'static [PluginModelTable] =
-        unsafe { std::slice::from_raw_parts(header.models, header.model_count as usize) };
-    let mut entries = Vec::with_capacity(tables.len());
-    for table in tables {
-        let name = plugin_str(table.name, "model name", &shown)?;
-        if table.role != PLUGIN_ROLE_AERO {
-            return Err(PluginError::BadHeader {
-                path: shown,
-                message: format!(
-                    "model `{name}` has role code {}; ABI version 1 carries aero models (code 0) only",
-                    table.role
-                ),
-            });
-        }
-        let fidelity = u8::try_from(table.fidelity).unwrap_or(u8::MAX);
-        let summary = plugin_str(table.summary, "summary", &shown)?;
-        let settings_doc = plugin_str(table.settings_doc, "settings doc", &shown)?;
-        let model_name = name.clone();
-        entries.push(RegistryEntry {
-            name,
-            fidelity,
-            summary,
-            settings_doc,
-            origin: Origin::Plugin(shown.clone()),
-            factory: Factory::Aero(Arc::new(move |context| {
-                let settings = serde_json::to_vec(context.settings).map_err(|e| {
-                    ModelError::inconsistent(&model_name, format!("settings to JSON: {e}"))
-                })?;
-                PluginAeroModel::create(table, &model_name, &settings)
-                    .map(|m| Box::new(m) as Box<dyn AeroModel>)
-            })),
-        });
-    }
-    Ok(entries)
-}
-
-/// Copies a plugin's last error message.
-fn plugin_error(table: &PluginModelTable, handle: *mut c_void) -> String {
-    let mut buffer = vec![0u8; 512];
-    // SAFETY: the buffer is valid for `capacity` bytes; the plugin writes at most that many.
-    let length = unsafe { (table.last_error)(handle, buffer.as_mut_ptr(), buffer.len()) };
-    buffer.truncate(length.min(buffer.len()));
-    String::from_utf8_lossy(&buffer).into_owned()
-}
-
-/// A plugin aero model behind the same trait as the built-in ones.
-pub struct PluginAeroModel {
-    table: &'static PluginModelTable,
-    handle: *mut c_void,
-    name: String,
-    centroid: Vec<f64>,
-    normal: Vec<f64>,
-    area: Vec<f64>,
-    velocity: Vec<f64>,
-    strip_offsets: Vec<usize>,
-    strip_panels: Vec<usize>,
-    edge: Vec<f64>,
-}
-
-// SAFETY: the plugin contract makes a model handle usable from any one thread at a time, which
-// `&mut self` on every call guarantees.
-unsafe impl Send for PluginAeroModel {}
-
-impl PluginAeroModel {
-    fn create(
-        table: &'static PluginModelTable,
-        name: &str,
-        settings_json: &[u8],
-    ) -> Result<Self, ModelError> {
-        // SAFETY: pointer and length describe `settings_json`.
-        let handle = unsafe { (table.create)(settings_json.as_ptr(), settings_json.len()) };
-        if handle.is_null() {
-            return Err(ModelError::inconsistent(
-                name,
+    let (host_major, host_minor, host_patch) = match header.abi_version {
+        v1::ABI_VERSION => v1::API_VERSION,
+        PLUGIN_ABI_VERSION => PLUGIN_API_VERSION,
+        other => {
+            return Err(bad_header(
+                origin,
                 format!(
-                    "plugin could not create the model: {}",
-                    plugin_error(table, handle)
+                    "ABI version {other}, but this hsv-run reads versions 1 and {PLUGIN_ABI_VERSION}; rebuild the plugin against this hsv-core"
                 ),
             ));
-        }
-        Ok(Self {
-            table,
-            handle,
-            name: name.to_owned(),
-            centroid: Vec::new(),
-            normal: Vec::new(),
-            area: Vec::new(),
-            velocity: Vec::new(),
-            strip_offsets: Vec::new(),
-            strip_panels: Vec::new(),
-            edge: Vec::new(),
-        })
-    }
-}
-
-impl Drop for PluginAeroModel {
-    fn drop(&mut self) {
-        // SAFETY: the handle came from `create` and is destroyed once.
-        unsafe { (self.table.destroy)(self.handle) };
-    }
-}
-
-impl AeroModel for PluginAeroModel {
-    fn name(&self) -> &str {
-        &self.name
-    }
-
-    fn evaluate(
-        &mut self,
-        mesh: &PanelMesh,
-        flight: &FlightCondition,
-        motion: &PanelMotion<'_>,
-        out: &mut AeroSolution,
-    ) -> Result<(), ModelError> {
-        let n = mesh.panels.len();
-        self.centroid.clear();
-        self.normal.clear();
-        self.area.clear();
-        self.velocity.clear();
-        for (i, panel) in mesh.panels.iter().enumerate() {
-            self.centroid
-                .extend_from_slice(panel.centroid.coords.as_slice());
-            self.normal.extend_from_slice(panel.normal.as_slice());
-            self.area.push(panel.area_m2);
-            let v: Vector3<f64> = motion.panel_velocity_m_s(flight, mesh, i);
-            self.velocity.extend_from_slice(v.as_slice());
-        }
-        self.strip_offsets.clear();
-        self.strip_panels.clear();
-        self.strip_offsets.push(0);
-        for strip in &mesh.strips {
-            self.strip_panels.extend_from_slice(&strip.panels);
-            self.strip_offsets.push(self.strip_panels.len());
-        }
-        let f = &flight.freestream;
-        let v = flight.velocity_body_m_s();
-        let input = AeroInputAbi {
-            freestream: FreestreamAbi {
-                mach: f.mach,
-                pressure_pa: f.pressure_pa,
-                temperature_k: f.temperature_k,
-                density_kg_m3: f.density_kg_m3,
-                speed_of_sound_m_s: f.speed_of_sound_m_s,
-                velocity_m_s: f.velocity_m_s,
-                gamma: f.gas.gamma,
-                gas_constant_j_kg_k: f.gas.gas_constant_j_kg_k,
-                vehicle_velocity_body_m_s: [v.x, v.y, v.z],
-            },
-            n_panels: n,
-            centroid_m: self.centroid.as_ptr(),
-            normal: self.normal.as_ptr(),
-            area_m2: self.area.as_ptr(),
-            panel_velocity_m_s: self.velocity.as_ptr(),
-            n_strips: mesh.strips.len(),
-            strip_offsets: self.strip_offsets.as_ptr(),
-            strip_panels: self.strip_panels.as_ptr(),
-        };
-        out.reset(n);
-        self.edge.clear();
-        self.edge.resize(5 * n, 0.0);
-        let mut output = AeroOutputAbi {
-            pressure_pa: out.pressure_pa.as_mut_ptr(),
-            edge: self.edge.as_mut_ptr(),
-        };
-        // SAFETY: every pointer is valid for the lengths the ABI states for `n` panels.
-        let status = unsafe { (self.table.evaluate_aero)(self.handle, &input, &mut output) };
-        if status != 0 {
-            return Err(ModelError::inconsistent(
-                &self.name,
-                format!(
-                    "plugin evaluation failed: {}",
-                    plugin_error(self.table, self.handle)
-                ),
-            ));
-        }
-        for (i, edge) in out.edge.iter_mut().enumerate() {
-            let e = &self.edge[5 * i..5 * i + 5];
-            *edge = EdgeState {
-                mach: e[0],
-                pressure_pa: e[1],
-                temperature_k: e[2],
-                density_kg_m3: e[3],
-                velocity_m_s: e[4],
-            };
-        }
-        if let Some(bad) = out.pressure_pa.iter().position(|p| !p.is_finite()) {
-            return Err(ModelError::NonFinite {
-                model: self.name.clone(),
-                quantity: "pressure".to_owned(),
-                location: format!(" on panel {bad}"),
-            });
-        }
-        Ok(())
-    }
-}
-
-/// What a plugin aero model sees: safe slices over the host's buffers.
-pub struct PluginAeroInput<'a> {
-    pub freestream: FreestreamAbi,
-    pub centroid_m: &'a [[f64; 3]],
-    pub normal: &'a [[f64; 3]],
-    pub area_m2: &'a [f64],
-    pub panel_velocity_m_s: &'a [[f64; 3]],
-    /// Panel indices of each strip, upstream first.
-    pub strips: Vec<&'a [usize]>,
-}
-
-/// Where a plugin aero model writes: pressure (Pa) and edge state per panel.
-pub struct PluginAeroOutput<'a> {
-    pub pressure_pa: &'a mut [f64],
-    /// Per panel: Mach, pressure Pa, temperature K, density kg/m³, velocity m/s.
-    pub edge: &'a mut [[f64; 5]],
-}
-
-/// The trait a plugin author implements; [`export_aero_plugin!`] turns it into the C table.
-pub trait PluginAero: Sized {
-    /// Builds the model from its settings (the `[models.<name>]` table, as JSON).
-    fn create(settings: &serde_json::Value) -> Result<Self, String>;
-    /// Fills `output` for the panels in `input`.
-    fn evaluate(
-        &mut self,
-        input: &PluginAeroInput<'_>,
-        output: &mut PluginAeroOutput<'_>,
-    ) -> Result<(), String>;
-}
-
-/// Plugin-side glue used by [`export_aero_plugin!`]; not for hosts.
-#[doc(hidden)]
-pub mod export {
-    use super::*;
-    use std::cell::RefCell;
-    use std::panic::{AssertUnwindSafe, catch_unwind};
-
-    thread_local! {
-        static CREATE_ERROR: RefCell<String> = const { RefCell::new(String::new()) };
-    }
-
-    /// A model instance with its last error.
-    pub struct Instance<M> {
-        pub model: M,
-        pub last_error: String,
-    }
-
-    fn panic_message(payload: Box<dyn std::any::Any + Send>) -> String {
-        payload
-            .downcast_ref::<&str>()
-            .map(|s| (*s).to_owned())
-            .or_else(|| payload.downcast_ref::<String>().cloned())
-            .unwrap_or_else(|| "unknown panic".to_owned())
-    }
-
-    /// # Safety
-    /// `settings` must be valid for `len` bytes.
-    pub unsafe fn create<M: PluginAero>(settings: *const u8, len: usize) -> *mut c_void {
-        let result = catch_unwind(AssertUnwindSafe(|| {
-            let bytes = if len == 0 {
-                &[][..]
-            } else {
-                // SAFETY: caller guarantees validity.
-                unsafe { std::slice::from_raw_parts(settings, len) }
-            };
-            let value: serde_json::Value = if bytes.is_empty() {
-                serde_json::Value::Object(Default::default())
-            } else {
-                serde_json::from_slice(bytes).map_err(|e| format!("settings are not JSON: {e}"))?
-            };
-            M::create(&value)
-        }));
-        let outcome = match result {
-            Ok(outcome) => outcome,
-            Err(payload) => Err(format!(
-                "plugin panicked in create: {}",
-                panic_message(payload)
-            )),
-        };
-        match outcome {
-            Ok(model) => Box::into_raw(Box::new(Instance {
-                model,
-                last_error: String::new(),
-            })) as *mut c_void,
-            Err(message) => {
-                CREATE_ERROR.with(|e| *e.borrow_mut() = message);
-                std::ptr::null_mut()
-            }
-        }
-    }
-
-    /// # Safety
-    /// `handle` must come from [`create`] for `M`; `input`/`output` must follow the ABI.
-    pub unsafe fn evaluate<M: PluginAero>(
-        handle: *mut c_void,
-        input: *const AeroInputAbi,
-        output: *mut AeroOutputAbi,
-    ) -> i32 {
-        if handle.is_null() || input.is_null() || output.is_null() {
-            return 1;
-        }
-        // SAFETY: per the contract above.
-        let instance = unsafe { &mut *(handle as *mut Instance<M>) };
-        let (input, output) = unsafe { (&*input, &mut *output) };
-        let n = input.n_panels;
-        // SAFETY: the host passes arrays of the lengths the ABI states.
-        let (view, mut out) = unsafe {
-            let offsets = std::slice::from_raw_parts(input.strip_offsets, input.n_strips + 1);
-            let total = offsets.last().copied().unwrap_or(0);
-            let panels = std::slice::from_raw_parts(input.strip_panels, total);
-            let strips = offsets.windows(2).map(|w| &panels[w[0]..w[1]]).collect();
-            (
-                PluginAeroInput {
-                    freestream: input.freestream,
-                    centroid_m: std::slice::from_raw_parts(input.centroid_m as *const [f64; 3], n),
-                    normal: std::slice::from_raw_parts(input.normal as *const [f64; 3], n),
-                    area_m2: std::slice::from_raw_parts(input.area_m2, n),
-                    panel_velocity_m_s: std::slice::from_raw_parts(
-                        input.panel_velocity_m_s as *const [f64; 3],
-                        n,
-                    ),
-                    strips,
-                },
-                PluginAeroOutput {
-                    pressure_pa: std::slice::from_raw_parts_mut(output.pressure_pa, n),
-                    edge: std::slice::from_raw_parts_mut(output.edge as *mut [f64; 5], n),
-                },
-            )
-        };
-        let result = catch_unwind(AssertUnwindSafe(|| {
-            instance.model.evaluate(&view, &mut out)
-        }));
-        let message = match result {
-            Ok(Ok(())) => return 0,
-            Ok(Err(message)) => message,
-            Err(payload) => format!("plugin panicked in evaluate: {}", panic_message(payload)),
-        };
-        instance.last_error = message;
-        2
-    }
-
-    /// # Safety
-    /// `handle` must come from [`create`] for `M` and not be used afterwards.
-    pub unsafe fn destroy<M: PluginAero>(handle: *mut c_void) {
-        if !handle.is_null() {
-            // SAFETY: per the contract above.
-            let _ = catch_unwind(AssertUnwindSafe(|| unsafe {
-                drop(Box::from_raw(handle as *mut Instance<M>))
-            }));
-        }
-    }
-
-    /// # Safety
-    /// `buffer` must be valid for `capacity` bytes; `handle` null or from [`create`] for `M`.
-    pub unsafe fn last_error<M: PluginAero>(
-        handle: *mut c_void,
-        buffer: *mut u8,
-        capacity: usize,
-    ) -> usize {
-        let message = if handle.is_null() {
-            CREATE_ERROR.with(|e| e.borrow().clone())
-        } else {
-            // SAFETY: per the contract above.
-            unsafe { (*(handle as *mut Instance<M>)).last_error.clone() }
-        };
-        let bytes = message.as_bytes();
-        let copied = bytes.len().min(capacity);
-        // SAFETY: `copied` fits both buffers.
-        unsafe { std::ptr::copy_nonoverlapping(bytes.as_ptr(), buffer, copied) };
-        bytes.len()
-    }
-}
-
-/// Exports one aero model type implementing [`PluginAero`] as an hsv plugin:
-/// `hsv_core::export_aero_plugin!(MyModel, name: "my-model", fidelity: 1, summary: "...", settings: "...");`
-#[macro_export]
-macro_rules! export_aero_plugin {
-    ($model:ty, name: $name:literal, fidelity: $fidelity:literal, summary: $summary:literal, settings: $settings:literal $(,)?) => {
-        unsafe extern "C" fn __hsv_create(
-            settings: *const u8,
-            len: usize,
-        ) -> *mut ::std::ffi::c_void {
-            unsafe { $crate::plugin::export::create::<$model>(settings, len) }
-        }
-        unsafe extern "C" fn __hsv_evaluate(
-            handle: *mut ::std::ffi::c_void,
-            input: *const $crate::plugin::AeroInputAbi,
-            output: *mut $crate::plugin::AeroOutputAbi,
-        ) -> i32 {
-            unsafe { $crate::plugin::export::evaluate::<$model>(handle, input, output) }
-        }
-        unsafe extern "C" fn __hsv_destroy(handle: *mut ::std::ffi::c_void) {
-            unsafe { $crate::plugin::export::destroy::<$model>(handle) }
-        }
-        unsafe extern "C" fn __hsv_last_error(
-            handle: *mut ::std::ffi::c_void,
-            buffer: *mut u8,
-            capacity: usize,
-        ) -> usize {
-            unsafe { $crate::plugin::export::last_error::<$model>(handle, buffer, capacity) }
-        }
-        static __HSV_MODELS: [$crate::plugin::PluginModelTable; 1] =
-            [$crate::plugin::PluginModelTable {
-                role: $crate::plugin::PLUGIN_ROLE_AERO,
-                name: concat!($name, "\0").as_ptr() as *const ::std::ffi::c_char,
-                summary: concat!($summary, "\0").as_ptr() as *const ::std::ffi::c_char,
-                settings_doc: concat!($settings, "\0").as_ptr() as *const ::std::ffi::c_char,
-                fidelity: $fidelity,
-                create: __hsv_create,
-                evaluate_aero: __hsv_evaluate,
-                destroy: __hsv_destroy,
-                last_error: __hsv_last_error,
-            }];
-        static __HSV_HEADER: $crate::plugin::PluginHeader = $crate::plugin::PluginHeader {
-            magic: $crate::plugin::PLUGIN_MAGIC,
-            abi_version: $crate::plugin::PLUGIN_ABI_VERSION,
-            api_version: [
-                $crate::plugin::PLUGIN_API_VERSION.0,
-                $crate::plugin::PLUGIN_API_VERSION.1,
-                $crate::plugin::PLUGIN_API_VERSION.2,
-            ],
-            model_count: 1,
-            models: &__HSV_MODELS as *const $crate::plugin::PluginModelTable,
-        };
-        /// The hsv plugin entry point.
-        #[unsafe(no_mangle)]
-        pub extern "C" fn hsv_plugin_entry() -> *const $crate::plugin::PluginHeader {
-            &__HSV_HEADER
         }
     };
+    if major != host_major || minor > host_minor {
+        return Err(bad_header(
+            origin,
+            format!(
+                "plugin API {major}.{minor}.{patch} is incompatible with {host_major}.{host_minor}.{host_patch} (ABI {}): rebuild the plugin against this hsv-core",
+                header.abi_version
+            ),
+        ));
+    }
+    if header.model_count == 0 || header.models.is_null() {
+        return Err(bad_header(origin, "declares no models"));
+    }
+    let count = header.model_count as usize;
+    if header.abi_version == v1::ABI_VERSION {
+        // SAFETY: an ABI-1 header points at `model_count` v1 tables.
+        let tables: &'static [v1::PluginModelTable] = unsafe {
+            std::slice::from_raw_parts(header.models as *const v1::PluginModelTable, count)
+        };
+        return tables
+            .iter()
+            .map(|table| unsafe { v1::entry(table, origin) })
+            .collect();
+    }
+    // SAFETY: an ABI-2 header points at `model_count` model entries.
+    let models: &'static [PluginModel] =
+        unsafe { std::slice::from_raw_parts(header.models as *const PluginModel, count) };
+    models
+        .iter()
+        .map(|model| unsafe { entry(model, origin) })
+        .collect()
+}
+
+/// Reads a plugin string.
+///
+/// # Safety
+/// `text` must be valid for its length for the life of the process.
+unsafe fn plugin_string(text: StrAbi, what: &str, origin: &str) -> Result<String, PluginError> {
+    // SAFETY: per the contract above.
+    unsafe { convert::str_from(text, what) }
+        .map(str::to_owned)
+        .map_err(|message| bad_header(origin, message))
+}
+
+/// The registry entry of one ABI-2 model.
+///
+/// # Safety
+/// `model` must follow ABI 2.
+unsafe fn entry(model: &'static PluginModel, origin: &str) -> Result<RegistryEntry, PluginError> {
+    // SAFETY: per the contract above.
+    let name = unsafe { plugin_string(model.name, "model name", origin)? };
+    let summary = unsafe { plugin_string(model.summary, "summary", origin)? };
+    let settings_doc = unsafe { plugin_string(model.settings_doc, "settings doc", origin)? };
+    let fidelity = u8::try_from(model.fidelity).map_err(|_| {
+        bad_header(
+            origin,
+            format!("model `{name}` has fidelity {} (0-255)", model.fidelity),
+        )
+    })?;
+    if model.functions.is_null() {
+        return Err(bad_header(
+            origin,
+            format!("model `{name}` has no function table"),
+        ));
+    }
+    let functions = model.functions;
+    let model_name = name.clone();
+    // SAFETY (each arm): the role code fixes the table type behind `functions`.
+    let factory = match model.role {
+        PLUGIN_ROLE_AERO => {
+            let f: &'static AeroFunctions = unsafe { &*(functions as *const AeroFunctions) };
+            Factory::Aero(Arc::new(move |context| {
+                PluginAero::create(model, f, &model_name, context)
+                    .map(|m| Box::new(m) as Box<dyn AeroModel>)
+            }))
+        }
+        PLUGIN_ROLE_HEAT_FLUX => {
+            let f: &'static HeatFluxFunctions =
+                unsafe { &*(functions as *const HeatFluxFunctions) };
+            Factory::HeatFlux(Arc::new(move |context| {
+                PluginHeatFlux::create(model, f, &model_name, context)
+                    .map(|m| Box::new(m) as Box<dyn HeatFluxModel>)
+            }))
+        }
+        PLUGIN_ROLE_CONDUCTION => {
+            let f: &'static ConductionFunctions =
+                unsafe { &*(functions as *const ConductionFunctions) };
+            Factory::Conduction(Arc::new(move |context| {
+                PluginConduction::create(model, f, &model_name, context)
+                    .map(|m| Box::new(m) as Box<dyn ConductionModel>)
+            }))
+        }
+        PLUGIN_ROLE_STRUCTURE => {
+            let f: &'static StructureFunctions =
+                unsafe { &*(functions as *const StructureFunctions) };
+            Factory::Structure(Arc::new(move |context| {
+                PluginStructure::create(model, f, &model_name, context)
+                    .map(|m| Box::new(m) as Box<dyn StructureModel>)
+            }))
+        }
+        PLUGIN_ROLE_PROPULSION => {
+            let f: &'static PropulsionFunctions =
+                unsafe { &*(functions as *const PropulsionFunctions) };
+            Factory::Propulsion(Arc::new(move |context| {
+                PluginPropulsion::create(model, f, &model_name, context)
+                    .map(|m| Box::new(m) as Box<dyn PropulsionModel>)
+            }))
+        }
+        other => {
+            return Err(bad_header(
+                origin,
+                format!(
+                    "model `{name}` has role code {other}; ABI {PLUGIN_ABI_VERSION} knows 0 aero, 1 heat flux, 2 conduction, 3 structure, 4 propulsion"
+                ),
+            ));
+        }
+    };
+    Ok(RegistryEntry {
+        name,
+        fidelity,
+        summary,
+        settings_doc,
+        origin: Origin::Plugin(origin.to_owned()),
+        factory,
+    })
 }

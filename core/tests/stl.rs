@@ -290,3 +290,102 @@ fn the_sample_vehicle_body_survives_an_stl_round_trip() {
         max_relative = 1e-5
     );
 }
+
+/// The cube fixture's facets as text with facet `k` turned by `edit`.
+fn cube_with(edit: impl Fn(usize, &str) -> Option<String>) -> String {
+    let text = cube_ascii();
+    let mut out = String::new();
+    for (k, block) in text.split("  facet").enumerate() {
+        if k == 0 {
+            out += block;
+            continue;
+        }
+        if let Some(new) = edit(k - 1, block) {
+            out += "  facet";
+            out += &new;
+        }
+    }
+    out
+}
+
+/// A facet block with its vertex order reversed and its normal negated (an inward facet that
+/// agrees with its stored normal, so the reader keeps it).
+fn inside_out(block: &str) -> String {
+    let lines: Vec<&str> = block.lines().collect();
+    let normal: Vec<f64> = lines[0]
+        .split_whitespace()
+        .skip(1)
+        .map(|t| t.parse::<f64>().expect("normal"))
+        .collect();
+    let vertices: Vec<&str> = lines
+        .iter()
+        .copied()
+        .filter(|l| l.trim_start().starts_with("vertex"))
+        .collect();
+    format!(
+        " normal {} {} {}\n    outer loop\n{}\n{}\n{}\n    endloop\n  endfacet\n",
+        -normal[0], -normal[1], -normal[2], vertices[0], vertices[2], vertices[1]
+    )
+}
+
+#[test]
+fn closure_finds_open_misoriented_and_inward_meshes_and_reversal_turns_them_out() {
+    let closed = parse_stl(cube_ascii().as_bytes(), "cube.stl").expect("cube");
+    let c = closed.closure();
+    assert!(c.is_closed_outward() && c.problems().is_empty(), "{c:?}");
+    assert_relative_eq!(c.enclosed_volume_m3, 1.0, max_relative = 1e-12);
+
+    // One facet missing: its three edges are open.
+    let open = parse_stl(cube_with(|k, b| (k != 0).then(|| b.to_owned())).as_bytes(), "o.stl")
+        .expect("open cube");
+    let c = open.closure();
+    assert_eq!((c.boundary_edges, c.misoriented_edges), (3, 0));
+    assert!(!c.is_closed() && c.problems()[0].contains("3 open edges"));
+
+    // One facet inside out: its three edges are traversed twice the same way.
+    let mixed = cube_with(|k, b| Some(if k == 0 { inside_out(b) } else { b.to_owned() }));
+    let c = parse_stl(mixed.as_bytes(), "m.stl").expect("mixed").closure();
+    assert_eq!((c.boundary_edges, c.misoriented_edges), (0, 3));
+    assert!(c.is_closed() && !c.is_closed_outward() && !c.is_closed_inward());
+
+    // Every facet inside out: closed, consistent, negative volume; reversing restores it.
+    let inward = cube_with(|_, b| Some(inside_out(b)));
+    let mut mesh = parse_stl(inward.as_bytes(), "i.stl").expect("inward");
+    let c = mesh.closure();
+    assert!(c.is_closed_inward(), "{c:?}");
+    assert_relative_eq!(c.enclosed_volume_m3, -1.0, max_relative = 1e-12);
+    mesh.reverse_orientation();
+    assert!(mesh.closure().is_closed_outward());
+    assert_relative_eq!(mesh.enclosed_volume_m3(), 1.0, max_relative = 1e-12);
+    for (turned, original) in mesh.panels.iter().zip(&closed.panels) {
+        assert_relative_eq!(turned.area_m2, original.area_m2, max_relative = 1e-12);
+    }
+    // Outward normals: the bottom face (z = 0) points to -z.
+    let bottom = mesh.panels.iter().find(|p| p.centroid.z < 1e-9).expect("bottom");
+    assert_relative_eq!(bottom.normal.z, -1.0, epsilon = 1e-12);
+}
+
+#[test]
+fn welding_a_large_mesh_merges_exact_and_near_copies_alike() {
+    // A 60 x 60 grid of points, each given three times: exactly, and moved by 1e-9 and 1e-3 of
+    // the 1e-6 m tolerance's scale; only the far copy (1e-3 m) stays apart.
+    let mut points = Vec::new();
+    for i in 0..60 {
+        for j in 0..60 {
+            let p = Point3::new(f64::from(i) * 0.01, f64::from(j) * 0.01, 0.0);
+            points.push(p);
+            points.push(p + nalgebra::Vector3::new(3e-7, -3e-7, 2e-7));
+            points.push(p + nalgebra::Vector3::new(0.0, 0.0, 1e-3));
+            points.push(p);
+        }
+    }
+    let (unique, map) = hsv_core::mesh::weld_vertices(&points, 1e-6);
+    assert_eq!(unique.len(), 2 * 3600);
+    for k in 0..3600 {
+        let [a, b, c, d] = [map[4 * k], map[4 * k + 1], map[4 * k + 2], map[4 * k + 3]];
+        assert_eq!((a, a), (b, d), "point {k}");
+        assert_ne!(a, c);
+        // First come, first kept.
+        assert_eq!(unique[a], points[4 * k]);
+    }
+}

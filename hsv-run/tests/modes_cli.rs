@@ -34,7 +34,8 @@ fn scratch_dir(name: &str) -> PathBuf {
     dir
 }
 
-/// Runs `modes --json --out <dir>` plus `extra`, expecting success.
+/// Runs `modes --json --out <dir>/run --force` plus `extra`, expecting success (`--force`:
+/// some tests run twice into the same folder).
 fn modes_json(dir: &Path, extra: &[&str]) -> serde_json::Value {
     let out = dir.join("run");
     let mut args = vec![
@@ -42,6 +43,7 @@ fn modes_json(dir: &Path, extra: &[&str]) -> serde_json::Value {
         "--json",
         "--out",
         out.to_str().expect("utf-8 path"),
+        "--force",
     ];
     args.extend_from_slice(extra);
     let output = hsv_run(&args);

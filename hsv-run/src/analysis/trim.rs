@@ -50,7 +50,7 @@ impl Default for TrimRequest {
 }
 
 /// One minimum: the controls, the loads there and the residual accelerations.
-#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
+#[derive(Debug, Clone, PartialEq, serde::Serialize)]
 pub struct TrimPoint {
     pub alpha_deg: f64,
     pub elevon_deg: f64,
@@ -59,6 +59,8 @@ pub struct TrimPoint {
     pub accelerations: Accelerations,
     pub loads: RigidLoads,
     pub evaluations: u64,
+    /// Body modal amplitudes at the trim (flexible vehicle).
+    pub modal_amplitudes: Vec<(String, f64)>,
 }
 
 /// The trim and its check.
@@ -115,6 +117,11 @@ pub trait SteadyFlight {
 
     /// Mass of the vehicle, kg (reported).
     fn mass_kg(&self) -> f64;
+
+    /// Body modal amplitudes at the last evaluated point (empty for a rigid vehicle).
+    fn modal_amplitudes(&self) -> Vec<(String, f64)> {
+        Vec::new()
+    }
 }
 
 impl SteadyFlight for RigidVehicle {
@@ -246,6 +253,7 @@ fn minimize(
             accelerations,
             loads,
             evaluations,
+            modal_amplitudes: vehicle.modal_amplitudes(),
         },
         refusal,
     ))

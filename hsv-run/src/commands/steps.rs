@@ -87,14 +87,12 @@ pub fn time_steps(duration_s: f64, dt_s: f64) -> Result<StepPlan, StepError> {
         });
     }
     let whole = ratio.round();
-    let steps = if whole >= 1.0 && (ratio - whole).abs() <= WHOLE_STEPS_TOLERANCE * ratio {
-        whole
-    } else {
-        ratio.ceil()
-    };
-    // `steps` is at most MAX_STEPS here, so the conversion is exact.
-    let steps = (steps as usize).max(1);
-    let last_dt_s = if steps == 1 {
+    let is_whole = whole >= 1.0 && (ratio - whole).abs() <= WHOLE_STEPS_TOLERANCE * ratio;
+    // At most MAX_STEPS here, so the conversion is exact.
+    let steps = (if is_whole { whole } else { ratio.ceil() } as usize).max(1);
+    let last_dt_s = if is_whole {
+        dt_s
+    } else if steps == 1 {
         duration_s
     } else {
         (duration_s - (steps - 1) as f64 * dt_s).min(dt_s)

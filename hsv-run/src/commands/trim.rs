@@ -8,7 +8,9 @@ use hsv_core::registry::Registry;
 
 use super::{ConfigArg, JsonFlag, load_config};
 use crate::analysis::trim::{TrimRequest, TrimResult, trim};
+use crate::dynamics::GravityModel;
 use crate::vehicle::assemble;
+use crate::vehicle::partitioned::{CouplingSettings, PartitionedVehicle, partitioned_needs};
 use crate::vehicle::rigid::{RigidVehicle, rigid_needs};
 
 /// Arguments of `hsv-run trim`.
@@ -16,10 +18,13 @@ use crate::vehicle::rigid::{RigidVehicle, rigid_needs};
 pub struct TrimArgs {
     #[command(flatten)]
     pub config: ConfigArg,
-    /// Trim the rigid vehicle (the only model trim has so far; the flexible vehicle needs the
-    /// coupled body-surface step).
-    #[arg(long, default_value_t = true)]
+    /// Trim the rigid vehicle (the default).
+    #[arg(long, conflicts_with = "flexible")]
     pub rigid: bool,
+    /// Trim the flexible partitioned vehicle: body and surface modes at static equilibrium
+    /// (aero, engine, gravity and inertial relief) at every evaluated point.
+    #[arg(long)]
+    pub flexible: bool,
     /// Freestream Mach number (default: the config's, 6 for the sample).
     #[arg(long, allow_negative_numbers = true)]
     pub mach: Option<f64>,
@@ -40,28 +45,40 @@ pub fn run(args: TrimArgs, registry: &Registry) -> Result<()> {
             anyhow::bail!("{flag} must be a finite number, got {value}");
         }
     }
-    let sets = assemble(
-        &loaded,
-        &registry,
-        &rigid_needs("trim of the rigid vehicle"),
-    )?;
-    let mut vehicle = RigidVehicle::new(sets)?;
     let request = TrimRequest {
         mach,
         altitude_m,
         ..TrimRequest::default()
     };
-    let result = trim(&mut vehicle, &request)?;
-    if args.json.json {
-        println!("{}", serde_json::to_string_pretty(&summary(&result))?);
+    let result = if args.flexible {
+        let needs = partitioned_needs("trim of the flexible vehicle");
+        let sets = assemble(&loaded, &registry, &needs)?;
+        let mut vehicle =
+            PartitionedVehicle::new(sets, GravityModel::default(), CouplingSettings::default())?;
+        trim(&mut vehicle, &request)?
     } else {
-        print_table(&result);
+        let sets = assemble(
+            &loaded,
+            &registry,
+            &rigid_needs("trim of the rigid vehicle"),
+        )?;
+        let mut vehicle = RigidVehicle::new(sets)?;
+        trim(&mut vehicle, &request)?
+    };
+    let model = if args.flexible { "flexible" } else { "rigid" };
+    if args.json.json {
+        println!(
+            "{}",
+            serde_json::to_string_pretty(&summary(&result, model))?
+        );
+    } else {
+        print_table(&result, model);
     }
     Ok(())
 }
 
 /// The JSON summary: keys name quantity and unit.
-fn summary(r: &TrimResult) -> serde_json::Value {
+fn summary(r: &TrimResult, model: &str) -> serde_json::Value {
     let point = |p: &crate::analysis::trim::TrimPoint| {
         serde_json::json!({
             "alpha_deg": p.alpha_deg,
@@ -75,10 +92,11 @@ fn summary(r: &TrimResult) -> serde_json::Value {
             "q_dot_rad_s2": p.accelerations.q_dot_rad_s2,
             "engine_status": p.loads.engine_status,
             "evaluations": p.evaluations,
+            "body_modal_amplitudes": p.modal_amplitudes,
         })
     };
     serde_json::json!({
-        "model": "rigid",
+        "model": model,
         "mach": r.mach,
         "altitude_m": r.altitude_m,
         "mass_kg": r.mass_kg,
@@ -89,10 +107,10 @@ fn summary(r: &TrimResult) -> serde_json::Value {
     })
 }
 
-fn print_table(r: &TrimResult) {
+fn print_table(r: &TrimResult, model: &str) {
     let t = &r.trim;
     println!(
-        "Steady level flight, rigid vehicle, Mach {}, {} m ({:.0} kg)",
+        "Steady level flight, {model} vehicle, Mach {}, {} m ({:.0} kg)",
         r.mach, r.altitude_m, r.mass_kg
     );
     println!(
@@ -116,6 +134,19 @@ fn print_table(r: &TrimResult) {
         t.fuel_equivalence_ratio,
         e.fuel_equivalence_ratio,
     );
+    for (k, ((name, a), (_, b))) in t
+        .modal_amplitudes
+        .iter()
+        .zip(&e.modal_amplitudes)
+        .enumerate()
+    {
+        row(
+            &format!("eta_{}", k + 1),
+            &format!("{name} amplitude"),
+            *a,
+            *b,
+        );
+    }
     row("T", "thrust (N)", t.loads.thrust_n, e.loads.thrust_n);
     row("D", "drag (N)", t.loads.drag_n, e.loads.drag_n);
     println!("minimized parameters");

@@ -116,6 +116,28 @@ pub enum RootChoice {
     /// Every root node clamped to the (rigid) torque tube.
     #[default]
     Clamped,
+    /// All four edges of the rectangular planform simply supported (w and the rotation along
+    /// the edge held, Kirchhoff's w = ∂w/∂s = 0) and immovable in-plane: the classical panel
+    /// of panel-flutter theory (Dowell, Aeroelasticity of Plates and Shells, 1975). Only with
+    /// `planform = "rectangular"`.
+    SimplySupported,
+}
+
+/// Supports of [`RootChoice::SimplySupported`]: every edge of `grid` simply supported and
+/// held in-plane.
+pub fn simply_supported_edges(grid: &SurfaceGrid) -> Supports {
+    let mut supports = Supports::free(grid.n_nodes());
+    for edge in [
+        GridEdge::Root,
+        GridEdge::Tip,
+        GridEdge::LeadingEdge,
+        GridEdge::TrailingEdge,
+    ] {
+        supports = supports
+            .simply_support(grid, edge)
+            .restrain_in_plane(&grid.edge_nodes(edge));
+    }
+    supports
 }
 
 /// Dimensions of the rectangular plate: chord along −x from the leading edge, span along +y
@@ -156,7 +178,8 @@ pub struct Settings {
     /// Required with `planform = "rectangular"`.
     #[serde(default)]
     pub rectangular: Option<RectangularSettings>,
-    /// Root condition (only `clamped`).
+    /// Root condition: `clamped` (default), or `simply-supported` (all four edges of a
+    /// rectangular plate).
     #[serde(default)]
     pub root: RootChoice,
     /// Adds one more static shape, the deflection under a uniform thermal moment (a uniform
@@ -190,8 +213,20 @@ fn construct(ctx: &ModelContext<'_>) -> Result<Box<dyn StructureModel>, ModelErr
         .resolve()
         .map_err(|e| ctx.settings_error("material", e.to_string()))?;
     let (grid, side) = structural_grid(&settings, ctx)?;
-    let model = RitzPlate::new(grid, material, &settings)?.with_side(side);
-    Ok(Box::new(model))
+    let model = match settings.root {
+        RootChoice::Clamped => RitzPlate::new(grid, material, &settings)?,
+        RootChoice::SimplySupported => {
+            if settings.planform != PlanformChoice::Rectangular {
+                return Err(ctx.settings_error(
+                    "root",
+                    "root = \"simply-supported\" (all four edges) needs planform = \"rectangular\"",
+                ));
+            }
+            let supports = simply_supported_edges(&grid);
+            RitzPlate::with_supports(grid, material, supports, &settings)?
+        }
+    };
+    Ok(Box::new(model.with_side(side)))
 }
 
 /// The structural grid `settings` describe (node order of `set_temperatures`) and the side of
@@ -246,7 +281,7 @@ hsv_core::register_model!(ModelDescriptor {
                    material = \"ti-6al-4v\"      # or a table: name, density_kg_m3, poisson_ratio, melting_point_k, table = [{temperature_k, youngs_modulus_pa, thermal_expansion_per_k, conductivity_w_m_k, specific_heat_j_kg_k}, ...]\n\
                    damping_ratio = 0.02        # modal damping ratio of every mode\n\
                    planform = \"vehicle\"        # or \"rectangular\" with [models.ritz-plate.rectangular] chord_m, span_m, thickness_m\n\
-                   root = \"clamped\"            # root nodes clamped to the torque tube\n\
+                   root = \"clamped\"            # root nodes clamped to the torque tube; \"simply-supported\": all four edges of a rectangular plate (panel flutter)\n\
                    thermal_moment_shape = false # add the uniform thermal-moment deflection to the basis",
     constructor: Constructor::Structure(construct),
 });

@@ -1,0 +1,662 @@
+//! The heated surface over Mach numbers and times in the flow (paper §IV.D, Figs. 14-16).
+//!
+//! At each Mach number of a grid the surface starts uniformly at 293 K and heats in that flow
+//! ([`SurfaceHeating`]: heat flux, conduction); at each requested time the conduction model's
+//! node temperatures and through-thickness differences are moved onto the structure's grid
+//! ([`GridTransfer`]) and set on the structure (heat-degraded modulus, thermal-stress geometric
+//! stiffness, thermal moment), then the surface's equilibrium, identified state matrix and
+//! eigenvalues give the point's stability. The grid marches are independent and run on all
+//! cores.
+//!
+//! **Flutter Mach number** at a time: the lowest grid interval whose lower end is stable and
+//! upper end unstable brackets the crossing of the growth margin (largest real part minus the
+//! round-off threshold, [`super::stability`]); Brent's method then finds the zero, each
+//! evaluation a fresh heating march at that Mach number to that time. A range with no stable
+//! point, or no unstable one, is reported as such with the largest real part and least
+//! damping found, never as a crossing. A buckled surface (stiffness no longer positive
+//! definite) or a melting one (wall past the solidus) is reported at its Mach number and time
+//! and takes no part in the bracketing.
+
+use std::sync::Mutex;
+use std::sync::atomic::{AtomicUsize, Ordering};
+use std::time::Instant;
+
+use hsv_core::aero::AeroModel;
+use hsv_core::coupling::GridTransfer;
+use hsv_core::flow::{FlightCondition, Freestream};
+use hsv_core::region::RegionInfo;
+use hsv_core::registry::{ModelContext, Registry, RoleModel};
+use hsv_core::structure::StructureModel;
+use nalgebra::{Complex, DVector};
+use rayon::prelude::*;
+use serde::Serialize;
+
+use super::stability::{FlutterRoot, brent_root, stability, track};
+use super::surface::{DerivativeMethod, SurfaceDynamics, SurfaceOptions};
+use super::{FlutterError, check_positive};
+use crate::analysis::heating::{HeatingModels, HeatingSteps, SurfaceHeating};
+use crate::progress::Progress;
+
+/// The models of a flutter analysis, by registered name.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct FlutterModels {
+    pub aero: String,
+    pub heat_flux: String,
+    pub conduction: String,
+    pub structure: String,
+}
+
+/// Everything a flutter point needs besides its Mach number and time.
+#[derive(Debug, Clone)]
+pub struct FlutterSetup {
+    /// The lifting-surface region (its mesh and model settings).
+    pub region: RegionInfo,
+    pub models: FlutterModels,
+    pub altitude_m: f64,
+    pub alpha_rad: f64,
+    /// Heating march: conduction step, flux updates, initial temperature (293 K).
+    pub heating: HeatingSteps,
+    pub method: DerivativeMethod,
+    /// Also identify A with the other derivative method and report how far they differ.
+    pub compare_methods: bool,
+    pub options: SurfaceOptions,
+}
+
+/// What became of one (Mach, time) point.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+#[serde(tag = "state", rename_all = "kebab-case")]
+pub enum PointStatus {
+    Stable,
+    Unstable,
+    Buckled { message: String },
+    Melting { message: String },
+    Failed { message: String },
+}
+
+impl PointStatus {
+    fn from_error(e: &FlutterError) -> Self {
+        match e {
+            FlutterError::Buckled(m) => PointStatus::Buckled { message: m.clone() },
+            FlutterError::Melting(m) => PointStatus::Melting { message: m.clone() },
+            other => PointStatus::Failed {
+                message: other.to_string(),
+            },
+        }
+    }
+
+    /// Whether the point has eigenvalues (stable or unstable).
+    pub fn is_analysed(&self) -> bool {
+        matches!(self, PointStatus::Stable | PointStatus::Unstable)
+    }
+}
+
+/// How far the two derivative methods' state matrices differ at a point.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct MethodDifference {
+    /// ‖A_fd − A_direct‖_F / ‖A_direct‖_F.
+    pub relative_matrix_difference: f64,
+    /// |λ_fd − λ_direct| / |λ_direct| of the root with the largest real part.
+    pub critical_root_difference: f64,
+}
+
+/// One analysed point.
+#[derive(Debug, Clone, Serialize)]
+pub struct FlutterPoint {
+    pub mach: f64,
+    pub time_s: f64,
+    pub status: PointStatus,
+    /// Largest real part of the eigenvalues, 1/s.
+    pub max_real_per_s: Option<f64>,
+    /// Largest real part minus the growth threshold, 1/s (positive: unstable).
+    pub growth_margin_per_s: Option<f64>,
+    pub least_damping_ratio: Option<f64>,
+    #[serde(skip)]
+    pub roots: Vec<FlutterRoot>,
+    /// Structure node temperatures at the point, K.
+    pub min_temperature_k: f64,
+    pub max_temperature_k: f64,
+    pub mean_temperature_k: f64,
+    pub method_difference: Option<MethodDifference>,
+    /// Wall time of the identification and eigen-analysis, s.
+    pub analysis_wall_time_s: f64,
+}
+
+/// Builds model `name` of role `M` for `region`.
+fn build<M: ?Sized + RoleModel>(
+    region: &RegionInfo,
+    registry: &Registry,
+    name: &str,
+) -> Result<Box<M>, FlutterError> {
+    let settings = region.model_settings(name);
+    registry
+        .create::<M>(name, &ModelContext::new(region, registry, &settings))
+        .map_err(|e| FlutterError::Inconsistent(format!("model `{name}`: {e}")))
+}
+
+/// The steady flight condition at `mach`.
+pub fn flight_at(setup: &FlutterSetup, mach: f64) -> Result<FlightCondition, FlutterError> {
+    check_positive("Mach number", mach)?;
+    let freestream = Freestream::standard(mach, setup.altitude_m, setup.region.gas)
+        .map_err(|e| FlutterError::model("freestream", e))?;
+    Ok(FlightCondition::steady(freestream, setup.alpha_rad, 0.0))
+}
+
+/// The temperature state of a march, moved onto the structure.
+struct Thermal {
+    heating: SurfaceHeating,
+    transfer: GridTransfer,
+    source_mean: Vec<f64>,
+    source_difference: Vec<f64>,
+    mean: Vec<f64>,
+    difference: Vec<f64>,
+}
+
+impl Thermal {
+    fn new(
+        setup: &FlutterSetup,
+        registry: &Registry,
+        flight: FlightCondition,
+        structure: &dyn StructureModel,
+    ) -> Result<Self, FlutterError> {
+        let heating = SurfaceHeating::new(
+            setup.region.clone(),
+            registry,
+            HeatingModels {
+                aero: setup.models.aero.clone(),
+                heat_flux: setup.models.heat_flux.clone(),
+                conduction: setup.models.conduction.clone(),
+            },
+            flight,
+            setup.heating,
+        )?;
+        let conduction = heating.conduction();
+        let Some(source) = conduction.node_grid() else {
+            return Err(FlutterError::Inconsistent(format!(
+                "conduction model `{}` has no node grid to move its temperatures onto the \
+                 structure",
+                setup.models.conduction
+            )));
+        };
+        let Some(target) = structure
+            .thermal_stiffness()
+            .and_then(|t| t.temperature_grid())
+        else {
+            return Err(FlutterError::Inconsistent(format!(
+                "structure model `{}` has no temperature-dependent stiffness on a grid",
+                setup.models.structure
+            )));
+        };
+        let transfer = GridTransfer::new(source, target)?;
+        let n_source = conduction.n_nodes();
+        let n_target = transfer.n_target();
+        Ok(Self {
+            heating,
+            transfer,
+            source_mean: vec![0.0; n_source],
+            source_difference: vec![0.0; n_source],
+            mean: vec![0.0; n_target],
+            difference: vec![0.0; n_target],
+        })
+    }
+
+    /// Heats to `time_s` (steps of the run's dt, the last shortened).
+    fn advance_to(&mut self, time_s: f64, dt_s: f64) -> Result<(), FlutterError> {
+        while time_s - self.heating.time_s() > 1e-9 * dt_s {
+            let dt = dt_s.min(time_s - self.heating.time_s());
+            self.heating.advance(dt).map_err(|e| {
+                let message = e.to_string();
+                if message.contains("melted") {
+                    FlutterError::Melting(message)
+                } else {
+                    FlutterError::Region(e)
+                }
+            })?;
+        }
+        Ok(())
+    }
+
+    /// Sets the current field on the structure; returns (min, max, mean) node temperature, K.
+    fn apply(
+        &mut self,
+        structure: &mut dyn StructureModel,
+        name: &str,
+    ) -> Result<(f64, f64, f64), FlutterError> {
+        let conduction = self.heating.conduction();
+        let state = self.heating.state();
+        conduction.node_temperatures(state, &mut self.source_mean);
+        conduction.node_temperature_differences(state, &mut self.source_difference);
+        self.transfer.apply(&self.source_mean, &mut self.mean)?;
+        self.transfer
+            .apply(&self.source_difference, &mut self.difference)?;
+        let Some(thermal) = structure.thermal_stiffness_mut() else {
+            return Err(FlutterError::Inconsistent(format!(
+                "structure model `{name}` has no temperature-dependent stiffness"
+            )));
+        };
+        thermal
+            .set_temperature_field(&self.mean, &self.difference)
+            .map_err(|e| FlutterError::model(name, e))?;
+        Ok(temperature_range(&self.source_mean))
+    }
+}
+
+/// (min, max, mean) of `values`.
+fn temperature_range(values: &[f64]) -> (f64, f64, f64) {
+    let min = values.iter().copied().fold(f64::INFINITY, f64::min);
+    let max = values.iter().copied().fold(f64::NEG_INFINITY, f64::max);
+    let mean = values.iter().sum::<f64>() / values.len().max(1) as f64;
+    (min, max, mean)
+}
+
+/// Equilibrium, identification and eigenvalues of `structure` in `flight`.
+pub fn analyse_structure(
+    setup: &FlutterSetup,
+    registry: &Registry,
+    structure: &dyn StructureModel,
+    flight: FlightCondition,
+) -> Result<(super::Stability, Option<MethodDifference>), FlutterError> {
+    let aero: Box<dyn AeroModel> = build(&setup.region, registry, &setup.models.aero)?;
+    let mut surface = SurfaceDynamics::new(
+        setup.region.mesh.clone(),
+        aero,
+        structure,
+        flight,
+        setup.options,
+    )?;
+    let equilibrium = surface.equilibrium()?;
+    let identified = surface.identify(&equilibrium.state, setup.method)?;
+    let result = stability(&identified.a)?;
+    let difference = if setup.compare_methods {
+        let other = match setup.method {
+            DerivativeMethod::Direct => DerivativeMethod::ForwardDifference,
+            DerivativeMethod::ForwardDifference => DerivativeMethod::Direct,
+        };
+        let second = surface.identify(&equilibrium.state, other)?;
+        let (direct, fd) = match setup.method {
+            DerivativeMethod::Direct => (&identified.a, &second.a),
+            DerivativeMethod::ForwardDifference => (&second.a, &identified.a),
+        };
+        let other_stability = stability(&second.a)?;
+        let root = |s: &super::Stability| {
+            s.roots
+                .get(s.critical)
+                .map_or(Complex::new(0.0, 0.0), |r| {
+                    Complex::new(r.real_per_s, r.imag_rad_s)
+                })
+        };
+        let (l1, l2) = (root(&result), root(&other_stability));
+        Some(MethodDifference {
+            relative_matrix_difference: (fd - direct).norm() / direct.norm().max(f64::MIN_POSITIVE),
+            critical_root_difference: (l1 - l2).norm() / l1.norm().max(f64::MIN_POSITIVE),
+        })
+    } else {
+        None
+    };
+    Ok((result, difference))
+}
+
+/// A point that could not be analysed.
+fn failed_point(mach: f64, time_s: f64, e: &FlutterError, range: (f64, f64, f64)) -> FlutterPoint {
+    FlutterPoint {
+        mach,
+        time_s,
+        status: PointStatus::from_error(e),
+        max_real_per_s: None,
+        growth_margin_per_s: None,
+        least_damping_ratio: None,
+        roots: Vec::new(),
+        min_temperature_k: range.0,
+        max_temperature_k: range.1,
+        mean_temperature_k: range.2,
+        method_difference: None,
+        analysis_wall_time_s: 0.0,
+    }
+}
+
+/// The surface heated at `mach` and analysed at each of `times_s` (ascending, s). A point
+/// whose heating failed is reported as such, and so are the later ones of the march.
+pub fn march(
+    setup: &FlutterSetup,
+    registry: &Registry,
+    mach: f64,
+    times_s: &[f64],
+) -> Result<Vec<FlutterPoint>, FlutterError> {
+    if let Some(w) = times_s.windows(2).find(|w| w[1] < w[0]) {
+        return Err(FlutterError::InvalidInput {
+            quantity: "time in flow (s)".to_owned(),
+            value: w[1],
+            allowed: "ascending",
+        });
+    }
+    let flight = flight_at(setup, mach)?;
+    let mut structure: Box<dyn StructureModel> =
+        build(&setup.region, registry, &setup.models.structure)?;
+    let mut thermal = Thermal::new(setup, registry, flight, structure.as_ref())?;
+    let initial = setup.heating.initial_k;
+    let mut points = Vec::with_capacity(times_s.len());
+    let mut stopped: Option<FlutterError> = None;
+    for &time_s in times_s {
+        if let Some(e) = &stopped {
+            points.push(failed_point(mach, time_s, e, (initial, initial, initial)));
+            continue;
+        }
+        if let Err(e) = thermal.advance_to(time_s, setup.heating.dt_s) {
+            let range = temperature_range(thermal.heating.node_temperatures_k());
+            points.push(failed_point(mach, time_s, &e, range));
+            stopped = Some(e);
+            continue;
+        }
+        let range = match thermal.apply(structure.as_mut(), &setup.models.structure) {
+            Ok(range) => range,
+            Err(e) => {
+                let range = temperature_range(thermal.heating.node_temperatures_k());
+                points.push(failed_point(mach, time_s, &e, range));
+                continue;
+            }
+        };
+        points.push(analyse_point(
+            setup,
+            registry,
+            structure.as_ref(),
+            flight,
+            time_s,
+            range,
+        ));
+    }
+    Ok(points)
+}
+
+fn analyse_point(
+    setup: &FlutterSetup,
+    registry: &Registry,
+    structure: &dyn StructureModel,
+    flight: FlightCondition,
+    time_s: f64,
+    range: (f64, f64, f64),
+) -> FlutterPoint {
+    let mach = flight.freestream.mach;
+    let start = Instant::now();
+    match analyse_structure(setup, registry, structure, flight) {
+        Ok((s, difference)) => FlutterPoint {
+            mach,
+            time_s,
+            status: if s.is_unstable() {
+                PointStatus::Unstable
+            } else {
+                PointStatus::Stable
+            },
+            max_real_per_s: Some(s.max_real_per_s),
+            growth_margin_per_s: Some(s.growth_margin_per_s()),
+            least_damping_ratio: Some(s.least_damping_ratio()),
+            roots: s.roots,
+            min_temperature_k: range.0,
+            max_temperature_k: range.1,
+            mean_temperature_k: range.2,
+            method_difference: difference,
+            analysis_wall_time_s: start.elapsed().as_secs_f64(),
+        },
+        Err(e) => failed_point(mach, time_s, &e, range),
+    }
+}
+
+/// One flutter point: the surface heated at `mach` for `time_s`, analysed.
+pub fn flutter_point(
+    setup: &FlutterSetup,
+    registry: &Registry,
+    mach: f64,
+    time_s: f64,
+) -> Result<FlutterPoint, FlutterError> {
+    march(setup, registry, mach, &[time_s])?
+        .pop()
+        .ok_or_else(|| FlutterError::Inconsistent("no point analysed".to_owned()))
+}
+
+/// The flutter boundary at one time.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+#[serde(tag = "kind", rename_all = "kebab-case")]
+pub enum FlutterBoundary {
+    /// The largest real part crosses zero at `mach` (Brent), between a stable and an unstable
+    /// grid point.
+    Crossing {
+        mach: f64,
+        /// The final bracket, Mach numbers.
+        bracket: (f64, f64),
+        /// Heating marches of the root finding.
+        evaluations: usize,
+        /// Frequency of the critical root at the unstable end, Hz (0: a real root, divergence).
+        frequency_hz: f64,
+    },
+    /// Every analysed point is stable.
+    NeverFlutters {
+        /// The largest real part found and where, 1/s.
+        max_real_per_s: f64,
+        at_mach: f64,
+        least_damping_ratio: f64,
+    },
+    /// Already unstable at the lowest analysed Mach number.
+    FluttersEverywhere {
+        lowest_mach: f64,
+        max_real_per_s: f64,
+        least_damping_ratio: f64,
+    },
+    /// No bracket could be resolved (every point buckled, melted or failed, or the root
+    /// finding met such a point).
+    Unresolved { reason: String },
+}
+
+impl FlutterBoundary {
+    /// The flutter Mach number, when there is a crossing.
+    pub fn mach(&self) -> Option<f64> {
+        match self {
+            FlutterBoundary::Crossing { mach, .. } => Some(*mach),
+            _ => None,
+        }
+    }
+}
+
+/// The grid of points and the flutter boundary at each time.
+#[derive(Debug, Clone, Serialize)]
+pub struct FlutterMap {
+    pub machs: Vec<f64>,
+    pub times_s: Vec<f64>,
+    /// points[t][m]: time index t, Mach index m.
+    pub points: Vec<Vec<FlutterPoint>>,
+    pub boundaries: Vec<FlutterBoundary>,
+    /// For each time and Mach, the root index of each tracked mode (reference: the first
+    /// analysed point's roots by frequency).
+    #[serde(skip)]
+    pub tracked: Vec<Vec<Vec<Option<usize>>>>,
+    pub wall_time_s: f64,
+}
+
+/// Mach tolerance of the root finding.
+pub const MACH_TOLERANCE: f64 = 1e-3;
+
+/// Analyses the grid `machs` × `times_s` and finds the flutter Mach number at each time
+/// (module docs), on all cores, with a progress line.
+pub fn flutter_map(
+    setup: &FlutterSetup,
+    registry: &Registry,
+    machs: &[f64],
+    times_s: &[f64],
+) -> Result<FlutterMap, FlutterError> {
+    let start = Instant::now();
+    if machs.is_empty() || times_s.is_empty() {
+        return Err(FlutterError::Inconsistent(
+            "a flutter map needs at least one Mach number and one time".to_owned(),
+        ));
+    }
+    for &m in machs {
+        check_positive("Mach number", m)?;
+    }
+    let total = machs.len() + times_s.len();
+    let progress = Mutex::new(Progress::new("flutter", total));
+    let done = AtomicUsize::new(0);
+    let tick = || {
+        let d = done.fetch_add(1, Ordering::Relaxed) + 1;
+        if let Ok(mut p) = progress.lock() {
+            p.update(d);
+        }
+    };
+    let by_mach: Vec<Vec<FlutterPoint>> = machs
+        .par_iter()
+        .map(|&m| {
+            let r = march(setup, registry, m, times_s);
+            tick();
+            r
+        })
+        .collect::<Result<_, _>>()?;
+    let points: Vec<Vec<FlutterPoint>> = (0..times_s.len())
+        .map(|t| by_mach.iter().map(|row| row[t].clone()).collect())
+        .collect();
+    let boundaries: Vec<FlutterBoundary> = points
+        .par_iter()
+        .map(|row| {
+            let b = boundary(setup, registry, row);
+            tick();
+            b
+        })
+        .collect();
+    if let Ok(mut p) = progress.lock() {
+        p.finish();
+    }
+    let tracked = track_modes(&points);
+    Ok(FlutterMap {
+        machs: machs.to_vec(),
+        times_s: times_s.to_vec(),
+        points,
+        boundaries,
+        tracked,
+        wall_time_s: start.elapsed().as_secs_f64(),
+    })
+}
+
+/// The flutter boundary along one time's row of grid points (module docs).
+fn boundary(setup: &FlutterSetup, registry: &Registry, row: &[FlutterPoint]) -> FlutterBoundary {
+    let analysed: Vec<&FlutterPoint> = row.iter().filter(|p| p.status.is_analysed()).collect();
+    let Some(first) = analysed.first() else {
+        let reasons: Vec<String> = row
+            .iter()
+            .map(|p| format!("Mach {}: {}", p.mach, status_text(&p.status)))
+            .collect();
+        return FlutterBoundary::Unresolved {
+            reason: format!("no point could be analysed ({})", reasons.join("; ")),
+        };
+    };
+    let max_real = analysed
+        .iter()
+        .map(|p| (p.max_real_per_s.unwrap_or(f64::NEG_INFINITY), p.mach))
+        .fold((f64::NEG_INFINITY, 0.0), |a, b| if b.0 > a.0 { b } else { a });
+    let least_damping = analysed
+        .iter()
+        .filter_map(|p| p.least_damping_ratio)
+        .fold(f64::INFINITY, f64::min);
+    if first.status == PointStatus::Unstable {
+        return FlutterBoundary::FluttersEverywhere {
+            lowest_mach: first.mach,
+            max_real_per_s: first.max_real_per_s.unwrap_or(f64::NAN),
+            least_damping_ratio: first.least_damping_ratio.unwrap_or(f64::NAN),
+        };
+    }
+    let Some(pair) = analysed
+        .windows(2)
+        .find(|w| w[0].status == PointStatus::Stable && w[1].status == PointStatus::Unstable)
+    else {
+        return FlutterBoundary::NeverFlutters {
+            max_real_per_s: max_real.0,
+            at_mach: max_real.1,
+            least_damping_ratio: least_damping,
+        };
+    };
+    let (lo, hi) = (pair[0], pair[1]);
+    let time_s = lo.time_s;
+    let margin = |p: &FlutterPoint| p.growth_margin_per_s.unwrap_or(f64::NAN);
+    let search = brent_root(
+        |mach| {
+            let p = flutter_point(setup, registry, mach, time_s)?;
+            p.growth_margin_per_s.ok_or_else(|| {
+                FlutterError::Inconsistent(format!(
+                    "the point at Mach {mach:.4}, t = {time_s} s: {}",
+                    status_text(&p.status)
+                ))
+            })
+        },
+        (lo.mach, hi.mach),
+        (margin(lo), margin(hi)),
+        MACH_TOLERANCE,
+        60,
+    );
+    match search {
+        Ok(r) => FlutterBoundary::Crossing {
+            mach: r.root,
+            bracket: r.bracket,
+            evaluations: r.evaluations,
+            frequency_hz: hi.roots.iter().fold((f64::NEG_INFINITY, 0.0), |a, root| {
+                if root.real_per_s > a.0 {
+                    (root.real_per_s, root.frequency_hz)
+                } else {
+                    a
+                }
+            })
+            .1,
+        },
+        Err(e) => FlutterBoundary::Unresolved {
+            reason: format!(
+                "between Mach {} and {} at t = {time_s} s: {e}",
+                lo.mach, hi.mach
+            ),
+        },
+    }
+}
+
+/// A one-line description of a point's status.
+pub fn status_text(status: &PointStatus) -> String {
+    match status {
+        PointStatus::Stable => "stable".to_owned(),
+        PointStatus::Unstable => "unstable".to_owned(),
+        PointStatus::Buckled { message } => format!("buckled ({message})"),
+        PointStatus::Melting { message } => format!("melting ({message})"),
+        PointStatus::Failed { message } => format!("failed ({message})"),
+    }
+}
+
+/// Mode tracking over the grid (module docs of [`super::stability`]): along Mach at each
+/// time, each time starting from the previous time's first analysed point.
+fn track_modes(points: &[Vec<FlutterPoint>]) -> Vec<Vec<Vec<Option<usize>>>> {
+    let mut reference: Option<Vec<DVector<Complex<f64>>>> = None;
+    let mut out = Vec::with_capacity(points.len());
+    for row in points {
+        let mut row_out = Vec::with_capacity(row.len());
+        let mut row_start: Option<Vec<DVector<Complex<f64>>>> = None;
+        let mut current = reference.clone();
+        for p in row {
+            if p.roots.is_empty() {
+                row_out.push(Vec::new());
+                continue;
+            }
+            let shapes: Vec<DVector<Complex<f64>>> = match &current {
+                None => {
+                    // The first analysed point names the modes by frequency.
+                    p.roots.iter().map(|r| r.shape.clone()).collect()
+                }
+                Some(s) => s.clone(),
+            };
+            let assigned = track(&shapes, &p.roots);
+            let next: Vec<DVector<Complex<f64>>> = assigned
+                .iter()
+                .zip(&shapes)
+                .map(|(a, old)| a.map_or_else(|| old.clone(), |j| p.roots[j].shape.clone()))
+                .collect();
+            if row_start.is_none() {
+                row_start = Some(next.clone());
+            }
+            current = Some(next);
+            row_out.push(assigned);
+        }
+        if row_start.is_some() {
+            reference = row_start;
+        }
+        out.push(row_out);
+    }
+    out
+}

@@ -1,0 +1,186 @@
+//! Property tests of the `aero` and `engine` jobs (issue 16): random flight conditions,
+//! including extreme and non-finite values, and random edits of the sample config give finite
+//! results or a clear error, never a panic or a NaN.
+
+use hsv_core::config::{LoadedConfig, SAMPLE_CONFIG_TOML, parse_config};
+use hsv_core::registry::Registry;
+use hsv_run::aero_job::{self, AeroRequest};
+use hsv_run::commands::engine::{EngineRequest, run_engine};
+use hsv_run::commands::validate_config;
+use proptest::prelude::*;
+
+/// A number from `range`, or one of the values that break naive code.
+fn awkward(range: std::ops::Range<f64>) -> impl Strategy<Value = f64> {
+    prop_oneof![
+        6 => range,
+        1 => prop::sample::select(vec![
+            0.0,
+            -0.0,
+            -1.0,
+            1e-300,
+            1e300,
+            -1e300,
+            f64::NAN,
+            f64::INFINITY,
+            f64::NEG_INFINITY,
+        ]),
+    ]
+}
+
+/// A flight condition: Mach, altitude (m), angle of attack (deg).
+fn flight() -> impl Strategy<Value = (f64, f64, f64)> {
+    (
+        awkward(0.5..25.0),
+        awkward(-2_000.0..100_000.0),
+        awkward(-100.0..100.0),
+    )
+}
+
+/// The sample config with `key` in table `table` set to `value` (None: unchanged).
+fn edited(edits: &[(&str, &str, f64)]) -> Result<LoadedConfig, String> {
+    let mut raw: toml::Table = toml::from_str(SAMPLE_CONFIG_TOML).expect("sample parses");
+    for (table, key, value) in edits {
+        let slot = raw
+            .get_mut(*table)
+            .and_then(toml::Value::as_table_mut)
+            .expect("table exists");
+        let value = if slot.get(*key).is_some_and(toml::Value::is_integer) {
+            // Panel counts: keep them integers, and small enough to mesh quickly.
+            toml::Value::Integer(value.clamp(-5.0, 80.0) as i64)
+        } else {
+            toml::Value::Float(*value)
+        };
+        slot.insert((*key).to_owned(), value);
+    }
+    let text = toml::to_string(&raw).map_err(|e| e.to_string())?;
+    parse_config(&text, "edited.toml").map_err(|e| e.to_string())
+}
+
+/// Config keys the edits touch: reference values, body geometry, lifting-surface planform.
+const EDITABLE: [(&str, &str); 9] = [
+    ("reference", "area_m2"),
+    ("reference", "chord_m"),
+    ("reference", "span_m"),
+    ("geometry", "width_m"),
+    ("geometry", "upper_forebody_angle_deg"),
+    ("geometry", "lower_forebody_angle_deg"),
+    ("geometry", "panels_along_x"),
+    ("lifting_surface", "span_m"),
+    ("lifting_surface", "thickness_to_chord"),
+];
+
+fn config_edits() -> impl Strategy<Value = Vec<(usize, f64)>> {
+    prop::collection::vec((0..EDITABLE.len(), awkward(-10.0..120.0)), 0..3)
+}
+
+fn registry() -> &'static Registry {
+    static REGISTRY: std::sync::OnceLock<Registry> = std::sync::OnceLock::new();
+    REGISTRY.get_or_init(|| hsv_run::registry().expect("registry"))
+}
+
+/// A clear error: one non-empty line.
+fn assert_clear(error: &anyhow::Error) {
+    let text = format!("{error:#}");
+    assert!(!text.trim().is_empty(), "empty error");
+    assert!(!text.contains('\n'), "not one line: {text}");
+}
+
+/// The edited config, validated as every command does; `None` when refused (clearly).
+fn config_or_error(edits: &[(usize, f64)]) -> Option<LoadedConfig> {
+    let edits: Vec<(&str, &str, f64)> = edits
+        .iter()
+        .map(|&(k, v)| (EDITABLE[k].0, EDITABLE[k].1, v))
+        .collect();
+    let loaded = match edited(&edits) {
+        Ok(loaded) => loaded,
+        Err(message) => {
+            assert!(message.contains("edited.toml") || message.contains("TOML"), "{message}");
+            return None;
+        }
+    };
+    match validate_config(&loaded, registry()) {
+        Ok(()) => Some(loaded),
+        Err(error) => {
+            assert_clear(&error);
+            None
+        }
+    }
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig { cases: 48, failure_persistence: None, ..ProptestConfig::default() })]
+
+    #[test]
+    fn aero_gives_finite_loads_or_a_clear_error(
+        (mach, altitude_m, alpha_deg) in flight(),
+        beta_deg in awkward(-30.0..30.0),
+        edits in config_edits(),
+    ) {
+        let Some(loaded) = config_or_error(&edits) else { return Ok(()) };
+        let mesh = match aero_job::vehicle_mesh(&loaded) {
+            Ok(mesh) => mesh,
+            Err(error) => { assert_clear(&error); return Ok(()) }
+        };
+        let request = AeroRequest {
+            mach,
+            altitude_m,
+            alpha_deg,
+            beta_deg,
+            models: vec!["shock-expansion".into(), "newtonian-vector".into(), "piston-theory".into()],
+            reference: loaded.config.reference,
+            include_engine_surfaces: false,
+        };
+        match aero_job::run_aero(&loaded, registry(), &mesh, &request) {
+            Ok(rows) => {
+                prop_assert_eq!(rows.len(), 3);
+                for row in rows {
+                    let c = row.coefficients;
+                    let values = [
+                        row.loads.force_n.x, row.loads.force_n.y, row.loads.force_n.z,
+                        row.loads.moment_nm.x, row.loads.moment_nm.y, row.loads.moment_nm.z,
+                        c.cl, c.cd, c.cy, c.cm, c.croll, c.cn,
+                    ];
+                    prop_assert!(
+                        values.iter().all(|v| v.is_finite()),
+                        "{}: non-finite result at Mach {mach}, {altitude_m} m, alpha {alpha_deg}: {values:?}",
+                        row.model
+                    );
+                }
+            }
+            Err(error) => assert_clear(&error),
+        }
+    }
+
+    #[test]
+    fn engine_gives_finite_results_or_a_clear_error(
+        (mach, altitude_m, alpha_deg) in flight(),
+        phi in awkward(0.0..3.0),
+        edits in config_edits(),
+    ) {
+        let Some(loaded) = config_or_error(&edits) else { return Ok(()) };
+        let request = EngineRequest { mach, altitude_m, alpha_deg, phi, models: Vec::new() };
+        match run_engine(&loaded, registry(), &request) {
+            Ok(rows) => {
+                prop_assert!(!rows.is_empty());
+                for row in rows {
+                    let s = &row.solution;
+                    let values = [
+                        s.loads.force_n.x, s.loads.force_n.z, s.loads.moment_nm.y, s.mass_flow_kg_s,
+                    ];
+                    prop_assert!(
+                        values.iter().all(|v| v.is_finite()),
+                        "{}: non-finite result at Mach {mach}, {altitude_m} m, alpha {alpha_deg}, phi {phi}: {values:?}",
+                        row.model
+                    );
+                    for station in &s.stations {
+                        prop_assert!(
+                            station.mach.is_finite() && station.pressure_pa.is_finite() && station.temperature_k.is_finite(),
+                            "{}: station {} not finite", row.model, station.station
+                        );
+                    }
+                }
+            }
+            Err(error) => assert_clear(&error),
+        }
+    }
+}

@@ -1,0 +1,660 @@
+//! Identification: step responses from the source aero model (or a user's CSV), the
+//! correction-factor table, the fingerprint of what they were built from, and the JSON cache.
+
+use std::path::Path;
+
+use hsv_core::aero::{AeroModel, AeroSolution, PanelMotion};
+use hsv_core::coupling::ModalProjection;
+use hsv_core::error::ModelError;
+use hsv_core::flow::{FlightCondition, Freestream};
+use hsv_core::gas::PerfectGas;
+use hsv_core::mesh::{ModeShapes, PanelMesh};
+use nalgebra::{DVector, Vector3};
+
+use crate::{NAME, Settings};
+
+/// Version of the cache format.
+pub const FORMAT: u32 = 1;
+
+/// Header columns of a step-response CSV before the `force_1..force_n` columns.
+pub const CSV_COLUMNS: [&str; 4] = ["input", "mode", "step", "time_s"];
+
+/// The flight condition the step responses were identified at.
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]
+pub struct ReferenceCondition {
+    pub mach: f64,
+    pub altitude_m: f64,
+    pub alpha_deg: f64,
+    /// Freestream static pressure p∞, Pa.
+    pub pressure_pa: f64,
+    /// Freestream speed of sound a∞, m/s.
+    pub speed_of_sound_m_s: f64,
+    /// Airspeed V∞, m/s.
+    pub velocity_m_s: f64,
+}
+
+impl ReferenceCondition {
+    /// The condition of `settings` in `gas`.
+    pub fn new(settings: &Settings, gas: PerfectGas) -> Result<Self, ModelError> {
+        let f = Freestream::standard(settings.mach, settings.altitude_m, gas)?;
+        Ok(Self {
+            mach: settings.mach,
+            altitude_m: settings.altitude_m,
+            alpha_deg: settings.alpha_deg,
+            pressure_pa: f.pressure_pa,
+            speed_of_sound_m_s: f.speed_of_sound_m_s,
+            velocity_m_s: f.velocity_m_s,
+        })
+    }
+}
+
+/// Steady flight at Mach `mach`, the identification altitude and angle of attack.
+fn flight_at(
+    reference: &ReferenceCondition,
+    mach: f64,
+    gas: PerfectGas,
+) -> Result<FlightCondition, ModelError> {
+    let f = Freestream::standard(mach, reference.altitude_m, gas)?;
+    Ok(FlightCondition::steady(
+        f,
+        reference.alpha_deg.to_radians(),
+        0.0,
+    ))
+}
+
+/// Step responses and correction factors of one group of outputs (the generalized forces, or
+/// the panel gauge pressures).
+#[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
+pub struct ResponseBlock {
+    pub n_outputs: usize,
+    /// Sample interval of the step responses, s at the reference airspeed (0: one sample).
+    pub dt_s: f64,
+    /// Samples per step response; settled from the last one on.
+    pub samples: usize,
+    /// Step responses over p∞ per unit (normalized) input, `[sample][input][output]`.
+    pub steps: Vec<f64>,
+    /// Correction factors `[mach][mode][amplitude][output]`; empty without correction.
+    pub correction: Vec<f64>,
+}
+
+impl ResponseBlock {
+    fn zeros(n_outputs: usize, n_inputs: usize, samples: usize, dt_s: f64) -> Self {
+        Self {
+            n_outputs,
+            dt_s,
+            samples,
+            steps: vec![0.0; samples * n_inputs * n_outputs],
+            correction: Vec::new(),
+        }
+    }
+
+    /// The response of every output to a unit step of `input`, `sample` samples after the step.
+    pub fn step(&self, sample: usize, input: usize, n_inputs: usize) -> &[f64] {
+        let start = (sample * n_inputs + input) * self.n_outputs;
+        &self.steps[start..start + self.n_outputs]
+    }
+
+    fn step_mut(&mut self, sample: usize, input: usize, n_inputs: usize) -> &mut [f64] {
+        let start = (sample * n_inputs + input) * self.n_outputs;
+        &mut self.steps[start..start + self.n_outputs]
+    }
+
+    /// How long the responses remember an input, s at the reference airspeed.
+    pub fn memory_s(&self) -> f64 {
+        self.dt_s * self.samples.saturating_sub(1) as f64
+    }
+}
+
+/// Everything the online model needs; what the cache file holds.
+#[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
+pub struct Identification {
+    pub format: u32,
+    /// What it was built from ([`fingerprint`]); a mismatch forces a rebuild.
+    pub fingerprint: String,
+    /// The source aero model.
+    pub source: String,
+    /// Where the generalized-force step responses come from: `source` or the CSV path.
+    pub force_origin: String,
+    pub n_modes: usize,
+    pub n_panels: usize,
+    pub reference: ReferenceCondition,
+    /// Mach numbers of the correction table; empty without correction.
+    pub correction_mach: Vec<f64>,
+    /// Amplitudes of the correction table, `[mode][amplitude]`, ascending, modal-coordinate
+    /// units (± `amplitude_points` values up to `max_displacement_m` of peak displacement).
+    pub amplitudes: Vec<Vec<f64>>,
+    /// Generalized forces over p∞.
+    pub forces: ResponseBlock,
+    /// Panel gauge pressures (p − p∞) over p∞.
+    pub pressures: ResponseBlock,
+}
+
+impl Identification {
+    /// Inputs: modal coordinates, then modal velocities over a∞.
+    pub fn n_inputs(&self) -> usize {
+        2 * self.n_modes
+    }
+}
+
+/// Peak vertex displacement of each mode per unit modal coordinate, m; an error names a mode
+/// that does not move the mesh.
+pub fn peak_displacements(shapes: &ModeShapes) -> Result<Vec<f64>, ModelError> {
+    let phi = &shapes.vertex_displacement;
+    (0..shapes.n_modes())
+        .map(|k| {
+            let column = phi.column(k);
+            let peak = column
+                .as_slice()
+                .chunks_exact(3)
+                .map(|d| Vector3::new(d[0], d[1], d[2]).norm())
+                .fold(0.0, f64::max);
+            if peak.is_finite() && peak > 0.0 {
+                Ok(peak)
+            } else {
+                Err(ModelError::inconsistent(
+                    NAME,
+                    format!(
+                        "mode {} has peak displacement {peak} m on the region's mesh; every mode \
+                         must move it",
+                        k + 1
+                    ),
+                ))
+            }
+        })
+        .collect()
+}
+
+/// Runs the source on the deformed reference mesh: scratch for its deformed mesh, panel
+/// velocities and solution.
+#[derive(Default)]
+pub(crate) struct SourceProbe {
+    deformed: PanelMesh,
+    velocities: Vec<Vector3<f64>>,
+    solution: AeroSolution,
+    forces: Vec<f64>,
+}
+
+impl SourceProbe {
+    /// The source's outputs over p∞ at modal coordinates `q` and velocities `q_dot`:
+    /// [Q/p∞; (p − p∞)/p∞], Q = −P (p − p∞) on the reference geometry.
+    #[allow(clippy::too_many_arguments)]
+    pub(crate) fn outputs(
+        &mut self,
+        source: &mut dyn AeroModel,
+        base: &PanelMesh,
+        shapes: &ModeShapes,
+        projection: &ModalProjection,
+        flight: &FlightCondition,
+        q: &DVector<f64>,
+        q_dot: &DVector<f64>,
+        out: &mut Vec<f64>,
+    ) -> Result<(), ModelError> {
+        shapes.deform(base, q, &mut self.deformed);
+        self.velocities.resize(base.panels.len(), Vector3::zeros());
+        shapes.panel_velocities(base, q_dot, &mut self.velocities);
+        let motion = PanelMotion {
+            elastic_velocity_m_s: Some(&self.velocities),
+        };
+        source.evaluate(&self.deformed, flight, &motion, &mut self.solution)?;
+        let p_inf = flight.freestream.pressure_pa;
+        self.forces.resize(projection.n_modes(), 0.0);
+        projection
+            .generalized_forces(&self.solution.pressure_pa, p_inf, &mut self.forces)
+            .map_err(|e| {
+                ModelError::inconsistent(NAME, format!("source `{}`: {e}", source.name()))
+            })?;
+        out.clear();
+        out.extend(self.forces.iter().map(|q| q / p_inf));
+        out.extend(self.solution.pressure_pa.iter().map(|p| (p - p_inf) / p_inf));
+        Ok(())
+    }
+
+    /// The latest solution of the source.
+    pub(crate) fn solution(&self) -> &AeroSolution {
+        &self.solution
+    }
+}
+
+/// What identification runs on: the source and the region's reference mesh, modes and
+/// projection.
+pub(crate) struct Subject<'a> {
+    pub source: &'a mut dyn AeroModel,
+    pub mesh: &'a PanelMesh,
+    pub shapes: &'a ModeShapes,
+    pub projection: &'a ModalProjection,
+    pub gas: PerfectGas,
+}
+
+/// Identifies the ROM: quasi-steady step responses of the source by central differences, the
+/// user's force step responses if `csv` = (path, contents) is given, and the correction table.
+pub(crate) fn identify(
+    settings: &Settings,
+    subject: Subject<'_>,
+    csv: Option<(&str, &str)>,
+) -> Result<Identification, ModelError> {
+    let reference = ReferenceCondition::new(settings, subject.gas)?;
+    let flight = flight_at(&reference, reference.mach, subject.gas)?;
+    let n = subject.shapes.n_modes();
+    let n_panels = subject.mesh.panels.len();
+    let n_inputs = 2 * n;
+    let peaks = peak_displacements(subject.shapes)?;
+    let mut probe = SourceProbe::default();
+    let mut forces = ResponseBlock::zeros(n, n_inputs, 1, 0.0);
+    let mut pressures = ResponseBlock::zeros(n_panels, n_inputs, 1, 0.0);
+    let (mut plus, mut minus) = (Vec::new(), Vec::new());
+    let zero = DVector::zeros(n);
+    for input in 0..n_inputs {
+        let mode = input % n;
+        let is_rate = input >= n;
+        // Modal step ε (coordinate or velocity) and the normalized input step it makes.
+        let (step, input_step) = if is_rate {
+            let e = settings.step_velocity_m_s / peaks[mode];
+            (e, e / reference.speed_of_sound_m_s)
+        } else {
+            let e = settings.step_displacement_m / peaks[mode];
+            (e, e)
+        };
+        let mut delta = zero.clone();
+        for (sign, out) in [(1.0, &mut plus), (-1.0, &mut minus)] {
+            delta[mode] = sign * step;
+            let (q, q_dot) = if is_rate {
+                (&zero, &delta)
+            } else {
+                (&delta, &zero)
+            };
+            probe.outputs(
+                subject.source,
+                subject.mesh,
+                subject.shapes,
+                subject.projection,
+                &flight,
+                q,
+                q_dot,
+                out,
+            )?;
+        }
+        let derivative = |k: usize| (plus[k] - minus[k]) / (2.0 * input_step);
+        for (k, s) in forces.step_mut(0, input, n_inputs).iter_mut().enumerate() {
+            *s = derivative(k);
+        }
+        for (k, s) in pressures.step_mut(0, input, n_inputs).iter_mut().enumerate() {
+            *s = derivative(n + k);
+        }
+    }
+    check_finite_block(&forces, "generalized-force step response")?;
+    check_finite_block(&pressures, "pressure step response")?;
+    let mut identification = Identification {
+        format: FORMAT,
+        fingerprint: String::new(),
+        source: subject.source.name().to_owned(),
+        force_origin: "source".to_owned(),
+        n_modes: n,
+        n_panels,
+        reference,
+        correction_mach: Vec::new(),
+        amplitudes: Vec::new(),
+        forces,
+        pressures,
+    };
+    if settings.correction {
+        tabulate_correction(settings, &mut identification, &peaks, subject, &mut probe)?;
+    }
+    if let Some((path, text)) = csv {
+        let mut block = read_step_csv(path, text, n, &identification.reference)?;
+        block.correction = std::mem::take(&mut identification.forces.correction);
+        identification.forces = block;
+        identification.force_origin = path.to_owned();
+    }
+    Ok(identification)
+}
+
+fn check_finite_block(block: &ResponseBlock, quantity: &str) -> Result<(), ModelError> {
+    match block.steps.iter().position(|v| !v.is_finite()) {
+        None => Ok(()),
+        Some(i) => Err(ModelError::NonFinite {
+            model: NAME.to_owned(),
+            quantity: quantity.to_owned(),
+            location: format!(" (entry {i} of the identification)"),
+        }),
+    }
+}
+
+/// c = (F(a e_j) − F(0)) / (S_j a) per output: the source's nonlinear steady response to a
+/// static deflection a of mode j over its own linear prediction, at every Mach number of the
+/// table (Skujins & Cesnik's nonlinear correction factor). Outputs whose linear prediction is
+/// below 1e-6 of their largest one get 1 (the ratio is then round-off over round-off).
+fn tabulate_correction(
+    settings: &Settings,
+    identification: &mut Identification,
+    peaks: &[f64],
+    subject: Subject<'_>,
+    probe: &mut SourceProbe,
+) -> Result<(), ModelError> {
+    let n = identification.n_modes;
+    let n_inputs = identification.n_inputs();
+    let points = settings.amplitude_points;
+    identification.amplitudes = peaks
+        .iter()
+        .map(|peak| {
+            let top = settings.max_displacement_m / peak;
+            let mut a: Vec<f64> = (1..=points)
+                .map(|i| -top * (points + 1 - i) as f64 / points as f64)
+                .collect();
+            a.extend((1..=points).map(|i| top * i as f64 / points as f64));
+            a
+        })
+        .collect();
+    let n_amplitudes = 2 * points;
+    let n_out = n + identification.n_panels;
+    // Linear predictions S_j a, [mode][amplitude][output], and each output's largest.
+    let linear = |j: usize, a: f64, k: usize| {
+        let block = if k < n {
+            identification.forces.step(0, j, n_inputs)[k]
+        } else {
+            identification.pressures.step(0, j, n_inputs)[k - n]
+        };
+        block * a
+    };
+    let mut scale = vec![0.0f64; n_out];
+    for (j, amplitudes) in identification.amplitudes.iter().enumerate() {
+        for &a in amplitudes {
+            for (k, s) in scale.iter_mut().enumerate() {
+                *s = s.max(linear(j, a, k).abs());
+            }
+        }
+    }
+    let n_mach = settings.correction_mach.len();
+    let mut force_factors = vec![1.0; n_mach * n * n_amplitudes * n];
+    let mut pressure_factors = vec![1.0; n_mach * n * n_amplitudes * identification.n_panels];
+    let (mut base, mut deflected) = (Vec::new(), Vec::new());
+    let zero = DVector::zeros(n);
+    for (m, &mach) in settings.correction_mach.iter().enumerate() {
+        let flight = flight_at(&identification.reference, mach, subject.gas)?;
+        let source = &mut *subject.source;
+        probe.outputs(
+            source,
+            subject.mesh,
+            subject.shapes,
+            subject.projection,
+            &flight,
+            &zero,
+            &zero,
+            &mut base,
+        )?;
+        for j in 0..n {
+            for (ia, &a) in identification.amplitudes[j].iter().enumerate() {
+                let mut q = zero.clone();
+                q[j] = a;
+                probe.outputs(
+                    source,
+                    subject.mesh,
+                    subject.shapes,
+                    subject.projection,
+                    &flight,
+                    &q,
+                    &zero,
+                    &mut deflected,
+                )?;
+                for k in 0..n_out {
+                    let lin = linear(j, a, k);
+                    let factor = if lin.abs() > 1e-6 * scale[k] {
+                        (deflected[k] - base[k]) / lin
+                    } else {
+                        1.0
+                    };
+                    if !factor.is_finite() {
+                        return Err(ModelError::NonFinite {
+                            model: NAME.to_owned(),
+                            quantity: "correction factor".to_owned(),
+                            location: format!(" (Mach {mach}, mode {}, amplitude {a})", j + 1),
+                        });
+                    }
+                    if k < n {
+                        force_factors[((m * n + j) * n_amplitudes + ia) * n + k] = factor;
+                    } else {
+                        let n_p = identification.n_panels;
+                        pressure_factors[((m * n + j) * n_amplitudes + ia) * n_p + k - n] =
+                            factor;
+                    }
+                }
+            }
+        }
+    }
+    identification.correction_mach = settings.correction_mach.clone();
+    identification.forces.correction = force_factors;
+    identification.pressures.correction = pressure_factors;
+    Ok(())
+}
+
+/// Reads a step-response CSV (format in the crate docs) into a force block normalized by the
+/// reference p∞ (and a∞ for velocity steps).
+pub fn read_step_csv(
+    path: &str,
+    text: &str,
+    n_modes: usize,
+    reference: &ReferenceCondition,
+) -> Result<ResponseBlock, ModelError> {
+    let error = |line: usize, message: String| {
+        ModelError::inconsistent(NAME, format!("step CSV `{path}`, line {line}: {message}"))
+    };
+    let mut lines = text
+        .lines()
+        .enumerate()
+        .map(|(i, l)| (i + 1, l.trim()))
+        .filter(|(_, l)| !l.is_empty() && !l.starts_with('#'));
+    let (header_line, header) = lines
+        .next()
+        .ok_or_else(|| error(1, "no header line".to_owned()))?;
+    let columns: Vec<&str> = header.split(',').map(str::trim).collect();
+    let expected: Vec<String> = CSV_COLUMNS
+        .iter()
+        .map(|c| (*c).to_owned())
+        .chain((1..=n_modes).map(|k| format!("force_{k}")))
+        .collect();
+    if columns != expected {
+        return Err(error(
+            header_line,
+            format!(
+                "header `{header}`; expected `{}` (one force column per mode of the region's \
+                 structure)",
+                expected.join(",")
+            ),
+        ));
+    }
+    // Rows per input (modal coordinates, then velocities): (time, step, forces).
+    let n_inputs = 2 * n_modes;
+    let mut blocks: Vec<Vec<(f64, f64, Vec<f64>)>> = vec![Vec::new(); n_inputs];
+    for (line, row) in lines {
+        let cells: Vec<&str> = row.split(',').map(str::trim).collect();
+        if cells.len() != expected.len() {
+            return Err(error(
+                line,
+                format!("{} cells, expected {}", cells.len(), expected.len()),
+            ));
+        }
+        let number = |i: usize| {
+            cells[i]
+                .parse::<f64>()
+                .ok()
+                .filter(|v| v.is_finite())
+                .ok_or_else(|| error(line, format!("`{}` is not a finite number", cells[i])))
+        };
+        let mode = cells[1]
+            .parse::<usize>()
+            .ok()
+            .filter(|m| (1..=n_modes).contains(m))
+            .ok_or_else(|| error(line, format!("mode `{}` is not in 1..={n_modes}", cells[1])))?;
+        let input = match cells[0] {
+            "displacement" => mode - 1,
+            "velocity" => n_modes + mode - 1,
+            other => {
+                return Err(error(
+                    line,
+                    format!("input `{other}`; expected `displacement` or `velocity`"),
+                ));
+            }
+        };
+        let step = number(2)?;
+        if step == 0.0 {
+            return Err(error(line, "step 0: the response per unit step is undefined".into()));
+        }
+        let time = number(3)?;
+        let values = (4..cells.len()).map(number).collect::<Result<Vec<_>, _>>()?;
+        blocks[input].push((time, step, values));
+    }
+    let samples = blocks[0].len();
+    for (input, block) in blocks.iter().enumerate() {
+        let name = if input < n_modes {
+            format!("displacement of mode {}", input + 1)
+        } else {
+            format!("velocity of mode {}", input - n_modes + 1)
+        };
+        if block.is_empty() && input < n_modes {
+            return Err(error(header_line, format!("no rows for the {name}")));
+        }
+        if !block.is_empty() && block.len() != samples {
+            return Err(error(
+                header_line,
+                format!(
+                    "{} rows for the {name}, {samples} for the displacement of mode 1; every \
+                     block needs the same times",
+                    block.len()
+                ),
+            ));
+        }
+    }
+    let dt_s = if samples > 1 {
+        blocks[0][1].0 - blocks[0][0].0
+    } else {
+        0.0
+    };
+    if samples > 1 && !(dt_s > 0.0) {
+        return Err(error(header_line, format!("time step {dt_s} s is not > 0")));
+    }
+    for block in blocks.iter().filter(|b| !b.is_empty()) {
+        for (i, (time, step, _)) in block.iter().enumerate() {
+            let want = dt_s * i as f64;
+            if (time - want).abs() > 1e-6 * dt_s.max(1e-12) + 1e-12 {
+                return Err(error(
+                    header_line,
+                    format!(
+                        "sample {i} at {time} s; times must run 0, dt, 2 dt, ... with dt = \
+                         {dt_s} s in every block"
+                    ),
+                ));
+            }
+            if *step != block[0].1 {
+                return Err(error(
+                    header_line,
+                    "the step size changes within a block".to_owned(),
+                ));
+            }
+        }
+    }
+    let mut out = ResponseBlock::zeros(n_modes, n_inputs, samples, dt_s);
+    for (input, block) in blocks.iter().enumerate() {
+        for (sample, (_, step, values)) in block.iter().enumerate() {
+            // Normalized input step: q, or q̇ / a∞.
+            let input_step = if input < n_modes {
+                *step
+            } else {
+                step / reference.speed_of_sound_m_s
+            };
+            for (s, v) in out
+                .step_mut(sample, input, n_inputs)
+                .iter_mut()
+                .zip(values)
+            {
+                *s = v / (reference.pressure_pa * input_step);
+            }
+        }
+    }
+    Ok(out)
+}
+
+/// FNV-1a over 64-bit words: a stable fingerprint of large inputs (mesh, modes, CSV).
+fn fnv1a(words: impl Iterator<Item = u64>) -> u64 {
+    let mut hash: u64 = 0xcbf2_9ce4_8422_2325;
+    for word in words {
+        for byte in word.to_le_bytes() {
+            hash ^= u64::from(byte);
+            hash = hash.wrapping_mul(0x0000_0100_0000_01b3);
+        }
+    }
+    hash
+}
+
+fn mesh_hash(mesh: &PanelMesh) -> u64 {
+    let vertices = mesh
+        .vertices
+        .iter()
+        .flat_map(|v| [v.x.to_bits(), v.y.to_bits(), v.z.to_bits()]);
+    let panels = mesh.panels.iter().flat_map(|p| {
+        p.vertices
+            .iter()
+            .map(|&v| v as u64)
+            .chain([u64::from(p.vertex_count), u64::from(p.surface)])
+    });
+    fnv1a(vertices.chain(panels))
+}
+
+fn shapes_hash(shapes: &ModeShapes) -> u64 {
+    let phi = &shapes.vertex_displacement;
+    fnv1a(
+        [phi.nrows() as u64, phi.ncols() as u64]
+            .into_iter()
+            .chain(phi.iter().map(|v| v.to_bits())),
+    )
+}
+
+/// What an identification is built from, as one string: the settings (the cache location
+/// aside), the source's and structure's names and settings, the mesh, the mode shapes, the
+/// CSV's contents and the gas.
+pub(crate) fn fingerprint(
+    settings: &Settings,
+    source_settings: &toml::Table,
+    structure_settings: &toml::Table,
+    mesh: &PanelMesh,
+    shapes: &ModeShapes,
+    csv: Option<&str>,
+    gas: &PerfectGas,
+) -> Result<String, ModelError> {
+    let mut identifying = settings.clone();
+    identifying.cache_file.clear();
+    let csv_hash = csv.map(|text| fnv1a(text.bytes().map(u64::from)));
+    serde_json::to_string(&(
+        FORMAT,
+        &identifying,
+        source_settings,
+        structure_settings,
+        format!("{:016x}", mesh_hash(mesh)),
+        format!("{:016x}", shapes_hash(shapes)),
+        csv_hash.map(|h| format!("{h:016x}")),
+        gas,
+    ))
+    .map_err(|e| ModelError::inconsistent(NAME, format!("fingerprint: {e}")))
+}
+
+/// The cached identification at `path` if it exists, parses and was built from `fingerprint`.
+pub(crate) fn load(path: &Path, fingerprint: &str) -> Option<Identification> {
+    let text = std::fs::read_to_string(path).ok()?;
+    let identification: Identification = serde_json::from_str(&text).ok()?;
+    (identification.format == FORMAT && identification.fingerprint == fingerprint)
+        .then_some(identification)
+}
+
+/// Writes `identification` to `path` (creating its directory).
+pub(crate) fn save(path: &Path, identification: &Identification) -> Result<(), ModelError> {
+    let io = |e: std::io::Error| {
+        ModelError::inconsistent(
+            NAME,
+            format!("cannot write the cache `{}`: {e}", path.display()),
+        )
+    };
+    if let Some(dir) = path.parent().filter(|d| !d.as_os_str().is_empty()) {
+        std::fs::create_dir_all(dir).map_err(io)?;
+    }
+    let text = serde_json::to_string(identification)
+        .map_err(|e| ModelError::inconsistent(NAME, format!("cache: {e}")))?;
+    std::fs::write(path, text).map_err(io)
+}

@@ -159,6 +159,9 @@ pub struct HsvConfig {
     /// Dylib plugins to load before models are looked up.
     #[serde(default)]
     pub plugins: Vec<PathBuf>,
+    /// `[simulation]`: settings of `hsv-run simulate` (its inputs), checked by the runner.
+    #[serde(default)]
+    pub simulation: toml::Table,
 }
 
 /// A parsed config together with its raw table (for model constructors) and its origin.

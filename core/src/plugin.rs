@@ -42,10 +42,11 @@ use std::path::Path;
 use std::sync::Arc;
 
 pub use abi::*;
-pub use host::{PluginAero, PluginConduction, PluginHeatFlux, PluginPropulsion, PluginStructure};
-pub use v1::{PluginAeroInput, PluginAeroOutput};
-/// The ABI-1 plugin-side trait, kept so v1 plugin sources compile.
-pub use v1::PluginAero as PluginAeroV1;
+pub use host::{
+    AeroAdapter, ConductionAdapter, HeatFluxAdapter, PropulsionAdapter, StructureAdapter,
+};
+/// The ABI-1 plugin-side trait and views, kept so v1 plugin sources compile.
+pub use v1::{PluginAero, PluginAeroInput, PluginAeroOutput};
 
 use crate::aero::AeroModel;
 use crate::propulsion::PropulsionModel;
@@ -154,6 +155,15 @@ impl Registry {
     }
 }
 
+/// The loader's error with its cause: libloading says only "dlopen failed" and keeps the
+/// system's reason (`dlerror`: no such file, invalid ELF header, missing symbol) as the source.
+fn loader_message(error: &libloading::Error) -> String {
+    match std::error::Error::source(error) {
+        Some(cause) => format!("{error}: {cause}"),
+        None => error.to_string(),
+    }
+}
+
 /// `path` as a file path: a bare name (`libmy_plugin.so`) gets a `./` prefix, because the
 /// dynamic loader searches the system library path for names without a directory, so a bare
 /// name would load whatever library of that name the system has, not the file here.
@@ -174,7 +184,7 @@ pub fn load_plugin(path: &Path) -> Result<Vec<RegistryEntry>, PluginError> {
     // SAFETY: loading a library runs its initialisers; that is the trust a user gives a plugin.
     let library = unsafe { libloading::Library::new(path) }.map_err(|e| PluginError::Load {
         path: shown.clone(),
-        message: e.to_string(),
+        message: loader_message(&e),
     })?;
     let library: &'static libloading::Library = Box::leak(Box::new(library));
     // SAFETY: the symbol's type is fixed by the ABI; checked through the header below.
@@ -182,7 +192,7 @@ pub fn load_plugin(path: &Path) -> Result<Vec<RegistryEntry>, PluginError> {
         unsafe { library.get(PLUGIN_ENTRY_SYMBOL.as_bytes()) }.map_err(|e| {
             PluginError::NoEntry {
                 path: shown.clone(),
-                message: e.to_string(),
+                message: loader_message(&e),
             }
         })?;
     // SAFETY: calling the entry point the plugin exported for this purpose.
@@ -290,7 +300,7 @@ unsafe fn entry(model: &'static PluginModel, origin: &str) -> Result<RegistryEnt
         PLUGIN_ROLE_AERO => {
             let f: &'static AeroFunctions = unsafe { &*(functions as *const AeroFunctions) };
             Factory::Aero(Arc::new(move |context| {
-                PluginAero::create(model, f, &model_name, context)
+                AeroAdapter::create(model, f, &model_name, context)
                     .map(|m| Box::new(m) as Box<dyn AeroModel>)
             }))
         }
@@ -298,7 +308,7 @@ unsafe fn entry(model: &'static PluginModel, origin: &str) -> Result<RegistryEnt
             let f: &'static HeatFluxFunctions =
                 unsafe { &*(functions as *const HeatFluxFunctions) };
             Factory::HeatFlux(Arc::new(move |context| {
-                PluginHeatFlux::create(model, f, &model_name, context)
+                HeatFluxAdapter::create(model, f, &model_name, context)
                     .map(|m| Box::new(m) as Box<dyn HeatFluxModel>)
             }))
         }
@@ -306,7 +316,7 @@ unsafe fn entry(model: &'static PluginModel, origin: &str) -> Result<RegistryEnt
             let f: &'static ConductionFunctions =
                 unsafe { &*(functions as *const ConductionFunctions) };
             Factory::Conduction(Arc::new(move |context| {
-                PluginConduction::create(model, f, &model_name, context)
+                ConductionAdapter::create(model, f, &model_name, context)
                     .map(|m| Box::new(m) as Box<dyn ConductionModel>)
             }))
         }
@@ -314,7 +324,7 @@ unsafe fn entry(model: &'static PluginModel, origin: &str) -> Result<RegistryEnt
             let f: &'static StructureFunctions =
                 unsafe { &*(functions as *const StructureFunctions) };
             Factory::Structure(Arc::new(move |context| {
-                PluginStructure::create(model, f, &model_name, context)
+                StructureAdapter::create(model, f, &model_name, context)
                     .map(|m| Box::new(m) as Box<dyn StructureModel>)
             }))
         }
@@ -322,7 +332,7 @@ unsafe fn entry(model: &'static PluginModel, origin: &str) -> Result<RegistryEnt
             let f: &'static PropulsionFunctions =
                 unsafe { &*(functions as *const PropulsionFunctions) };
             Factory::Propulsion(Arc::new(move |context| {
-                PluginPropulsion::create(model, f, &model_name, context)
+                PropulsionAdapter::create(model, f, &model_name, context)
                     .map(|m| Box::new(m) as Box<dyn PropulsionModel>)
             }))
         }

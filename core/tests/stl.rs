@@ -336,15 +336,20 @@ fn closure_finds_open_misoriented_and_inward_meshes_and_reversal_turns_them_out(
     assert_relative_eq!(c.enclosed_volume_m3, 1.0, max_relative = 1e-12);
 
     // One facet missing: its three edges are open.
-    let open = parse_stl(cube_with(|k, b| (k != 0).then(|| b.to_owned())).as_bytes(), "o.stl")
-        .expect("open cube");
+    let open = parse_stl(
+        cube_with(|k, b| (k != 0).then(|| b.to_owned())).as_bytes(),
+        "o.stl",
+    )
+    .expect("open cube");
     let c = open.closure();
     assert_eq!((c.boundary_edges, c.misoriented_edges), (3, 0));
     assert!(!c.is_closed() && c.problems()[0].contains("3 open edges"));
 
     // One facet inside out: its three edges are traversed twice the same way.
     let mixed = cube_with(|k, b| Some(if k == 0 { inside_out(b) } else { b.to_owned() }));
-    let c = parse_stl(mixed.as_bytes(), "m.stl").expect("mixed").closure();
+    let c = parse_stl(mixed.as_bytes(), "m.stl")
+        .expect("mixed")
+        .closure();
     assert_eq!((c.boundary_edges, c.misoriented_edges), (0, 3));
     assert!(c.is_closed() && !c.is_closed_outward() && !c.is_closed_inward());
 
@@ -361,14 +366,18 @@ fn closure_finds_open_misoriented_and_inward_meshes_and_reversal_turns_them_out(
         assert_relative_eq!(turned.area_m2, original.area_m2, max_relative = 1e-12);
     }
     // Outward normals: the bottom face (z = 0) points to -z.
-    let bottom = mesh.panels.iter().find(|p| p.centroid.z < 1e-9).expect("bottom");
+    let bottom = mesh
+        .panels
+        .iter()
+        .find(|p| p.centroid.z < 1e-9)
+        .expect("bottom");
     assert_relative_eq!(bottom.normal.z, -1.0, epsilon = 1e-12);
 }
 
 #[test]
 fn welding_a_large_mesh_merges_exact_and_near_copies_alike() {
-    // A 60 x 60 grid of points, each given three times: exactly, and moved by 1e-9 and 1e-3 of
-    // the 1e-6 m tolerance's scale; only the far copy (1e-3 m) stays apart.
+    // A 60 x 60 grid of points, each given four times: itself, a copy 4.7e-7 m away (inside
+    // the 1e-6 m tolerance), a copy 1e-3 m away (outside it) and an exact copy.
     let mut points = Vec::new();
     for i in 0..60 {
         for j in 0..60 {

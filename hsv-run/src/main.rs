@@ -7,8 +7,8 @@ use std::process::ExitCode;
 use anyhow::Result;
 use clap::{Parser, Subcommand};
 use hsv_run::commands::{
-    self, ConfigArg, JsonFlag, aero::AeroArgs, engine::EngineArgs, heat::HeatArgs,
-    modes::ModesArgs, trim::TrimArgs, vehicle::VehicleArgs,
+    self, ConfigArg, JsonFlag, aero::AeroArgs, engine::EngineArgs, flutter::FlutterArgs,
+    heat::HeatArgs, modes::ModesArgs, simulate::SimulateArgs, trim::TrimArgs, vehicle::VehicleArgs,
 };
 use hsv_run::output;
 
@@ -63,8 +63,14 @@ enum Command {
     Engine(EngineArgs),
     /// The assembled vehicle: regions, models, mass, centre of mass, inertia, modal frequencies.
     Vehicle(VehicleArgs),
+    /// Fly the partitioned flexible vehicle from trim under the control inputs (default: the
+    /// paper's elevon doublet).
+    Simulate(SimulateArgs),
     /// Trim steady level flight (rigid vehicle): alpha, elevon and fuel equivalence ratio.
     Trim(TrimArgs),
+    /// Flutter of the heated lifting surface versus time in the flow (identified state matrix,
+    /// eigenvalues, flutter Mach number); `--panel` for the classical simply supported panel.
+    Flutter(FlutterArgs),
 }
 
 /// Exit status when standard output was closed early: 128 + SIGPIPE, as a Unix tool killed by
@@ -145,6 +151,8 @@ fn run(cli: Cli) -> Result<()> {
         Command::Heat(args) => commands::heat::run(args, &registry),
         Command::Engine(args) => commands::engine::run(args, &registry),
         Command::Trim(args) => commands::trim::run(args, &registry),
+        Command::Flutter(args) => commands::flutter::run(args, &registry),
+        Command::Simulate(args) => commands::simulate::run(args, &registry),
         Command::Vehicle(args) => commands::vehicle::run(args, &registry),
     }
 }

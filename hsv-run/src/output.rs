@@ -222,7 +222,7 @@ impl RunFolder {
         job: impl FnOnce(&mut Self) -> Result<T>,
         summary: impl FnOnce() -> serde_json::Value,
     ) -> Result<T> {
-        job(self).or_else(|error| {
+        job(self).inspect_err(|error| {
             let reason = error
                 .chain()
                 .map(ToString::to_string)
@@ -230,7 +230,6 @@ impl RunFolder {
                 .join(": ");
             // The job's error is the one to report; a second failure here adds nothing.
             let _ = self.write_summary(summary(), &RunStatus::Failed(reason));
-            Err(error)
         })
     }
 }

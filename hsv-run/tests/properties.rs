@@ -94,7 +94,10 @@ fn config_or_error(edits: &[(usize, f64)]) -> Option<LoadedConfig> {
     let loaded = match edited(&edits) {
         Ok(loaded) => loaded,
         Err(message) => {
-            assert!(message.contains("edited.toml") || message.contains("TOML"), "{message}");
+            assert!(
+                message.contains("edited.toml") || message.contains("TOML"),
+                "{message}"
+            );
             return None;
         }
     };

@@ -252,8 +252,11 @@ pub struct HeatFluxFunctions {
         out_w_m2: *mut f64,
     ) -> i32,
     /// Wall shear, `n_panels` Pa.
-    pub wall_shear:
-        unsafe extern "C" fn(handle: *mut c_void, input: *const WallInputAbi, out_pa: *mut f64) -> i32,
+    pub wall_shear: unsafe extern "C" fn(
+        handle: *mut c_void,
+        input: *const WallInputAbi,
+        out_pa: *mut f64,
+    ) -> i32,
 }
 
 /// Conduction functions. The thermal state is the host's `n_states` numbers.
@@ -356,11 +359,8 @@ pub struct StructureFunctions {
     /// Rigid degrees of freedom (`dofs`, up to 6 codes 0-5: translation x, y, z, rotation x, y,
     /// z) and their reference point (3, m); returns the count (> 6 or on error: 0 and
     /// `last_error`).
-    pub rigid_dofs: unsafe extern "C" fn(
-        handle: *mut c_void,
-        dofs: *mut u32,
-        reference_m: *mut f64,
-    ) -> usize,
+    pub rigid_dofs:
+        unsafe extern "C" fn(handle: *mut c_void, dofs: *mut u32, reference_m: *mut f64) -> usize,
     /// Rigid coupling C = Φᵀ M R, `n_modes × n_dofs` column-major.
     pub rigid_coupling: unsafe extern "C" fn(
         handle: *mut c_void,

@@ -273,7 +273,11 @@ impl RegionBuffers {
 ///
 /// # Safety
 /// A non-null `ptr` must be valid for `len` values for `'a`.
-pub(crate) unsafe fn slice<'a, T>(ptr: *const T, len: usize, what: &str) -> Result<&'a [T], String> {
+pub(crate) unsafe fn slice<'a, T>(
+    ptr: *const T,
+    len: usize,
+    what: &str,
+) -> Result<&'a [T], String> {
     if len == 0 {
         return Ok(&[]);
     }
@@ -456,4 +460,30 @@ pub(crate) unsafe fn region_from_abi(
         file: file.to_owned(),
         settings: BTreeMap::from([(model.to_owned(), settings)]),
     })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A mesh survives the round trip exactly (geometry copied, not recomputed), and an index
+    /// past the end of its array is an error on the plugin side instead of a wild read.
+    #[test]
+    fn meshes_round_trip_and_bad_indices_are_rejected() {
+        let mesh = crate::testing::sample_region("right_surface").mesh.clone();
+        let mut buffers = MeshBuffers::default();
+        buffers.fill(&mesh);
+        let mut rebuilt = PanelMesh::default();
+        // SAFETY: the ABI view of live buffers.
+        unsafe { mesh_from_abi(&buffers.abi(), &mut rebuilt) }.unwrap();
+        assert_eq!(rebuilt, mesh);
+
+        buffers.panel_vertices[5] = mesh.vertices.len();
+        let err = unsafe { mesh_from_abi(&buffers.abi(), &mut rebuilt) }.unwrap_err();
+        assert!(err.contains("panel vertex index"), "{err}");
+        buffers.fill(&mesh);
+        buffers.strip_panels[0] = mesh.panels.len() + 3;
+        let err = unsafe { mesh_from_abi(&buffers.abi(), &mut rebuilt) }.unwrap_err();
+        assert!(err.contains("strip panel index"), "{err}");
+    }
 }

@@ -11,7 +11,7 @@ use std::ffi::c_void;
 use std::panic::{AssertUnwindSafe, catch_unwind};
 use std::sync::OnceLock;
 
-use nalgebra::{DVector, Point3, Vector3};
+use nalgebra::{DVector, Vector3};
 
 use super::abi::*;
 use super::convert::{
@@ -482,10 +482,7 @@ unsafe extern "C" fn conduction_uniform_state(
     unsafe {
         call::<ConductionState>(handle, "uniform_state", |s| {
             let out = slice_mut(state, n_states, "state output")?;
-            let uniform = s
-                .model
-                .uniform_state(temperature_k)
-                .map_err(error_text)?;
+            let uniform = s.model.uniform_state(temperature_k).map_err(error_text)?;
             if uniform.len() != n_states {
                 return Err(format!(
                     "uniform state has {} values, not {n_states}",
@@ -512,9 +509,7 @@ unsafe extern "C" fn conduction_step(
             let values = slice_mut(state, n_states, "state")?;
             let flux = slice(heat_flux_w_m2, n_surface_panels, "heat flux")?;
             s.state = DVector::from_column_slice(values);
-            s.model
-                .step(&mut s.state, flux, dt_s)
-                .map_err(error_text)?;
+            s.model.step(&mut s.state, flux, dt_s).map_err(error_text)?;
             if s.state.len() != n_states {
                 return Err(format!(
                     "step changed the state length to {}",
@@ -672,9 +667,7 @@ fn missing(capability: &str) -> String {
 unsafe extern "C" fn structure_n_modes(handle: *mut c_void) -> usize {
     // SAFETY: the host passes a handle from `create`.
     unsafe {
-        call_count::<StructureState>(handle, "n_modes", |s| {
-            Ok(s.model.modal_model().n_modes())
-        })
+        call_count::<StructureState>(handle, "n_modes", |s| Ok(s.model.modal_model().n_modes()))
     }
 }
 
@@ -933,7 +926,10 @@ unsafe extern "C" fn structure_rigid_dofs(
                 .ok_or_else(|| missing("rigid-body coupling"))?;
             let list = rigid.rigid_dofs();
             if list.len() > 6 {
-                return Err(format!("{} rigid degrees of freedom (at most 6)", list.len()));
+                return Err(format!(
+                    "{} rigid degrees of freedom (at most 6)",
+                    list.len()
+                ));
             }
             let codes = slice_mut(dofs, 6, "rigid-dof output")?;
             for (code, dof) in codes.iter_mut().zip(list) {
@@ -1082,9 +1078,6 @@ unsafe extern "C" fn propulsion_evaluate(
         })
     }
 }
-
-// Keeps `Point3` in use for readers of the mass-property layout above.
-const _: fn(Point3<f64>) = |_| {};
 
 /// A static [`super::PluginHeader`] over models built by constructors with the built-in signature:
 ///

@@ -145,7 +145,7 @@ fn check_len(name: &str, what: &str, len: usize, expected: usize) -> Result<(), 
 }
 
 /// An aero plugin model behind [`AeroModel`].
-pub struct PluginAero {
+pub struct AeroAdapter {
     handle: Handle,
     functions: &'static AeroFunctions,
     mesh: MeshBuffers,
@@ -153,7 +153,7 @@ pub struct PluginAero {
     edge: Vec<f64>,
 }
 
-impl PluginAero {
+impl AeroAdapter {
     pub(crate) fn create(
         entry: &'static PluginModel,
         functions: &'static AeroFunctions,
@@ -170,7 +170,7 @@ impl PluginAero {
     }
 }
 
-impl AeroModel for PluginAero {
+impl AeroModel for AeroAdapter {
     fn name(&self) -> &str {
         &self.handle.name
     }
@@ -210,8 +210,7 @@ impl AeroModel for PluginAero {
             diagnostics: [0; 4],
         };
         // SAFETY: every buffer has the length the ABI states for `n` panels.
-        let status =
-            unsafe { (self.functions.evaluate)(self.handle.raw, &input, &mut output) };
+        let status = unsafe { (self.functions.evaluate)(self.handle.raw, &input, &mut output) };
         self.handle.check(status, "evaluation")?;
         check_finite(name, "pressure", &out.pressure_pa, 1, "panel")?;
         check_finite(name, "edge state", &self.edge, 5, "panel")?;
@@ -229,14 +228,14 @@ impl AeroModel for PluginAero {
 }
 
 /// A heat-flux plugin model behind [`HeatFluxModel`] (and [`SkinFriction`] when it has it).
-pub struct PluginHeatFlux {
+pub struct HeatFluxAdapter {
     handle: Handle,
     functions: &'static HeatFluxFunctions,
     mesh: MeshBuffers,
     edge: Vec<f64>,
 }
 
-impl PluginHeatFlux {
+impl HeatFluxAdapter {
     pub(crate) fn create(
         entry: &'static PluginModel,
         functions: &'static HeatFluxFunctions,
@@ -256,20 +255,17 @@ impl PluginHeatFlux {
         &mut self,
         function: unsafe extern "C" fn(*mut c_void, *const WallInputAbi, *mut f64) -> i32,
         what: &str,
-        mesh: &PanelMesh,
-        flight: &FlightCondition,
-        aero: &AeroSolution,
-        wall_temperature_k: &[f64],
+        wall: Wall<'_>,
         out: &mut [f64],
     ) -> Result<(), ModelError> {
-        self.mesh.fill(mesh);
-        flatten_edges(&aero.edge, &mut self.edge);
+        self.mesh.fill(wall.mesh);
+        flatten_edges(&wall.aero.edge, &mut self.edge);
         let input = WallInputAbi {
-            flight: flight_abi(flight),
+            flight: flight_abi(wall.flight),
             mesh: self.mesh.abi(),
-            pressure_pa: aero.pressure_pa.as_ptr(),
+            pressure_pa: wall.aero.pressure_pa.as_ptr(),
             edge: self.edge.as_ptr(),
-            wall_temperature_k: wall_temperature_k.as_ptr(),
+            wall_temperature_k: wall.temperature_k.as_ptr(),
         };
         // SAFETY: the caller checked one pressure, edge state, wall temperature and output per
         // panel.
@@ -279,7 +275,15 @@ impl PluginHeatFlux {
     }
 }
 
-impl HeatFluxModel for PluginHeatFlux {
+/// The inputs of a heat-flux or wall-shear call.
+struct Wall<'a> {
+    mesh: &'a PanelMesh,
+    flight: &'a FlightCondition,
+    aero: &'a AeroSolution,
+    temperature_k: &'a [f64],
+}
+
+impl HeatFluxModel for HeatFluxAdapter {
     fn name(&self) -> &str {
         &self.handle.name
     }
@@ -310,10 +314,12 @@ impl HeatFluxModel for PluginHeatFlux {
         self.call_wall(
             function,
             "heat flux",
-            mesh,
-            flight,
-            aero,
-            wall_temperature_k,
+            Wall {
+                mesh,
+                flight,
+                aero,
+                temperature_k: wall_temperature_k,
+            },
             out_w_m2,
         )
     }
@@ -327,7 +333,7 @@ impl HeatFluxModel for PluginHeatFlux {
     }
 }
 
-impl SkinFriction for PluginHeatFlux {
+impl SkinFriction for HeatFluxAdapter {
     fn wall_shear(
         &mut self,
         mesh: &PanelMesh,
@@ -354,10 +360,12 @@ impl SkinFriction for PluginHeatFlux {
         self.call_wall(
             function,
             "wall shear",
-            mesh,
-            flight,
-            aero,
-            wall_temperature_k,
+            Wall {
+                mesh,
+                flight,
+                aero,
+                temperature_k: wall_temperature_k,
+            },
             out_pa,
         )
     }
@@ -368,7 +376,7 @@ impl SkinFriction for PluginHeatFlux {
 /// The trait's temperature reads cannot fail; when the plugin's do, the adapter fills the output
 /// with NaN (which every consumer's temperature check rejects) and returns the plugin's message
 /// from the next `step` or `uniform_state`.
-pub struct PluginConduction {
+pub struct ConductionAdapter {
     handle: Handle,
     functions: &'static ConductionFunctions,
     /// n_states, n_nodes, n_surface_panels.
@@ -376,7 +384,7 @@ pub struct PluginConduction {
     pending: RefCell<Option<ModelError>>,
 }
 
-impl PluginConduction {
+impl ConductionAdapter {
     pub(crate) fn create(
         entry: &'static PluginModel,
         functions: &'static ConductionFunctions,
@@ -435,7 +443,7 @@ impl PluginConduction {
     }
 }
 
-impl ConductionModel for PluginConduction {
+impl ConductionModel for ConductionAdapter {
     fn name(&self) -> &str {
         &self.handle.name
     }
@@ -465,7 +473,13 @@ impl ConductionModel for PluginConduction {
             )
         };
         self.handle.check(status, "uniform state")?;
-        check_finite(&self.handle.name, "uniform state", state.as_slice(), 1, "state")?;
+        check_finite(
+            &self.handle.name,
+            "uniform state",
+            state.as_slice(),
+            1,
+            "state",
+        )?;
         Ok(state)
     }
 
@@ -502,7 +516,13 @@ impl ConductionModel for PluginConduction {
 
     fn surface_temperatures(&self, state: &DVector<f64>, out_k: &mut [f64]) {
         let function = self.functions.surface_temperatures;
-        self.read(function, "surface temperatures", state, out_k, self.sizes[2]);
+        self.read(
+            function,
+            "surface temperatures",
+            state,
+            out_k,
+            self.sizes[2],
+        );
     }
 
     fn node_temperatures(&self, state: &DVector<f64>, out_k: &mut [f64]) {
@@ -526,7 +546,7 @@ impl ConductionModel for PluginConduction {
 ///
 /// Modal matrices, mass properties and rigid coupling are read at creation and after every
 /// temperature update, so the trait's infallible accessors return checked, cached values.
-pub struct PluginStructure {
+pub struct StructureAdapter {
     handle: Handle,
     functions: &'static StructureFunctions,
     modal: ModalModel,
@@ -551,7 +571,7 @@ fn rigid_dof(code: u32) -> Option<RigidDof> {
     })
 }
 
-impl PluginStructure {
+impl StructureAdapter {
     pub(crate) fn create(
         entry: &'static PluginModel,
         functions: &'static StructureFunctions,
@@ -641,7 +661,13 @@ impl PluginStructure {
                 None
             } else {
                 self.handle.check(status, "thermal generalized forces")?;
-                check_finite(&name, "thermal generalized force", forces.as_slice(), 1, "mode")?;
+                check_finite(
+                    &name,
+                    "thermal generalized force",
+                    forces.as_slice(),
+                    1,
+                    "mode",
+                )?;
                 Some(forces)
             };
         }
@@ -677,14 +703,14 @@ impl PluginStructure {
                     ),
                 ));
             }
-            let dofs: Option<Vec<RigidDof>> = codes[..count].iter().map(|&c| rigid_dof(c)).collect();
+            let dofs: Option<Vec<RigidDof>> =
+                codes[..count].iter().map(|&c| rigid_dof(c)).collect();
             self.rigid_dofs = dofs.ok_or_else(|| {
                 ModelError::inconsistent(&name, "plugin rigid degree-of-freedom code is not 0-5")
             })?;
             self.rigid_reference = Point3::from(point);
             let mut coupling = DMatrix::zeros(n, count);
-            let status =
-                unsafe { (f.rigid_coupling)(self.raw(), coupling.as_mut_ptr(), n, count) };
+            let status = unsafe { (f.rigid_coupling)(self.raw(), coupling.as_mut_ptr(), n, count) };
             self.handle.check(status, "rigid coupling")?;
             check_finite(&name, "rigid coupling", coupling.as_slice(), n, "rigid dof")?;
             self.rigid_coupling = coupling;
@@ -692,9 +718,18 @@ impl PluginStructure {
         Ok(())
     }
 
-    fn set_field(&mut self, mean_k: &[f64], difference_k: Option<&[f64]>) -> Result<(), ModelError> {
+    fn set_field(
+        &mut self,
+        mean_k: &[f64],
+        difference_k: Option<&[f64]>,
+    ) -> Result<(), ModelError> {
         let name = &self.handle.name;
-        check_len(name, "node temperatures", mean_k.len(), self.temperature_nodes)?;
+        check_len(
+            name,
+            "node temperatures",
+            mean_k.len(),
+            self.temperature_nodes,
+        )?;
         if let Some(difference) = difference_k {
             check_len(
                 name,
@@ -717,7 +752,7 @@ impl PluginStructure {
     }
 }
 
-impl StructureModel for PluginStructure {
+impl StructureModel for StructureAdapter {
     fn name(&self) -> &str {
         &self.handle.name
     }
@@ -744,9 +779,8 @@ impl StructureModel for PluginStructure {
         let abi = buffers.abi();
         let mut shapes = DMatrix::zeros(3 * mesh.vertices.len(), n);
         // SAFETY: room for 3 n_vertices × n_modes values.
-        let status = unsafe {
-            (self.functions.mode_shapes_on)(self.raw(), &abi, shapes.as_mut_ptr(), n)
-        };
+        let status =
+            unsafe { (self.functions.mode_shapes_on)(self.raw(), &abi, shapes.as_mut_ptr(), n) };
         self.handle.check(status, "mode shapes")?;
         check_finite(
             &self.handle.name,
@@ -793,7 +827,7 @@ impl StructureModel for PluginStructure {
     }
 }
 
-impl ThermalStiffness for PluginStructure {
+impl ThermalStiffness for StructureAdapter {
     fn temperature_nodes(&self) -> usize {
         self.temperature_nodes
     }
@@ -815,7 +849,7 @@ impl ThermalStiffness for PluginStructure {
     }
 }
 
-impl RootLoads for PluginStructure {
+impl RootLoads for StructureAdapter {
     fn root_reference_m(&self) -> Point3<f64> {
         self.root_reference
     }
@@ -862,13 +896,13 @@ impl RootLoads for PluginStructure {
     }
 }
 
-impl MassDistribution for PluginStructure {
+impl MassDistribution for StructureAdapter {
     fn mass_properties(&self) -> MassProperties {
         self.mass
     }
 }
 
-impl RigidBodyCoupling for PluginStructure {
+impl RigidBodyCoupling for StructureAdapter {
     fn rigid_dofs(&self) -> &[RigidDof] {
         &self.rigid_dofs
     }
@@ -883,14 +917,14 @@ impl RigidBodyCoupling for PluginStructure {
 }
 
 /// A propulsion plugin model behind [`PropulsionModel`].
-pub struct PluginPropulsion {
+pub struct PropulsionAdapter {
     handle: Handle,
     functions: &'static PropulsionFunctions,
     mesh: MeshBuffers,
     stations: Vec<StationAbi>,
 }
 
-impl PluginPropulsion {
+impl PropulsionAdapter {
     pub(crate) fn create(
         entry: &'static PluginModel,
         functions: &'static PropulsionFunctions,
@@ -916,7 +950,7 @@ fn engine_status(code: u32) -> Option<EngineStatus> {
     })
 }
 
-impl PropulsionModel for PluginPropulsion {
+impl PropulsionModel for PropulsionAdapter {
     fn name(&self) -> &str {
         &self.handle.name
     }
@@ -954,8 +988,7 @@ impl PropulsionModel for PluginPropulsion {
             n_stations: 0,
         };
         // SAFETY: n panel pressures and STATION_CAPACITY stations of room.
-        let status =
-            unsafe { (self.functions.evaluate)(self.handle.raw, &input, &mut output) };
+        let status = unsafe { (self.functions.evaluate)(self.handle.raw, &input, &mut output) };
         self.handle.check(status, "evaluation")?;
         check_finite(name, "engine load", &output.loads, 6, "loads")?;
         check_finite(name, "mass flow", &[output.mass_flow_kg_s], 1, "inlet")?;
@@ -990,17 +1023,30 @@ impl PropulsionModel for PluginPropulsion {
                 .unwrap_or(STATION_NAME_BYTES);
             let label = String::from_utf8_lossy(&station.name[..end]);
             let values = [station.mach, station.pressure_pa, station.temperature_k];
-            check_finite(name, &format!("station `{label}` state"), &values, 3, "station")?;
-            let state = StationState {
-                station: label.into_owned(),
-                mach: station.mach,
-                pressure_pa: station.pressure_pa,
-                temperature_k: station.temperature_k,
-            };
-            match out.stations.get_mut(k) {
-                Some(slot) => *slot = state,
-                None => out.stations.push(state),
+            check_finite(
+                name,
+                &format!("station `{label}` state"),
+                &values,
+                3,
+                "station",
+            )?;
+            // Reuse the slot (and its name's allocation) when the station is the same.
+            if out.stations.get(k).is_none_or(|slot| slot.station != label) {
+                let state = StationState {
+                    station: label.into_owned(),
+                    mach: 0.0,
+                    pressure_pa: 0.0,
+                    temperature_k: 0.0,
+                };
+                match out.stations.get_mut(k) {
+                    Some(slot) => *slot = state,
+                    None => out.stations.push(state),
+                }
             }
+            let slot = &mut out.stations[k];
+            slot.mach = station.mach;
+            slot.pressure_pa = station.pressure_pa;
+            slot.temperature_k = station.temperature_k;
         }
         Ok(())
     }

@@ -94,7 +94,11 @@ pub struct AeroOutputAbi {
 ///
 /// # Safety
 /// `pointer` must be null or a NUL-terminated static string.
-unsafe fn plugin_str(pointer: *const c_char, what: &str, origin: &str) -> Result<String, PluginError> {
+unsafe fn plugin_str(
+    pointer: *const c_char,
+    what: &str,
+    origin: &str,
+) -> Result<String, PluginError> {
     if pointer.is_null() {
         return Err(bad_header(origin, format!("{what} is null")));
     }

@@ -1,4 +1,6 @@
 //! Analyses built on the vehicle's regions: what a command runs, without its CLI and outputs.
 
+pub mod flutter;
 pub mod heating;
+pub mod simulate;
 pub mod trim;

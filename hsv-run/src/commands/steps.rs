@@ -79,7 +79,8 @@ pub fn time_steps(duration_s: f64, dt_s: f64) -> Result<StepPlan, StepError> {
         }
     }
     let ratio = duration_s / dt_s;
-    if !(ratio <= MAX_STEPS as f64 * (1.0 + WHOLE_STEPS_TOLERANCE)) {
+    // An infinite ratio (a step that underflows against the duration) is too many as well.
+    if !ratio.is_finite() || ratio > MAX_STEPS as f64 * (1.0 + WHOLE_STEPS_TOLERANCE) {
         return Err(StepError::TooMany {
             duration_s,
             dt_s,

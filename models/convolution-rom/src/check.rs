@@ -70,6 +70,9 @@ pub struct CheckReport {
     pub alpha_deg: f64,
     /// Whether the correction factor was applied.
     pub correction: bool,
+    /// Wall-clock time of the ROM's steady value (one source evaluation per flight condition and
+    /// rigid position, not counted in the per-step times), s.
+    pub steady_value_seconds: f64,
     pub motions: Vec<MotionReport>,
 }
 
@@ -104,7 +107,10 @@ impl Motion {
     fn state(&self, t: f64, q: &mut DVector<f64>, q_dot: &mut DVector<f64>) {
         for (j, terms) in self.terms.iter().enumerate() {
             q[j] = terms.iter().map(|(a, w, p)| a * (w * t + p).sin()).sum();
-            q_dot[j] = terms.iter().map(|(a, w, p)| a * w * (w * t + p).cos()).sum();
+            q_dot[j] = terms
+                .iter()
+                .map(|(a, w, p)| a * w * (w * t + p).cos())
+                .sum();
         }
     }
 }
@@ -218,6 +224,10 @@ pub fn check_against_source(
         &mut outputs,
     )?;
     let rest: Vec<f64> = outputs[..n].iter().map(|v| v * p_inf).collect();
+    // The steady value is computed once per flight condition and rigid position: time it apart.
+    let start = Instant::now();
+    rom.update_baseline(&rigid, flight)?;
+    let steady_value_seconds = start.elapsed().as_secs_f64();
     let mut reports = Vec::new();
     let mut rom_forces = vec![0.0; n];
     let mut rom_pressures = AeroSolution::default();
@@ -280,7 +290,7 @@ pub fn check_against_source(
             report.source_generalized_forces.push(source);
             report.rom_generalized_forces.push(rom_forces.clone());
         }
-        if !(signal2 > 0.0) {
+        if !signal2.is_finite() || signal2 <= 0.0 {
             return Err(ModelError::inconsistent(
                 NAME,
                 format!(
@@ -303,6 +313,7 @@ pub fn check_against_source(
         altitude_m: flight.freestream.altitude_m,
         alpha_deg: flight.alpha_rad.to_degrees(),
         correction: rom.correction(),
+        steady_value_seconds,
         motions: reports,
     })
 }

@@ -205,13 +205,13 @@ impl SourceProbe {
             })?;
         out.clear();
         out.extend(self.forces.iter().map(|q| q / p_inf));
-        out.extend(self.solution.pressure_pa.iter().map(|p| (p - p_inf) / p_inf));
+        out.extend(
+            self.solution
+                .pressure_pa
+                .iter()
+                .map(|p| (p - p_inf) / p_inf),
+        );
         Ok(())
-    }
-
-    /// The latest solution of the source.
-    pub(crate) fn solution(&self) -> &AeroSolution {
-        &self.solution
     }
 }
 
@@ -277,7 +277,11 @@ pub(crate) fn identify(
         for (k, s) in forces.step_mut(0, input, n_inputs).iter_mut().enumerate() {
             *s = derivative(k);
         }
-        for (k, s) in pressures.step_mut(0, input, n_inputs).iter_mut().enumerate() {
+        for (k, s) in pressures
+            .step_mut(0, input, n_inputs)
+            .iter_mut()
+            .enumerate()
+        {
             *s = derivative(n + k);
         }
     }
@@ -413,8 +417,7 @@ fn tabulate_correction(
                         force_factors[((m * n + j) * n_amplitudes + ia) * n + k] = factor;
                     } else {
                         let n_p = identification.n_panels;
-                        pressure_factors[((m * n + j) * n_amplitudes + ia) * n_p + k - n] =
-                            factor;
+                        pressure_factors[((m * n + j) * n_amplitudes + ia) * n_p + k - n] = factor;
                     }
                 }
             }
@@ -496,10 +499,15 @@ pub fn read_step_csv(
         };
         let step = number(2)?;
         if step == 0.0 {
-            return Err(error(line, "step 0: the response per unit step is undefined".into()));
+            return Err(error(
+                line,
+                "step 0: the response per unit step is undefined".into(),
+            ));
         }
         let time = number(3)?;
-        let values = (4..cells.len()).map(number).collect::<Result<Vec<_>, _>>()?;
+        let values = (4..cells.len())
+            .map(number)
+            .collect::<Result<Vec<_>, _>>()?;
         blocks[input].push((time, step, values));
     }
     let samples = blocks[0].len();
@@ -528,7 +536,7 @@ pub fn read_step_csv(
     } else {
         0.0
     };
-    if samples > 1 && !(dt_s > 0.0) {
+    if samples > 1 && dt_s <= 0.0 {
         return Err(error(header_line, format!("time step {dt_s} s is not > 0")));
     }
     for block in blocks.iter().filter(|b| !b.is_empty()) {
@@ -560,11 +568,7 @@ pub fn read_step_csv(
             } else {
                 step / reference.speed_of_sound_m_s
             };
-            for (s, v) in out
-                .step_mut(sample, input, n_inputs)
-                .iter_mut()
-                .zip(values)
-            {
+            for (s, v) in out.step_mut(sample, input, n_inputs).iter_mut().zip(values) {
                 *s = v / (reference.pressure_pa * input_step);
             }
         }

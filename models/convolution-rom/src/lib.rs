@@ -208,11 +208,7 @@ impl Settings {
             }
             for (i, pair) in self.correction_mach.windows(2).enumerate() {
                 if pair[1] <= pair[0] {
-                    return Some((
-                        format!("correction_mach[{}]", i + 1),
-                        pair[1],
-                        "increasing",
-                    ));
+                    return Some((format!("correction_mach[{}]", i + 1), pair[1], "increasing"));
                 }
             }
             if let Some((i, &m)) = self
@@ -259,3 +255,23 @@ hsv_core::register_model!(ModelDescriptor {
     settings_doc: SETTINGS_DOC,
     constructor: Constructor::Aero(construct),
 });
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The documented settings are the defaults (the doc cannot drift from the code).
+    #[test]
+    fn settings_doc_is_the_defaults() {
+        let parsed: Settings = toml::from_str(SETTINGS_DOC).expect("SETTINGS_DOC parses");
+        assert_eq!(parsed, Settings::default());
+        assert_eq!(Settings::default().first_invalid(), None);
+    }
+
+    #[test]
+    fn registered_in_the_builtin_registry() {
+        let registry = hsv_core::registry::Registry::builtin().expect("registry");
+        let entry = registry.get(NAME).expect("registered");
+        assert_eq!(entry.role(), hsv_core::registry::Role::Aero);
+    }
+}

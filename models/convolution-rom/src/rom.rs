@@ -9,7 +9,7 @@ use hsv_core::aero::{
 use hsv_core::coupling::ModalProjection;
 use hsv_core::error::ModelError;
 use hsv_core::flow::FlightCondition;
-use hsv_core::mesh::{ModeShapes, PanelMesh};
+use hsv_core::mesh::{ModeShapes, PanelMesh, RegionKind};
 use hsv_core::registry::ModelContext;
 use hsv_core::structure::StructureModel;
 use nalgebra::{DMatrix, DVector, Point3};
@@ -87,8 +87,12 @@ impl ConvolutionRom {
         let mut source = ctx
             .build::<dyn AeroModel>(&settings.source, &source_settings)
             .map_err(|e| ctx.settings_error("source", e.to_string()))?;
-        let projection = ModalProjection::new(&mesh, &shapes, |_| true)
-            .map_err(|e| ModelError::inconsistent(NAME, e.to_string()))?;
+        // The region's own panels, as the partitioned vehicle sums them (a root cap tagged
+        // `other` carries no generalized force); a standalone mesh counts whole.
+        let kind = ctx.region.kind;
+        let projection =
+            ModalProjection::new(&mesh, &shapes, |r| kind == RegionKind::Other || r == kind)
+                .map_err(|e| ModelError::inconsistent(NAME, e.to_string()))?;
         let csv = if settings.step_csv.is_empty() {
             None
         } else {
@@ -123,7 +127,9 @@ impl ConvolutionRom {
                     projection: &projection,
                     gas: ctx.region.gas,
                 };
-                let csv_input = csv.as_deref().map(|text| (settings.step_csv.as_str(), text));
+                let csv_input = csv
+                    .as_deref()
+                    .map(|text| (settings.step_csv.as_str(), text));
                 let mut identification = identify::identify(&settings, subject, csv_input)?;
                 identification.fingerprint = fingerprint;
                 if let Some(path) = cache.as_deref() {
@@ -209,7 +215,7 @@ impl ConvolutionRom {
 
     /// The source's steady solution on `rigid_mesh` at `flight`, recomputed only when either
     /// changed since the last call.
-    fn update_baseline(
+    pub(crate) fn update_baseline(
         &mut self,
         rigid_mesh: &PanelMesh,
         flight: &FlightCondition,
@@ -219,12 +225,8 @@ impl ConvolutionRom {
             return Ok(());
         }
         b.flight = None;
-        self.source.evaluate(
-            rigid_mesh,
-            flight,
-            &PanelMotion::default(),
-            &mut b.solution,
-        )?;
+        self.source
+            .evaluate(rigid_mesh, flight, &PanelMotion::default(), &mut b.solution)?;
         b.forces.resize(self.identification.n_modes, 0.0);
         self.projection
             .generalized_forces(
@@ -325,7 +327,10 @@ fn region_modes(
             NAME,
             "number of modes",
             n as f64,
-            format!("1..={available} (the modes of structure `{}`)", structure.name()),
+            format!(
+                "1..={available} (the modes of structure `{}`)",
+                structure.name()
+            ),
         ));
     }
     let frequencies = structure.natural_frequencies_hz()?;
@@ -348,7 +353,11 @@ impl Bracket {
     fn of(grid: &[f64], x: f64) -> Self {
         let last = grid.len() - 1;
         if last == 0 || x <= grid[0] {
-            return Self { lo: 0, hi: 0, w: 0.0 };
+            return Self {
+                lo: 0,
+                hi: 0,
+                w: 0.0,
+            };
         }
         if x >= grid[last] {
             return Self {
@@ -428,10 +437,10 @@ fn convolve(
         Some(f) if c < n_modes => f[c * n_out + k],
         _ => 1.0,
     };
-    for c in 0..n_inputs {
+    for (c, (&u, &last)) in input.iter().zip(&history.input).enumerate() {
         let s_inf = block.step(settled, c, n_inputs);
         let s_0 = block.step(0, c, n_inputs);
-        let (u, du) = (input[c], input[c] - history.input[c]);
+        let du = u - last;
         for (k, y) in out.iter_mut().enumerate() {
             *y += factor(c, k) * (s_inf[k] * u + (s_0[k] - s_inf[k]) * du);
         }
@@ -441,7 +450,7 @@ fn convolve(
     }
     for (m, &t_m) in history.increment_times_s.iter().enumerate() {
         let position = (time_s - t_m) * lag_scale / block.dt_s;
-        if !(position < settled as f64) {
+        if position.is_nan() || position >= settled as f64 {
             continue;
         }
         let i = position.floor().max(0.0) as usize;
@@ -451,10 +460,7 @@ fn convolve(
             if du == 0.0 {
                 continue;
             }
-            let (s_a, s_b) = (
-                block.step(i, c, n_inputs),
-                block.step(i + 1, c, n_inputs),
-            );
+            let (s_a, s_b) = (block.step(i, c, n_inputs), block.step(i + 1, c, n_inputs));
             let s_inf = block.step(settled, c, n_inputs);
             for (k, y) in out.iter_mut().enumerate() {
                 let s = (1.0 - w) * s_a[k] + w * s_b[k];
@@ -713,6 +719,9 @@ pub fn read_cache(path: &Path) -> Result<Identification, ModelError> {
         ModelError::inconsistent(NAME, format!("cannot read `{}`: {e}", path.display()))
     })?;
     serde_json::from_str(&text).map_err(|e| {
-        ModelError::inconsistent(NAME, format!("`{}` is not a ROM cache: {e}", path.display()))
+        ModelError::inconsistent(
+            NAME,
+            format!("`{}` is not a ROM cache: {e}", path.display()),
+        )
     })
 }

@@ -268,8 +268,9 @@ mod tests {
     /// Brent finds √2 as the zero of x² − 2 on [0, 2] to 1e-12.
     #[test]
     fn brent_finds_the_square_root_of_two() {
-        let r = brent_root::<FlutterError>(|x| Ok(x * x - 2.0), (0.0, 2.0), (-2.0, 2.0), 1e-12, 100)
-            .expect("root");
+        let r =
+            brent_root::<FlutterError>(|x| Ok(x * x - 2.0), (0.0, 2.0), (-2.0, 2.0), 1e-12, 100)
+                .expect("root");
         assert!((r.root - 2f64.sqrt()).abs() < 1e-11, "{r:?}");
         assert!(r.evaluations < 15, "{r:?}");
     }

@@ -364,6 +364,10 @@ impl SurfaceDynamics {
         let mut plus = DVector::zeros(n);
         let mut minus = DVector::zeros(n);
         let steps = self.absolute_steps();
+        // Elastic force of the small reference displacements: the floor of the load scale, so
+        // a surface with next to no load (a symmetric section at zero incidence) converges at
+        // round-off instead of chasing it.
+        let floor = (&self.stiffness * steps.rows(0, n)).norm();
         let mut scale = 0.0;
         let mut relative = f64::INFINITY;
         for iteration in 0..=self.options.max_newton_iterations {
@@ -376,7 +380,8 @@ impl SurfaceDynamics {
                 .sum::<f64>()
                 .sqrt()
                 .max(self.thermal_forces.norm())
-                .max((&self.stiffness * &q).norm());
+                .max((&self.stiffness * &q).norm())
+                .max(floor);
             relative = if scale > 0.0 { r.norm() / scale } else { 0.0 };
             if relative <= 1e-10 || scale == 0.0 {
                 let mut state = DVector::zeros(2 * n);

@@ -205,7 +205,10 @@ impl Thermal {
             let dt = dt_s.min(time_s - self.heating.time_s());
             self.heating.advance(dt).map_err(|e| {
                 let message = e.to_string();
-                if message.contains("melted") {
+                // A wall past the solidus (heat flux), or a structure past the end of its
+                // material's thermal data, which for Ti-6Al-4V ends at 1869.8 K, 7 K below the
+                // solidus: both are the melting surface.
+                if message.contains("melted") || message.contains("(k, c_p) data") {
                     FlutterError::Melting(message)
                 } else {
                     FlutterError::Region(e)
@@ -278,11 +281,9 @@ pub fn analyse_structure(
         };
         let other_stability = stability(&second.a)?;
         let root = |s: &super::Stability| {
-            s.roots
-                .get(s.critical)
-                .map_or(Complex::new(0.0, 0.0), |r| {
-                    Complex::new(r.real_per_s, r.imag_rad_s)
-                })
+            s.roots.get(s.critical).map_or(Complex::new(0.0, 0.0), |r| {
+                Complex::new(r.real_per_s, r.imag_rad_s)
+            })
         };
         let (l1, l2) = (root(&result), root(&other_stability));
         Some(MethodDifference {
@@ -546,7 +547,10 @@ fn boundary(setup: &FlutterSetup, registry: &Registry, row: &[FlutterPoint]) -> 
     let max_real = analysed
         .iter()
         .map(|p| (p.max_real_per_s.unwrap_or(f64::NEG_INFINITY), p.mach))
-        .fold((f64::NEG_INFINITY, 0.0), |a, b| if b.0 > a.0 { b } else { a });
+        .fold(
+            (f64::NEG_INFINITY, 0.0),
+            |a, b| if b.0 > a.0 { b } else { a },
+        );
     let least_damping = analysed
         .iter()
         .filter_map(|p| p.least_damping_ratio)
@@ -554,8 +558,8 @@ fn boundary(setup: &FlutterSetup, registry: &Registry, row: &[FlutterPoint]) -> 
     if first.status == PointStatus::Unstable {
         return FlutterBoundary::FluttersEverywhere {
             lowest_mach: first.mach,
-            max_real_per_s: first.max_real_per_s.unwrap_or(f64::NAN),
-            least_damping_ratio: first.least_damping_ratio.unwrap_or(f64::NAN),
+            max_real_per_s: first.max_real_per_s.unwrap_or_default(),
+            least_damping_ratio: first.least_damping_ratio.unwrap_or_default(),
         };
     }
     let Some(pair) = analysed
@@ -570,6 +574,11 @@ fn boundary(setup: &FlutterSetup, registry: &Registry, row: &[FlutterPoint]) -> 
     };
     let (lo, hi) = (pair[0], pair[1]);
     let time_s = lo.time_s;
+    // The root finding needs the stability only, not the method comparison.
+    let setup = &FlutterSetup {
+        compare_methods: false,
+        ..setup.clone()
+    };
     let margin = |p: &FlutterPoint| p.growth_margin_per_s.unwrap_or(f64::NAN);
     let search = brent_root(
         |mach| {
@@ -591,14 +600,17 @@ fn boundary(setup: &FlutterSetup, registry: &Registry, row: &[FlutterPoint]) -> 
             mach: r.root,
             bracket: r.bracket,
             evaluations: r.evaluations,
-            frequency_hz: hi.roots.iter().fold((f64::NEG_INFINITY, 0.0), |a, root| {
-                if root.real_per_s > a.0 {
-                    (root.real_per_s, root.frequency_hz)
-                } else {
-                    a
-                }
-            })
-            .1,
+            frequency_hz: hi
+                .roots
+                .iter()
+                .fold((f64::NEG_INFINITY, 0.0), |a, root| {
+                    if root.real_per_s > a.0 {
+                        (root.real_per_s, root.frequency_hz)
+                    } else {
+                        a
+                    }
+                })
+                .1,
         },
         Err(e) => FlutterBoundary::Unresolved {
             reason: format!(

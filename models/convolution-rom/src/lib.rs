@@ -8,8 +8,9 @@
 //!
 //! **Inputs and outputs.** The inputs are the region's modal coordinates q_j and modal
 //! velocities over the freestream speed of sound, q̇_j / a∞ (2 n inputs for n modes). The
-//! outputs are the generalized forces Q_k = −Σ (p − p∞) A n·φ_k on the reference geometry
-//! (the runner's `ModalProjection` convention) and the panel gauge pressures p − p∞, all over
+//! outputs are the generalized forces Q_k = −Σ (p − p∞) A n·φ_k on the reference geometry over
+//! the panels of the region's own kind (the partitioned vehicle's `ModalProjection`; a root cap
+//! tagged `other` carries none) and the panel gauge pressures p − p∞, all over
 //! p∞. Normalizing by p∞ and a∞ makes the responses of perfect-gas panel methods independent of
 //! altitude at a given Mach number (pressure ratios depend on M and the geometry only; the
 //! piston-theory rate term is γ w/a∞).

@@ -1,0 +1,142 @@
+//! Time simulation of the partitioned vehicle from trim (paper §IV.C): a trimmed state stays
+//! put, the elevon doublet's altitude response is non-minimum phase (paper Fig. 11), and input
+//! tables are checked.
+
+use hsv_core::config::{SAMPLE_CONFIG_TOML, parse_config};
+use hsv_run::analysis::simulate::{InputTable, Inputs, RunSettings, Sample, simulate};
+use hsv_run::analysis::trim::{TrimRequest, trim};
+use hsv_run::dynamics::GravityModel;
+use hsv_run::vehicle::assemble;
+use hsv_run::vehicle::partitioned::{
+    CouplingSettings, ElevonCommandData, FlightControls, PartitionedVehicle, partitioned_needs,
+};
+
+/// The sample vehicle with a coarse lifting-surface structure of its three lowest modes (the
+/// highest near 60 Hz, so a 2 ms Runge-Kutta step is stable), trimmed; returns the vehicle,
+/// its trimmed state and controls.
+fn trimmed() -> (
+    PartitionedVehicle,
+    hsv_run::dynamics::VehicleState,
+    FlightControls,
+) {
+    let text = SAMPLE_CONFIG_TOML
+        .replace("free_vibration_modes = 10", "free_vibration_modes = 3")
+        .replace("static_shapes = 5", "static_shapes = 0")
+        .replace("elements_chordwise = 24", "elements_chordwise = 8")
+        .replace("elements_spanwise = 18", "elements_spanwise = 6");
+    let loaded = parse_config(&text, "test.toml").expect("config");
+    let registry = hsv_run::registry().expect("registry");
+    let sets = assemble(&loaded, &registry, &partitioned_needs("test")).expect("assembles");
+    let mut vehicle =
+        PartitionedVehicle::new(sets, GravityModel::default(), CouplingSettings::default())
+            .expect("vehicle");
+    let result = trim(&mut vehicle, &TrimRequest::default()).expect("trims");
+    let t = result.trim;
+    let controls = FlightControls {
+        elevon: ElevonCommandData {
+            symmetric_rad: t.elevon_deg.to_radians(),
+            differential_rad: 0.0,
+        },
+        fuel_equivalence_ratio: t.fuel_equivalence_ratio,
+    };
+    let (state, _) = vehicle
+        .level_flight_state(6.0, 26_000.0, t.alpha_deg.to_radians(), &controls)
+        .expect("equilibrium");
+    (vehicle, state, controls)
+}
+
+fn fly(duration_s: f64, inputs: &Inputs) -> Vec<Sample> {
+    let (mut vehicle, mut state, controls) = trimmed();
+    let mut samples = Vec::new();
+    let settings = RunSettings {
+        dt_s: 0.002,
+        duration_s,
+        record_every: 5,
+    };
+    simulate(
+        &mut vehicle,
+        &mut state,
+        &controls,
+        inputs,
+        &settings,
+        |s, _| {
+            samples.push(s.clone());
+            true
+        },
+    )
+    .expect("flies");
+    samples
+}
+
+#[test]
+fn a_trimmed_state_stays_put_for_a_tenth_of_a_second() {
+    let still = Inputs {
+        symmetric_elevon_deg: InputTable::constant(0.0),
+        ..Inputs::paper_doublet()
+    };
+    let samples = fly(0.1, &still);
+    let (first, last) = (&samples[0], samples.last().expect("samples"));
+    assert!((last.time_s - 0.1).abs() < 1e-12);
+    // Trim residuals of 1e-3 m/s² and 1e-4 rad/s² move the state by at most ½ a t² over 0.1 s:
+    // 5e-6 m and 2.9e-5 deg; the bounds leave a factor of ten.
+    assert!(
+        (last.altitude_m - first.altitude_m).abs() < 5e-5,
+        "{last:?}"
+    );
+    assert!((last.alpha_deg - first.alpha_deg).abs() < 3e-4, "{last:?}");
+    assert!(last.q_deg_s.abs() < 1e-2, "{last:?}");
+}
+
+#[test]
+fn the_elevon_doublet_altitude_response_is_non_minimum_phase() {
+    // Paper Fig. 11: a nose-up elevon first pushes the tail surfaces' lift down, so the vehicle
+    // sinks before the pitch-up makes it climb.
+    let samples = fly(1.8, &Inputs::paper_doublet());
+    let h0 = samples[0].altitude_m;
+    let lowest = samples
+        .iter()
+        .min_by(|a, b| a.altitude_m.total_cmp(&b.altitude_m))
+        .expect("samples");
+    let last = samples.last().expect("samples");
+    assert!(lowest.altitude_m < h0 - 1e-3, "no initial sink: {lowest:?}");
+    assert!(lowest.time_s > 0.5, "sank before the input: {lowest:?}");
+    assert!(last.altitude_m > h0, "no climb after the sink: {last:?}");
+    assert!(
+        last.pitch_deg > samples[0].pitch_deg,
+        "no pitch-up: {last:?}"
+    );
+}
+
+#[test]
+fn input_tables_with_unsorted_or_non_finite_rows_are_refused_with_their_key() {
+    let unsorted = InputTable {
+        time_s: vec![0.0, 1.0, 0.5],
+        value: vec![0.0, 1.0, 2.0],
+    };
+    let err = unsorted
+        .check("simulation.inputs.symmetric_elevon_deg")
+        .unwrap_err();
+    let text = err.to_string();
+    assert!(
+        text.contains("simulation.inputs.symmetric_elevon_deg") && text.contains("row 2"),
+        "{text}"
+    );
+    let nan = InputTable {
+        time_s: vec![0.0, f64::NAN],
+        value: vec![0.0, 1.0],
+    };
+    assert!(
+        nan.check("x")
+            .unwrap_err()
+            .to_string()
+            .contains("not finite")
+    );
+    // Between rows the table is linear, beyond them it holds.
+    let ramp = InputTable {
+        time_s: vec![1.0, 2.0],
+        value: vec![0.0, 4.0],
+    };
+    assert_eq!(ramp.at(0.0), 0.0);
+    assert_eq!(ramp.at(1.25), 1.0);
+    assert_eq!(ramp.at(9.0), 4.0);
+}

@@ -353,17 +353,12 @@ impl Coefficients {
         reference: &ReferenceValues,
     ) -> Self {
         let q_s = flight.freestream.dynamic_pressure_pa * reference.area_m2;
-        let (sa, ca) = flight.alpha_rad.sin_cos();
-        let (sb, cb) = flight.beta_rad.sin_cos();
-        let f = loads.force_n;
-        // Body -> wind axes (Etkin): x_w along V, z_w in the plane of symmetry.
-        let drag = -(f.x * ca * cb + f.y * sb + f.z * sa * cb);
-        let side = -f.x * ca * sb + f.y * cb - f.z * sa * sb;
-        let lift = f.x * sa - f.z * ca;
+        let wind =
+            crate::frames::wind_axis_forces(&loads.force_n, flight.alpha_rad, flight.beta_rad);
         Self {
-            cl: lift / q_s,
-            cd: drag / q_s,
-            cy: side / q_s,
+            cl: wind.lift_n / q_s,
+            cd: wind.drag_n / q_s,
+            cy: wind.side_n / q_s,
             croll: loads.moment_nm.x / (q_s * reference.span_m),
             cm: loads.moment_nm.y / (q_s * reference.chord_m),
             cn: loads.moment_nm.z / (q_s * reference.span_m),

@@ -91,10 +91,11 @@ impl FlightCondition {
     /// Velocity of the vehicle's reference point relative to the air, body axes:
     /// V (cos α cos β, sin β, sin α cos β), m/s.
     pub fn velocity_body_m_s(&self) -> Vector3<f64> {
-        let v = self.freestream.velocity_m_s;
-        let (sa, ca) = self.alpha_rad.sin_cos();
-        let (sb, cb) = self.beta_rad.sin_cos();
-        Vector3::new(v * ca * cb, v * sb, v * sa * cb)
+        crate::frames::body_velocity_from_wind(
+            self.freestream.velocity_m_s,
+            self.alpha_rad,
+            self.beta_rad,
+        )
     }
 
     /// Velocity of a body-fixed point relative to the air: V + ω × (r - r_c), m/s.

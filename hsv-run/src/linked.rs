@@ -6,6 +6,7 @@
 use hsv_core::registry::{Registry, RegistryError};
 
 use hsv_model_conduction as _;
+use hsv_model_convolution_rom as _;
 use hsv_model_eckert as _;
 use hsv_model_free_free_beam as _;
 use hsv_model_kriging as _;

@@ -503,7 +503,8 @@ fn conduction_through_the_abi_equals_the_builtin() {
     }
     assert_eq!(got, expected);
     assert!(expected.max() > 300.0);
-    let reads: [fn(&dyn ConductionModel, &DVector<f64>, &mut [f64]); 3] = [
+    type Read = fn(&dyn ConductionModel, &DVector<f64>, &mut [f64]);
+    let reads: [Read; 3] = [
         |m, s, o| m.surface_temperatures(s, o),
         |m, s, o| m.node_temperatures(s, o),
         |m, s, o| m.node_temperature_differences(s, o),
@@ -767,7 +768,8 @@ fn altered_header(change: impl FnOnce(&mut PluginHeader)) -> &'static PluginHead
 
 #[test]
 fn header_mismatches_are_clear_errors() {
-    let cases: [(fn(&mut PluginHeader), &str); 4] = [
+    type Change = fn(&mut PluginHeader);
+    let cases: [(Change, &str); 4] = [
         (|h| h.magic = *b"NOTHSV\0\0", "wrong magic bytes"),
         (|h| h.abi_version = 3, "ABI version 3"),
         (

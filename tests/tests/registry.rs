@@ -13,6 +13,7 @@ fn registry_holds_every_builtin_model() {
         .map(|e| (e.name.as_str(), e.role()))
         .collect();
     let expected = [
+        ("convolution-rom", Role::Aero),
         ("eckert", Role::HeatFlux),
         ("free-free-beam", Role::Structure),
         ("full-order", Role::Conduction),

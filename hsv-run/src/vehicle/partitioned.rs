@@ -728,11 +728,11 @@ impl crate::analysis::trim::SteadyFlight for PartitionedVehicle {
             .map_err(|e| ModelError::inconsistent("flexible vehicle", e.to_string()))?;
         self.trim_modes = state.body_modes.q.iter().copied().collect();
         let a = out.rigid.acceleration_body_m_s2;
-        let (sa, ca) = c.alpha_rad.sin_cos();
-        let f = self.aero_with_surfaces.force_n;
+        let wind =
+            hsv_core::frames::wind_axis_forces(&self.aero_with_surfaces.force_n, c.alpha_rad, 0.0);
         let loads = super::rigid::RigidLoads {
             total: self.loads.body,
-            drag_n: -(f.x * ca + f.z * sa),
+            drag_n: wind.drag_n,
             thrust_n: self.engine_solution.loads.force_n.x,
             engine_status: self.engine_solution.status,
             ..Default::default()

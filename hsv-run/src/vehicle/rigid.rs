@@ -12,6 +12,7 @@ use hsv_core::aero::{AeroModel, AeroSolution, Loads, PanelMotion, integrate_pres
 use hsv_core::atmosphere::gravity;
 use hsv_core::coupling::{ElevonCommand, deflect_lifting_surface};
 use hsv_core::flow::{FlightCondition, Freestream};
+use hsv_core::frames;
 use hsv_core::gas::PerfectGas;
 use hsv_core::mesh::{PanelMesh, RegionKind};
 use hsv_core::propulsion::{EngineInputs, EngineStatus, PropulsionModel, PropulsionSolution};
@@ -262,15 +263,15 @@ impl RigidVehicle {
             moment_nm: engine_ref.moment_nm
                 + (self.reference_point_m - cg).cross(&engine_ref.force_n),
         };
-        let (st, ct) = controls.alpha_rad.sin_cos();
+        // Level flight: pitch = α, so the weight (down in earth axes) in body axes.
         let weight = self.mass.mass_kg * gravity(altitude_m);
         let gravity_loads = Loads {
-            force_n: Vector3::new(-weight * st, 0.0, weight * ct),
+            force_n: frames::earth_to_body(0.0, controls.alpha_rad, 0.0)
+                * Vector3::new(0.0, 0.0, weight),
             moment_nm: Vector3::zeros(),
         };
         let aero = body_aero + surface_aero;
-        let (sa, ca) = controls.alpha_rad.sin_cos();
-        let drag_n = -(aero.force_n.x * ca + aero.force_n.z * sa);
+        let drag_n = frames::wind_axis_forces(&aero.force_n, controls.alpha_rad, 0.0).drag_n;
         let total = aero + engine + gravity_loads;
         for (what, v) in [
             ("total force", total.force_n),

@@ -250,9 +250,10 @@ pub fn capture(
 ) -> Capture {
     let f = conditions.freestream;
     let gas: &PerfectGas = &f.gas;
-    let (sa, ca) = conditions.alpha_rad.sin_cos();
-    // Freestream direction in (x, z): aft and up for α > 0.
-    let u = Vector2::new(-ca, -sa);
+    // Freestream direction in (x, z): the air moves against the body velocity, aft and up for
+    // α > 0.
+    let v = hsv_core::frames::body_velocity_from_wind(1.0, conditions.alpha_rad, 0.0);
+    let u = Vector2::new(-v.x, -v.z);
     let to_lip = geometry.cowl_lip() - geometry.nose();
     let tube_height = (to_lip.x * u.y - to_lip.y * u.x).abs();
     let max = f.density_kg_m3 * f.velocity_m_s * tube_height;

@@ -317,7 +317,7 @@ pub fn panel_flutter(
     };
     let lambda_with = |beta: f64| q.map(|q| 2.0 * q * chord_m.powi(3) / (beta * rigidity_n_m));
     Ok(PanelFlutter {
-        lambda: critical_mach.and_then(|m| lambda_with(m)),
+        lambda: critical_mach.and_then(&lambda_with),
         lambda_ackeret: critical_mach
             .filter(|&m| m > 1.0)
             .and_then(|m| lambda_with((m * m - 1.0).sqrt())),

@@ -71,7 +71,7 @@ impl Stability {
 /// Eigenvalues and eigenvectors of `a` (2n × 2n, state [q; q̇]) as [`Stability`].
 pub fn stability(a: &DMatrix<f64>) -> Result<Stability, FlutterError> {
     let n_states = a.nrows();
-    if n_states == 0 || n_states % 2 != 0 || a.ncols() != n_states {
+    if n_states == 0 || !n_states.is_multiple_of(2) || a.ncols() != n_states {
         return Err(FlutterError::Inconsistent(format!(
             "state matrix is {} × {}, expected 2n × 2n",
             a.nrows(),

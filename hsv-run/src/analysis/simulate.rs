@@ -237,6 +237,7 @@ pub fn simulate(
         let mut f = |time: f64, x: &DVector<f64>, dx: &mut DVector<f64>| {
             layout.unpack(x, &mut scratch)?;
             let controls = inputs.controls(trim, time);
+            vehicle.set_time(time);
             vehicle.derivative(&scratch, &controls, &mut derivative)?;
             layout.pack_derivative(x, &derivative, dx)?;
             Ok::<(), VehicleError>(())

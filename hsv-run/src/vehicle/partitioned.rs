@@ -159,6 +159,10 @@ struct Surface {
     planform: LiftingSurfaceConfig,
     side: Side,
     pivot_m: Point3<f64>,
+    /// The base mesh rotated rigidly by the elevon (what a model with memory evaluates on).
+    rigid: PanelMesh,
+    /// The modal history of an aero model with memory: simulation state of this region.
+    history: Option<hsv_core::aero::ModalHistory>,
     velocities: Vec<Vector3<f64>>,
     solution: AeroSolution,
     generalized: Vec<f64>,
@@ -183,6 +187,8 @@ pub struct PartitionedVehicle {
     previous_step: Vec<DVector<f64>>,
     report: CouplingReport,
     warm_start: Option<VehicleState>,
+    /// Simulation time of the next derivative, s (for models with memory).
+    time_s: f64,
     /// Aero loads of the body panels, and with the surfaces' applied loads, about the CG.
     aero_loads: Loads,
     aero_with_surfaces: Loads,
@@ -278,8 +284,17 @@ impl PartitionedVehicle {
                         .map(|r| r.root_reference_m())
                         .ok_or_else(|| assembly_error(&name, "root loads".into()))?;
                     let n = shapes.n_modes();
+                    let mut aero = aero;
+                    let history = match aero.modal_history() {
+                        Some(rom) => {
+                            Some(rom.initial_history(0.0, &DVector::zeros(n)).map_err(err)?)
+                        }
+                        None => None,
+                    };
                     surfaces.push(Surface {
                         name: name.clone(),
+                        rigid: set.info.mesh.clone(),
+                        history,
                         velocities: vec![Vector3::zeros(); set.info.mesh.panels.len()],
                         deformed: set.info.mesh.clone(),
                         deflected: set.info.mesh.clone(),
@@ -345,6 +360,7 @@ impl PartitionedVehicle {
             loads,
             report: CouplingReport::default(),
             warm_start: None,
+            time_s: 0.0,
             aero_loads: Loads::default(),
             aero_with_surfaces: Loads::default(),
             body_mode_names: body_modal_names,
@@ -358,6 +374,28 @@ impl PartitionedVehicle {
 
     pub fn mass_properties(&self) -> &MassProperties {
         &self.mass
+    }
+
+    /// Sets the time the next derivatives are evaluated at (models with memory read their
+    /// history up to it).
+    pub fn set_time(&mut self, time_s: f64) {
+        self.time_s = time_s;
+    }
+
+    /// Commits an accepted step ending at `time_s` with `state` into the surfaces' modal
+    /// histories (aero models with memory; nothing for the others).
+    pub fn commit_step(&mut self, state: &VehicleState, time_s: f64) -> Result<(), VehicleError> {
+        let flight = self.flight(state)?;
+        for (i, s) in self.surfaces.iter_mut().enumerate() {
+            if let (Some(rom), Some(history)) = (s.aero.modal_history(), s.history.as_mut()) {
+                let dt = time_s - history.time_s;
+                let modes = &state.surface_modes[i];
+                rom.commit(history, &flight, dt, &modes.q, &modes.q_dot)
+                    .map_err(model_error(&s.name))?;
+            }
+        }
+        self.time_s = time_s;
+        Ok(())
     }
 
     /// The last derivative's coupling iterations and residual.
@@ -479,13 +517,36 @@ impl PartitionedVehicle {
             let motion = PanelMotion {
                 elastic_velocity_m_s: Some(&s.velocities),
             };
-            s.aero
-                .evaluate(&s.deflected, flight, &motion, &mut s.solution)
-                .map_err(&err)?;
-            // The modes turn with the surface, so A n·φ is that of the reference geometry.
-            s.projection
-                .generalized_forces(&s.solution.pressure_pa, p_inf, &mut s.generalized)
-                .map_err(|e| err(ModelError::inconsistent("coupling", e.to_string())))?;
+            let dt_since_commit = self.time_s - s.history.as_ref().map_or(0.0, |h| h.time_s);
+            match (s.aero.modal_history(), s.history.as_ref()) {
+                // A model with memory (convolution ROM): generalized forces from the modal
+                // history on the rigidly deflected mesh.
+                (Some(rom), Some(history)) => {
+                    deflect_lifting_surface(&s.base, &s.planform, s.side, deflection, &mut s.rigid)
+                        .map_err(|e| err(ModelError::inconsistent("elevon", e.to_string())))?;
+                    rom.evaluate_modal(
+                        &s.rigid,
+                        flight,
+                        history,
+                        dt_since_commit.max(0.0),
+                        &modes.q,
+                        &modes.q_dot,
+                        &mut s.generalized,
+                        Some(&mut s.solution),
+                    )
+                    .map_err(&err)?;
+                }
+                _ => {
+                    s.aero
+                        .evaluate(&s.deflected, flight, &motion, &mut s.solution)
+                        .map_err(&err)?;
+                    // The modes turn with the surface, so A n·φ is that of the reference
+                    // geometry.
+                    s.projection
+                        .generalized_forces(&s.solution.pressure_pa, p_inf, &mut s.generalized)
+                        .map_err(|e| err(ModelError::inconsistent("coupling", e.to_string())))?;
+                }
+            }
             let thermal = s
                 .structure
                 .thermal_stiffness()

@@ -66,6 +66,9 @@ pub struct RegionModels {
     pub conduction: Option<String>,
     pub structure: Option<String>,
     pub propulsion: Option<String>,
+    /// Skin friction on the region's panels in trim and simulation (default: on), from the
+    /// wall shear of its heat-flux model (`eckert` when it names none).
+    pub skin_friction: Option<bool>,
     /// `[regions.<region>.models.<name>]`: keys that override `[models.<name>]` in this region.
     #[serde(default, skip_serializing_if = "BTreeMap::is_empty")]
     pub models: BTreeMap<String, toml::Table>,
@@ -85,6 +88,7 @@ impl RegionModels {
             conduction: pick(&self.conduction, &over.conduction),
             structure: pick(&self.structure, &over.structure),
             propulsion: pick(&self.propulsion, &over.propulsion),
+            skin_friction: over.skin_friction.or(self.skin_friction),
             models,
         }
     }

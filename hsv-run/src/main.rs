@@ -8,7 +8,7 @@ use anyhow::Result;
 use clap::{Parser, Subcommand};
 use hsv_run::commands::{
     self, ConfigArg, JsonFlag, aero::AeroArgs, engine::EngineArgs, flutter::FlutterArgs,
-    heat::HeatArgs, modes::ModesArgs, simulate::SimulateArgs, trim::TrimArgs, vehicle::VehicleArgs,
+    heat::HeatArgs, modes::ModesArgs, linearize::LinearizeArgs, simulate::SimulateArgs, trim::TrimArgs, vehicle::VehicleArgs,
 };
 use hsv_run::output;
 
@@ -63,6 +63,8 @@ enum Command {
     Engine(EngineArgs),
     /// The assembled vehicle: regions, models, mass, centre of mass, inertia, modal frequencies.
     Vehicle(VehicleArgs),
+    /// Linear model (A, B, C, D) of the trimmed flexible vehicle and its named modes.
+    Linearize(LinearizeArgs),
     /// Fly the partitioned flexible vehicle from trim under the control inputs (default: the
     /// paper's elevon doublet).
     Simulate(SimulateArgs),
@@ -153,6 +155,7 @@ fn run(cli: Cli) -> Result<()> {
         Command::Trim(args) => commands::trim::run(args, &registry),
         Command::Flutter(args) => commands::flutter::run(args, &registry),
         Command::Simulate(args) => commands::simulate::run(args, &registry),
+        Command::Linearize(args) => commands::linearize::run(args, &registry),
         Command::Vehicle(args) => commands::vehicle::run(args, &registry),
     }
 }

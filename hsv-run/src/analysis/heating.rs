@@ -208,6 +208,11 @@ impl SurfaceHeating {
         &self.wall_k
     }
 
+    /// Where the one aero evaluation of the edge states left its model's range (counts).
+    pub fn aero_diagnostics(&self) -> &hsv_core::aero::AeroDiagnostics {
+        &self.edge.diagnostics
+    }
+
     /// The heat flux of the latest update, W/m² per panel.
     pub fn heat_flux_w_m2(&self) -> &[f64] {
         &self.heat_flux_w_m2

@@ -2,5 +2,6 @@
 
 pub mod flutter;
 pub mod heating;
+pub mod linearize;
 pub mod simulate;
 pub mod trim;

@@ -10,7 +10,7 @@ use clap::Args;
 use hsv_core::config::LoadedConfig;
 use hsv_core::flow::{FlightCondition, Freestream};
 use hsv_core::mesh::PanelMesh;
-use hsv_core::propulsion::{EngineInputs, PropulsionModel, PropulsionSolution};
+use hsv_core::propulsion::{EngineInputs, EngineStatus, PropulsionModel, PropulsionSolution};
 use hsv_core::registry::{ModelContext, Registry, Role};
 use hsv_core::vehicle::build_vehicle;
 
@@ -233,21 +233,35 @@ impl Setup<'_> {
     }
 
     /// Thrust at each point of a sweep; NaN where the model reports an error (skipped in plots).
+    /// Thrust, N, and engine status at each (α deg, φ) point (NaN where the model fails).
     fn thrust_sweep(
         &self,
         model: &mut dyn PropulsionModel,
         points: impl Iterator<Item = (f64, f64)>,
-    ) -> Vec<f64> {
+    ) -> Sweep {
         let mut out = PropulsionSolution::default();
-        points
-            .map(
-                |(alpha_deg, phi)| match self.evaluate(model, alpha_deg, phi, &mut out) {
-                    Ok(()) => out.loads.force_n.x,
-                    Err(_) => f64::NAN,
-                },
-            )
-            .collect()
+        let mut sweep = Sweep::default();
+        for (alpha_deg, phi) in points {
+            match self.evaluate(model, alpha_deg, phi, &mut out) {
+                Ok(()) => {
+                    sweep.thrust_n.push(out.loads.force_n.x);
+                    sweep.status.push(out.status);
+                }
+                Err(_) => {
+                    sweep.thrust_n.push(f64::NAN);
+                    sweep.status.push(EngineStatus::Ok);
+                }
+            }
+        }
+        sweep
     }
+}
+
+/// One model's thrust sweep with the engine status of each point.
+#[derive(Debug, Clone, Default)]
+struct Sweep {
+    thrust_n: Vec<f64>,
+    status: Vec<EngineStatus>,
 }
 
 fn status_name(solution: &PropulsionSolution) -> String {
@@ -329,11 +343,11 @@ fn write_sweeps(
         by_alpha.push(setup.thrust_sweep(model.as_mut(), alphas.iter().map(|&a| (a, phi))));
     }
     let headers: Vec<String> = models.iter().map(|m| format!("{m}_thrust_n")).collect();
-    let mut write = |file: &str, x_header: &str, x: &[f64], ys: &[Vec<f64>]| -> Result<()> {
+    let mut write = |file: &str, x_header: &str, x: &[f64], ys: &[Sweep]| -> Result<()> {
         let mut h: Vec<&str> = vec![x_header];
         h.extend(headers.iter().map(String::as_str));
         let mut columns: Vec<&[f64]> = vec![x];
-        columns.extend(ys.iter().map(Vec::as_slice));
+        columns.extend(ys.iter().map(|s| s.thrust_n.as_slice()));
         let path = run.join(file);
         output::write_csv(&path, &h, &columns)?;
         run.record(path);
@@ -342,39 +356,83 @@ fn write_sweeps(
     write("thrust_vs_phi.csv", "phi", &phis, &by_phi)?;
     write("thrust_vs_alpha.csv", "alpha_deg", &alphas, &by_alpha)?;
     let kn = |v: &[f64]| v.iter().map(|t| t / 1e3).collect::<Vec<_>>();
-    let series = |x: &[f64], ys: &[Vec<f64>]| -> Vec<Series> {
-        models
-            .iter()
-            .zip(ys)
-            .map(|(m, y)| Series {
+    // One line per model (its own colour and dash), and the points where that model's engine
+    // chokes thermally or unstarts marked with circles of the same colour.
+    let series = |x: &[f64], ys: &[Sweep]| -> (Vec<Series>, Vec<output::LineStyle>) {
+        let mut series = Vec::new();
+        let mut styles = Vec::new();
+        for (k, (m, sweep)) in models.iter().zip(ys).enumerate() {
+            series.push(Series {
                 label: m.clone(),
                 x: x.to_vec(),
-                y: kn(y),
-            })
-            .collect()
+                y: kn(&sweep.thrust_n),
+            });
+            styles.push(output::LineStyle {
+                colour: k,
+                dash: output::Dash::nth(k),
+                markers_only: false,
+            });
+            for (status, what) in [
+                (EngineStatus::ThermalChoking, "thermally choked"),
+                (EngineStatus::Unstart, "unstarted"),
+            ] {
+                let (cx, cy): (Vec<f64>, Vec<f64>) = x
+                    .iter()
+                    .zip(&sweep.thrust_n)
+                    .zip(&sweep.status)
+                    .filter(|(_, s)| **s == status)
+                    .map(|((&x, &t), _)| (x, t / 1e3))
+                    .unzip();
+                if !cx.is_empty() {
+                    series.push(Series {
+                        label: format!("{m} {what}"),
+                        x: cx,
+                        y: cy,
+                    });
+                    styles.push(output::LineStyle {
+                        colour: k,
+                        dash: output::Dash::Solid,
+                        markers_only: true,
+                    });
+                }
+            }
+        }
+        (series, styles)
     };
+    let (phi_series, phi_styles) = series(&phis, &by_phi);
+    let (alpha_series, alpha_styles) = series(&alphas, &by_alpha);
+    let temperature_k = setup
+        .flight(alpha_deg)
+        .map(|f| f.freestream.temperature_k)
+        .unwrap_or(f64::NAN);
     let plots = [
-        LinePlot {
-            title: format!(
-                "Thrust vs fuel equivalence ratio (Mach {}, {} m, alpha {alpha_deg} deg)",
-                setup.mach, setup.altitude_m
-            ),
-            x_label: "fuel equivalence ratio phi".to_owned(),
-            y_label: "thrust (body x) [kN]".to_owned(),
-            series: series(&phis, &by_phi),
+        output::StyledPlot {
+            plot: LinePlot {
+                title: format!(
+                    "Thrust vs phi: Mach {}, {} m (T {temperature_k:.0} K), alpha {alpha_deg} deg",
+                    setup.mach, setup.altitude_m
+                ),
+                x_label: "fuel equivalence ratio phi".to_owned(),
+                y_label: "thrust (body x) [kN]".to_owned(),
+                series: phi_series,
+            },
+            styles: phi_styles,
         },
-        LinePlot {
-            title: format!(
-                "Thrust vs angle of attack (Mach {}, {} m, phi {phi})",
-                setup.mach, setup.altitude_m
-            ),
-            x_label: "angle of attack [deg]".to_owned(),
-            y_label: "thrust (body x) [kN]".to_owned(),
-            series: series(&alphas, &by_alpha),
+        output::StyledPlot {
+            plot: LinePlot {
+                title: format!(
+                    "Thrust vs alpha: Mach {}, {} m (T {temperature_k:.0} K), phi {phi}",
+                    setup.mach, setup.altitude_m
+                ),
+                x_label: "angle of attack [deg]".to_owned(),
+                y_label: "thrust (body x) [kN]".to_owned(),
+                series: alpha_series,
+            },
+            styles: alpha_styles,
         },
     ];
     let path = run.join("thrust_vs_phi_alpha.png");
-    output::write_line_plots_png(&path, &plots, 2, (1400, 560))?;
+    output::write_styled_plots_png(&path, &plots, 2, (1600, 560))?;
     run.record(path.clone());
     Ok(path)
 }

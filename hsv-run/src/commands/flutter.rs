@@ -327,9 +327,13 @@ fn print_table(setup: &FlutterSetup, map: &FlutterMap, folder: &Path) -> Result<
                 max_real_per_s,
                 at_mach,
                 least_damping_ratio,
+                limited_by,
             } => format!(
-                "{:>12}  no flutter in the range (largest real part {max_real_per_s:.4} /s at Mach {at_mach}, least damping ratio {least_damping_ratio:.4})",
-                "-"
+                "{:>12}  no flutter in the range (largest real part {max_real_per_s:.4} /s at Mach {at_mach}, least damping ratio {least_damping_ratio:.4}){}",
+                "-",
+                limited_by
+                    .as_ref()
+                    .map_or_else(String::new, |l| format!("; analysable only below {l}"))
             ),
             FlutterBoundary::FluttersEverywhere {
                 lowest_mach,

@@ -14,7 +14,7 @@
 //! temperature closely but the sharp leading edge's peak less well (Mach 6, 26 km, 20 s from
 //! Mach 5 and 7 snapshots: 43 K low at a 533 K peak; from Mach 4, 5, 7, 8: 14 K).
 
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 
 use anyhow::{Context, Result, bail};
 use clap::Args;
@@ -22,13 +22,15 @@ use hsv_core::config::LoadedConfig;
 use hsv_core::coupling::GridTransfer;
 use hsv_core::flow::{FlightCondition, Freestream};
 use hsv_core::region::RegionInfo;
-use hsv_core::registry::{ModelContext, Registry};
+use hsv_core::registry::{ModelContext, Registry, Role};
 use hsv_core::structure::StructureModel;
 use hsv_core::thermal::ConductionModel;
 
-use super::{ConfigArg, JsonFlag, load_config};
+use super::steps::{StepPlan, time_steps};
+use super::{ConfigArg, JsonFlag, OutArgs, load_config};
 use crate::analysis::heating::{HeatingModels, HeatingSteps, SurfaceHeating};
-use crate::output::{self, LinePlot, Series};
+use crate::outln;
+use crate::output::{self, LinePlot, RunFolder, RunStatus, Series};
 use crate::progress::Progress;
 use crate::vehicle::Region;
 
@@ -79,9 +81,8 @@ pub struct HeatArgs {
         allow_negative_numbers = true
     )]
     pub initial_k: f64,
-    /// Run folder (default: runs/heat-<UTC time>).
-    #[arg(long, value_name = "DIR")]
-    pub out: Option<PathBuf>,
+    #[command(flatten)]
+    pub output: OutArgs,
     #[command(flatten)]
     pub json: JsonFlag,
 }
@@ -199,12 +200,10 @@ fn run_model(
     s: &Setup,
     registry: &Registry,
     args: &HeatArgs,
+    plan: &Plan,
     samples: usize,
 ) -> Result<(History, SurfaceHeating)> {
-    let steps = (args.duration_s / args.dt_s).round().max(1.0) as usize;
-    let flux_every = args
-        .flux_interval_s
-        .map_or(1, |f| ((f / args.dt_s).round() as usize).max(1));
+    let steps = plan.steps.steps;
     let mut heating = SurfaceHeating::new(
         s.region.clone(),
         registry,
@@ -215,8 +214,8 @@ fn run_model(
         },
         s.flight,
         HeatingSteps {
-            dt_s: args.dt_s,
-            flux_every,
+            dt_s: plan.steps.dt_s,
+            flux_every: plan.flux_every,
             initial_k: args.initial_k,
         },
     )?;
@@ -243,7 +242,7 @@ fn run_model(
             let q = heating.heat_flux_w_m2().to_vec();
             history.surface_frames.push((heating.time_s(), wall, q));
         }
-        if let Err(e) = heating.advance(args.dt_s) {
+        if let Err(e) = heating.advance(plan.steps.dt_of(k)) {
             // Keep the last good state: what was computed so far stays in the outputs.
             history.stopped = Some(e.to_string());
             break;
@@ -278,92 +277,173 @@ fn record(heating: &mut SurfaceHeating, h: &mut History) {
     h.final_node_temperatures_k.extend_from_slice(nodes);
 }
 
+/// The step plan of a run: the conduction steps (the last one shortened when the duration is
+/// not a whole number of them) and the conduction steps between heat-flux updates.
+#[derive(Debug, Clone, Copy)]
+struct Plan {
+    steps: StepPlan,
+    flux_every: usize,
+}
+
+/// The run's steps by the shared rule ([`time_steps`]); a heat-flux interval must be a whole
+/// number of conduction steps, so the flux is never silently updated at another rate.
+fn step_plan(args: &HeatArgs) -> Result<Plan> {
+    let steps = time_steps(args.duration_s, args.dt_s).map_err(|e| {
+        anyhow::anyhow!(
+            "--duration-s {} at --dt-s {}: {e}",
+            args.duration_s,
+            args.dt_s
+        )
+    })?;
+    let flux_every = match args.flux_interval_s {
+        None => 1,
+        Some(interval) => {
+            check_positive("--flux-interval-s", interval)?;
+            let per_update = time_steps(interval, steps.dt_s)
+                .map_err(|e| anyhow::anyhow!("--flux-interval-s {interval}: {e}"))?;
+            if per_update.last_step_shortened() {
+                bail!(
+                    "--flux-interval-s {interval} is not a whole number of conduction steps of \
+                     --dt-s {} s; give a multiple of it",
+                    steps.dt_s
+                );
+            }
+            per_update.steps
+        }
+    };
+    Ok(Plan { steps, flux_every })
+}
+
+/// Checks that `name` is a registered model of `role` (what `flag` names), so a typo fails
+/// before the run folder is created.
+fn check_model(registry: &Registry, flag: &str, name: &str, role: Role) -> Result<()> {
+    let entry = registry
+        .get(name)
+        .map_err(|e| anyhow::anyhow!("{flag} {name}: {e}"))?;
+    if entry.role() != role {
+        bail!(
+            "{flag} {name}: `{name}` is a {} model, not a {role} model (known: {})",
+            entry.role(),
+            registry.names(role).join(", ")
+        );
+    }
+    Ok(())
+}
+
+/// The POD basis file of the run's `pod` settings, as the model resolves it.
+fn pod_basis_path(s: &Setup) -> Result<PathBuf> {
+    let table = s.region.model_settings("pod").table;
+    let settings: hsv_model_conduction::PodSettings = toml::Value::Table(table)
+        .try_into()
+        .context("[models.pod]")?;
+    Ok(settings.basis_path(&s.region.name))
+}
+
 /// Runs the heating job and writes the run folder.
 pub fn run(args: HeatArgs, registry: &Registry) -> Result<()> {
     let (loaded, registry) = load_config(args.config.config.as_deref(), registry)?;
     let registry = &registry;
+    // Every input is checked before the run folder exists: a refused run leaves nothing.
     let mach = args.mach.unwrap_or(loaded.config.flight.mach);
     check_positive("--mach", mach)?;
     check_positive("--duration-s", args.duration_s)?;
     check_positive("--dt-s", args.dt_s)?;
     check_positive("--initial-k", args.initial_k)?;
-    if let Some(f) = args.flux_interval_s {
-        check_positive("--flux-interval-s", f)?;
-    }
+    let plan = step_plan(&args)?;
     let models = if args.models.is_empty() {
         vec!["full-order".to_owned(), "pod".to_owned()]
     } else {
         args.models.clone()
     };
     let mut s = setup(&loaded, &args, mach)?;
-    let folder = output::run_folder("heat", args.out.as_deref())?;
+    for name in &models {
+        check_model(registry, "--model", name, Role::Conduction)?;
+    }
+    check_model(registry, "--heat-flux", &s.heat_flux, Role::HeatFlux)?;
+    check_model(registry, "--aero", &s.aero, Role::Aero)?;
+    if models.iter().any(|m| m == "pod") {
+        train_pod_for_run(&mut s, &args, mach)?;
+    }
+    let mut run = RunFolder::create("heat", args.output.out.as_deref(), args.output.force)?;
     let mut notes = Vec::new();
     let mut histories = Vec::new();
     let mut transfers = Vec::new();
+    let mut warnings = Vec::new();
+    let partial = |histories: &[History], notes: &[String], warnings: &[String]| {
+        summary_json(&args, &s, mach, histories, notes, warnings)
+    };
     for name in &models {
-        if name == "pod" {
-            train_pod_for_run(&mut s, &args, mach)?;
-            let basis = s
-                .region
-                .model_settings("pod")
-                .table
-                .get("basis_file")
-                .and_then(|v| v.as_str().map(str::to_owned))
-                .unwrap_or_else(|| "pod-basis.json".to_owned());
+        let basis = if name == "pod" {
+            let basis = pod_basis_path(&s)?;
             let before = std::fs::metadata(&basis).and_then(|m| m.modified()).ok();
             if before.is_none() {
-                eprintln!("heat: training the POD basis {basis} from full-order runs (once)");
+                eprintln!(
+                    "heat: training the POD basis {} from full-order runs (once)",
+                    basis.display()
+                );
             }
-            let (history, heating) = run_model(name, &s, registry, &args, 200)?;
+            Some((basis, before))
+        } else {
+            None
+        };
+        let (history, heating) = run.run(
+            |_| run_model(name, &s, registry, &args, &plan, 200),
+            || partial(&histories, &notes, &warnings),
+        )?;
+        if let Some((basis, before)) = basis {
             let after = std::fs::metadata(&basis).and_then(|m| m.modified()).ok();
             notes.push(if before.is_some() && before == after {
-                format!("POD basis {basis}: reused (built from these conditions)")
+                format!(
+                    "POD basis {}: reused (built from these conditions)",
+                    basis.display()
+                )
             } else {
-                format!("POD basis {basis}: trained from full-order runs at this run's conditions")
+                format!(
+                    "POD basis {}: trained from full-order runs at this run's conditions",
+                    basis.display()
+                )
             });
-            transfers.push(structure_transfer(&s, registry, heating.conduction())?);
-            histories.push(history);
-            continue;
         }
-        let (history, heating) = run_model(name, &s, registry, &args, 200)?;
-        transfers.push(structure_transfer(&s, registry, heating.conduction())?);
+        for w in super::aero::validity_warnings(
+            &s.aero,
+            &s.flight,
+            heating.aero_diagnostics(),
+        ) {
+            let w = format!("{name}: {w}");
+            if !warnings.contains(&w) {
+                warnings.push(w);
+            }
+        }
+        transfers.push(run.run(
+            |_| structure_transfer(&s, registry, heating.conduction()),
+            || partial(&histories, &notes, &warnings),
+        )?);
         histories.push(history);
     }
-    write_outputs(&folder, &s, &histories, &transfers)?;
+    for w in &warnings {
+        eprintln!("warning: {w}");
+    }
+    run.run(
+        |run| write_outputs(run, &s, &histories, &transfers),
+        || partial(&histories, &notes, &warnings),
+    )?;
+    let stopped: Vec<&str> = histories
+        .iter()
+        .filter_map(|h| h.stopped.as_deref())
+        .collect();
+    let status = if stopped.is_empty() {
+        RunStatus::Completed
+    } else {
+        RunStatus::Failed(stopped.join("; "))
+    };
+    let summary = run.write_summary(partial(&histories, &notes, &warnings), &status)?;
+    let folder = run.path.clone();
 
     if args.json.json {
-        let models: Vec<_> = histories
-            .iter()
-            .map(|h| {
-                serde_json::json!({
-                    "model": h.model,
-                    "states": h.states,
-                    "steps": h.steps,
-                    "conduction_wall_time_s": h.conduction_wall_time_s,
-                    "final_min_temperature_k": h.min_k.last(),
-                    "final_max_temperature_k": h.max_k.last(),
-                    "final_mean_temperature_k": h.mean_k.last(),
-                    "final_time_s": h.time_s.last(),
-                    "stopped": h.stopped,
-                })
-            })
-            .collect();
-        let summary = serde_json::json!({
-            "mach": mach,
-            "altitude_m": s.flight.freestream.altitude_m,
-            "alpha_deg": s.flight.alpha_rad.to_degrees(),
-            "duration_s": args.duration_s,
-            "dt_s": args.dt_s,
-            "heat_flux_model": s.heat_flux,
-            "initial_temperature_k": args.initial_k,
-            "run_folder": folder.display().to_string(),
-            "notes": notes,
-            "models": models,
-        });
-        println!("{}", serde_json::to_string_pretty(&summary)?);
+        outln!("{}", serde_json::to_string_pretty(&summary)?)?;
         return stopped_error(&histories, &folder);
     }
-    println!(
+    outln!(
         "lifting surface ({} panels) at Mach {mach}, {} m, alpha {:.2} deg for {} s (dt {} s), heat flux `{}`",
         s.region.mesh.panels.len(),
         s.flight.freestream.altitude_m,
@@ -371,16 +451,24 @@ pub fn run(args: HeatArgs, registry: &Registry) -> Result<()> {
         args.duration_s,
         args.dt_s,
         s.heat_flux
-    );
-    for note in &notes {
-        println!("{note}");
+    )?;
+    if plan.steps.last_step_shortened() {
+        outln!(
+            "{} steps, the last shortened to {} s to end at {} s",
+            plan.steps.steps,
+            plan.steps.last_dt_s,
+            plan.steps.duration_s
+        )?;
     }
-    println!(
+    for note in &notes {
+        outln!("{note}")?;
+    }
+    outln!(
         "{:<14} {:>7} {:>9} {:>12} {:>12} {:>12} {:>14}",
         "model", "states", "t (s)", "min T (K)", "max T (K)", "mean T (K)", "wall time (s)"
-    );
+    )?;
     for h in &histories {
-        println!(
+        outln!(
             "{:<14} {:>7} {:>9.2} {:>12.2} {:>12.2} {:>12.2} {:>14.3}",
             h.model,
             h.states,
@@ -389,18 +477,58 @@ pub fn run(args: HeatArgs, registry: &Registry) -> Result<()> {
             h.max_k.last().copied().unwrap_or(f64::NAN),
             h.mean_k.last().copied().unwrap_or(f64::NAN),
             h.conduction_wall_time_s
-        );
+        )?;
     }
-    println!("outputs in {}", folder.display());
-    println!(
+    outln!("outputs in {}", folder.display())?;
+    outln!(
         "final fields for `hsv-run modes --temperature-field`: {}",
         folder.join("temperature_field_<model>.csv").display()
-    );
+    )?;
     stopped_error(&histories, &folder)
 }
 
+/// The JSON summary of the run so far (keys name quantity and unit).
+fn summary_json(
+    args: &HeatArgs,
+    s: &Setup,
+    mach: f64,
+    histories: &[History],
+    notes: &[String],
+    warnings: &[String],
+) -> serde_json::Value {
+    let models: Vec<_> = histories
+        .iter()
+        .map(|h| {
+            serde_json::json!({
+                "model": h.model,
+                "states": h.states,
+                "steps": h.steps,
+                "conduction_wall_time_s": h.conduction_wall_time_s,
+                "final_min_temperature_k": h.min_k.last(),
+                "final_max_temperature_k": h.max_k.last(),
+                "final_mean_temperature_k": h.mean_k.last(),
+                "final_time_s": h.time_s.last(),
+                "stopped": h.stopped,
+            })
+        })
+        .collect();
+    serde_json::json!({
+        "mach": mach,
+        "altitude_m": s.flight.freestream.altitude_m,
+        "alpha_deg": s.flight.alpha_rad.to_degrees(),
+        "duration_s": args.duration_s,
+        "dt_s": args.dt_s,
+        "aero_model": s.aero,
+        "heat_flux_model": s.heat_flux,
+        "initial_temperature_k": args.initial_k,
+        "notes": notes,
+        "warnings": warnings,
+        "models": models,
+    })
+}
+
 /// An error naming every model that stopped early (outputs up to that time are written).
-fn stopped_error(histories: &[History], folder: &std::path::Path) -> Result<()> {
+fn stopped_error(histories: &[History], folder: &Path) -> Result<()> {
     let stopped: Vec<&str> = histories
         .iter()
         .filter_map(|h| h.stopped.as_deref())
@@ -467,11 +595,11 @@ fn structure_transfer(
 /// `hsv-run modes --temperature-field` reads: transferred from the conduction grid onto the
 /// structure's grid when both are known, else the conduction model's own nodes.
 fn write_temperature_field(
-    folder: &std::path::Path,
+    run: &mut RunFolder,
     h: &History,
     transfer: Option<&(GridTransfer, String)>,
 ) -> Result<()> {
-    let path = folder.join(format!("temperature_field_{}.csv", h.model));
+    let path = run.join(&format!("temperature_field_{}.csv", h.model));
     let (values, on) = match transfer {
         Some((transfer, on)) if transfer.n_source() == h.final_node_temperatures_k.len() => {
             let mut values = vec![0.0; transfer.n_target()];
@@ -492,21 +620,24 @@ fn write_temperature_field(
     for (node, t) in values.iter().enumerate() {
         text += &format!("{node},{t}\n");
     }
-    std::fs::write(&path, text)
-        .with_context(|| format!("cannot write the temperature field {}", path.display()))
+    output::write_file(&path, text)?;
+    run.record(path);
+    Ok(())
 }
 
-/// CSV history, temperature-range PNG, VTK surface fields with a PVD, final node field CSV.
+/// CSV history, temperature-range PNG, VTK surface fields with a PVD, final node field CSV,
+/// each recorded in the run folder.
 fn write_outputs(
-    folder: &std::path::Path,
+    run: &mut RunFolder,
     s: &Setup,
     histories: &[History],
     transfers: &[Option<(GridTransfer, String)>],
 ) -> Result<()> {
-    let mut plots = Vec::new();
+    let mut series = Vec::new();
     for (h, transfer) in histories.iter().zip(transfers) {
+        let csv = run.join(&format!("temperature_history_{}.csv", h.model));
         output::write_csv(
-            &folder.join(format!("temperature_history_{}.csv", h.model)),
+            &csv,
             &[
                 "time_s",
                 "min_temperature_k",
@@ -515,38 +646,59 @@ fn write_outputs(
             ],
             &[&h.time_s, &h.min_k, &h.max_k, &h.mean_k],
         )?;
-        let series = |label: &str, y: &[f64]| Series {
+        run.record(csv);
+        // Labels start with the model: one dash pattern per model, one colour per statistic
+        // (output::default_styles).
+        let line = |label: &str, y: &[f64]| Series {
             label: format!("{} {label}", h.model),
             x: h.time_s.clone(),
             y: y.to_vec(),
         };
-        plots.push(series("max", &h.max_k));
-        plots.push(series("mean", &h.mean_k));
-        plots.push(series("min", &h.min_k));
+        series.extend([
+            line("max", &h.max_k),
+            line("mean", &h.mean_k),
+            line("min", &h.min_k),
+        ]);
         let mut pvd = Vec::new();
         for (i, (t, wall, q)) in h.surface_frames.iter().enumerate() {
             let file = format!("surface_{}_{i:03}.vtk", h.model);
+            let path = run.join(&file);
             output::write_vtk_mesh(
-                &folder.join(&file),
+                &path,
                 &s.region.mesh,
                 &[],
                 &[("temperature_k", wall), ("heat_flux_w_m2", q)],
             )?;
+            run.record(path);
             pvd.push((*t, file));
         }
         let entries: Vec<(f64, &str)> = pvd.iter().map(|(t, f)| (*t, f.as_str())).collect();
-        output::write_pvd(&folder.join(format!("surface_{}.pvd", h.model)), &entries)?;
-        write_temperature_field(folder, h, transfer.as_ref())?;
+        let path = run.join(&format!("surface_{}.pvd", h.model));
+        output::write_pvd(&path, &entries)?;
+        run.record(path);
+        write_temperature_field(run, h, transfer.as_ref())?;
     }
+    let f = &s.flight.freestream;
+    let png = run.join("temperature_range.png");
     output::write_line_plots_png(
-        &folder.join("temperature_range.png"),
+        &png,
         &[LinePlot {
-            title: "Temperature range of the lifting surface structure".to_owned(),
+            title: format!(
+                "Lifting-surface structure temperature: M {:.2}, {:.0} m, alpha {:.1} deg; \
+                 {} on {}",
+                f.mach,
+                f.altitude_m,
+                s.flight.alpha_rad.to_degrees(),
+                s.heat_flux,
+                s.aero
+            ),
             x_label: "time in flow (s)".to_owned(),
             y_label: "temperature (K)".to_owned(),
-            series: plots,
+            series,
         }],
         1,
-        (1000, 650),
-    )
+        (1100, 650),
+    )?;
+    run.record(png);
+    Ok(())
 }

@@ -6,6 +6,7 @@ pub mod config;
 pub mod engine;
 pub mod flutter;
 pub mod heat;
+pub mod linearize;
 pub mod modes;
 pub mod simulate;
 pub mod steps;

@@ -458,7 +458,27 @@ fn write_vtk(folder: &Path, prefix: &str, s: &StructureModes) -> Result<Vec<Path
         shapes.deform(&s.mesh, &q, &mut deformed);
         let name = format!("{}.vtk", mode_stem(prefix, k, &row.name));
         let path = folder.join(&name);
-        output::write_vtk_mesh(&path, &deformed, &[("mode_shape", &vectors)], &[])?;
+        let title = format!(
+            "hsv {prefix} mode {} ({}) at {} Hz ({}): mesh displaced by {scale:.6e} x \
+             mode_shape (largest displacement {VTK_MAX_DISPLACEMENT_M} m)",
+            k + 1,
+            row.name,
+            row.frequency_hz,
+            s.model
+        );
+        output::write_vtk_mesh_described(
+            &path,
+            &title,
+            &[
+                ("mode_number", (k + 1) as f64),
+                ("frequency_hz", row.frequency_hz),
+                ("display_scale", scale),
+                ("largest_display_displacement_m", VTK_MAX_DISPLACEMENT_M),
+            ],
+            &deformed,
+            &[("mode_shape", &vectors)],
+            &[],
+        )?;
         entries.push(((k + 1) as f64, name));
         files.push(path);
     }
@@ -562,7 +582,13 @@ fn body_plots(s: &StructureModes) -> Vec<LinePlot> {
             ];
             normalize(&mut series, largest_displacement(shapes, k));
             LinePlot {
-                title: format!("{} ({:.3} Hz)", row.name, row.frequency_hz),
+                title: format!(
+                    "body ({}) mode {}: {} ({:.3} Hz)",
+                    s.model,
+                    k + 1,
+                    row.name,
+                    row.frequency_hz
+                ),
                 x_label: "x [m] (nose at 0)".into(),
                 y_label: "displacement / max |u|".into(),
                 series,
@@ -571,60 +597,49 @@ fn body_plots(s: &StructureModes) -> Vec<LinePlot> {
         .collect()
 }
 
-/// Surface shapes along the span: z displacement of the leading- and trailing-edge vertices.
-fn surface_plots(s: &StructureModes) -> Vec<LinePlot> {
+/// Every mode of a surface as a planform contour map of its z displacement (paper Fig. 5):
+/// the surface's upper-face panels (normal up, -z) seen from above, x forward, y spanwise,
+/// normalized by the mode's largest vertex displacement.
+fn surface_maps(s: &StructureModes) -> Vec<output::FieldMap> {
     let Some(shapes) = &s.shapes else {
         return Vec::new();
     };
-    let stations = stations(&s.mesh, 1);
-    let root_y = stations
+    // Upper face only: both faces carry nearly the same displacement, drawn once.
+    let upper: Vec<Vec<usize>> = s
+        .mesh
+        .panels
         .iter()
-        .map(|(y, _)| y.abs())
-        .fold(f64::INFINITY, f64::min);
+        .filter(|p| p.normal.z < -0.5)
+        .map(|p| p.vertex_indices().to_vec())
+        .collect();
+    let cells = if upper.is_empty() {
+        s.mesh
+            .panels
+            .iter()
+            .map(|p| p.vertex_indices().to_vec())
+            .collect()
+    } else {
+        upper
+    };
+    let vertices: Vec<(f64, f64)> = s.mesh.vertices.iter().map(|v| (v.y, v.x)).collect();
     s.rows()
         .iter()
         .enumerate()
-        .take(PLOTTED_MODES.min(shapes.n_modes()))
+        .take(shapes.n_modes())
         .map(|(k, row)| {
             let col = shapes.vertex_displacement.column(k);
-            let (mut span, mut le, mut te) = (vec![], vec![], vec![]);
-            for (y, members) in &stations {
-                let by_x = |better: fn(f64, f64) -> bool| {
-                    members.iter().copied().fold(members[0], |best, i| {
-                        if better(s.mesh.vertices[i].x, s.mesh.vertices[best].x) {
-                            i
-                        } else {
-                            best
-                        }
-                    })
-                };
-                let lead = by_x(|a, b| a > b);
-                let trail = by_x(|a, b| a < b);
-                span.push(y.abs() - root_y);
-                le.push(col[3 * lead + 2]);
-                te.push(col[3 * trail + 2]);
-            }
-            let mut order: Vec<usize> = (0..span.len()).collect();
-            order.sort_by(|&a, &b| span[a].total_cmp(&span[b]));
-            let pick = |v: &[f64]| order.iter().map(|&i| v[i]).collect::<Vec<_>>();
-            let mut series = vec![
-                Series {
-                    label: "leading edge w".into(),
-                    x: pick(&span),
-                    y: pick(&le),
-                },
-                Series {
-                    label: "trailing edge w".into(),
-                    x: pick(&span),
-                    y: pick(&te),
-                },
-            ];
-            normalize(&mut series, largest_displacement(shapes, k));
-            LinePlot {
-                title: format!("{} ({:.2} Hz)", row.name, row.frequency_hz),
-                x_label: "distance from root [m]".into(),
-                y_label: "z displacement / max |u|".into(),
-                series,
+            let peak = largest_displacement(shapes, k);
+            let values = (0..s.mesh.vertices.len())
+                .map(|v| if peak > 0.0 { col[3 * v + 2] / peak } else { 0.0 })
+                .collect();
+            output::FieldMap {
+                title: format!("mode {}: {} ({:.2} Hz)", k + 1, row.name, row.frequency_hz),
+                x_label: "y [m] (spanwise)".into(),
+                y_label: "x [m] (nose at 0)".into(),
+                vertices: vertices.clone(),
+                values,
+                cells: cells.clone(),
+                value_label: "w/max|u|".into(),
             }
         })
         .collect()
@@ -655,14 +670,25 @@ pub fn write_outputs(report: &ModesReport, folder: &Path) -> Result<Vec<PathBuf>
         .iter()
         .find(|(side, _)| *side == Side::Right)
     {
-        let plots = surface_plots(s);
-        if !plots.is_empty() {
+        let title = format!(
+            "Right lifting surface modes ({}, structure at {}): z displacement / largest |u|, \
+             seen from above",
+            s.model,
+            report.temperature.describe()
+        );
+        let maps = surface_maps(s);
+        if !maps.is_empty() {
             let path = folder.join("surface-modes.png");
-            output::write_line_plots_png(
+            let columns = maps.len().min(4);
+            output::write_field_maps_png(
                 &path,
-                &plots,
-                plots.len().min(3),
-                (1500, 450 * plots.len().div_ceil(3) as u32),
+                &title,
+                &maps,
+                columns,
+                (
+                    440 * columns as u32,
+                    520 * maps.len().div_ceil(columns) as u32,
+                ),
             )?;
             files.push(path);
         }

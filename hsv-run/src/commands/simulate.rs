@@ -2,14 +2,14 @@
 //! the control inputs (default: the paper's elevon doublet), written to a run folder: CSV
 //! history with units in the header, JSON summary, PNG plots of the paper's Figs. 11-13.
 
-use std::path::PathBuf;
 use std::time::Instant;
 
 use anyhow::{Context, Result, bail};
 use clap::Args;
 use hsv_core::registry::Registry;
 
-use super::{ConfigArg, JsonFlag, load_config};
+use super::steps::time_steps;
+use super::{ConfigArg, JsonFlag, OutArgs, load_config};
 use crate::analysis::simulate::{Inputs, RunSettings, Sample, simulate};
 use crate::analysis::trim::{TrimRequest, trim};
 use crate::dynamics::GravityModel;
@@ -20,9 +20,6 @@ use crate::vehicle::assemble;
 use crate::vehicle::partitioned::{
     CouplingSettings, ElevonCommandData, FlightControls, PartitionedVehicle, partitioned_needs,
 };
-
-/// Steps above which a run is refused up front (a typo in `--dt-s`, not a simulation).
-const MAX_STEPS: f64 = 1e8;
 
 /// Arguments of `hsv-run simulate`.
 #[derive(Args, Debug, Clone)]
@@ -50,12 +47,8 @@ pub struct SimulateArgs {
     /// Steps between recorded samples.
     #[arg(long = "record-every", default_value_t = 5)]
     pub record_every: usize,
-    /// Run folder (default: runs/simulate-<UTC time>).
-    #[arg(long, value_name = "DIR")]
-    pub out: Option<PathBuf>,
-    /// Write into a non-empty --out folder.
-    #[arg(long)]
-    pub force: bool,
+    #[command(flatten)]
+    pub output: OutArgs,
     /// No progress bar.
     #[arg(long)]
     pub quiet: bool,
@@ -102,19 +95,10 @@ fn inputs(loaded: &hsv_core::config::LoadedConfig) -> Result<Inputs> {
 /// Trims, flies and writes the run folder.
 pub fn run(args: SimulateArgs, registry: &Registry) -> Result<()> {
     let (loaded, registry) = load_config(args.config.config.as_deref(), registry)?;
-    for (flag, v) in [("--duration-s", args.duration_s), ("--dt-s", args.dt_s)] {
-        if !(v.is_finite() && v > 0.0) {
-            bail!("{flag} must be a positive number, got {v}");
-        }
-    }
-    let steps = args.duration_s / args.dt_s;
-    if steps > MAX_STEPS {
-        bail!(
-            "--duration-s {} with --dt-s {} is {steps:.3e} steps, more than {MAX_STEPS:e}",
-            args.duration_s,
-            args.dt_s
-        );
-    }
+    // Refused up front: a non-positive step or an absurd number of steps.
+    let plan = time_steps(args.duration_s, args.dt_s).map_err(|e| {
+        anyhow::anyhow!("--duration-s {} with --dt-s {}: {e}", args.duration_s, args.dt_s)
+    })?;
     let inputs = inputs(&loaded)?;
     let mach = loaded.config.flight.mach;
     let altitude_m = loaded.config.flight.altitude_m;
@@ -144,13 +128,13 @@ pub fn run(args: SimulateArgs, registry: &Registry) -> Result<()> {
     };
     let (mut state, _) =
         vehicle.level_flight_state(mach, altitude_m, t.alpha_deg.to_radians(), &trim_controls)?;
-    let mut folder = RunFolder::create("simulate", args.out.as_deref(), args.force)?;
+    let mut folder = RunFolder::create("simulate", args.output.out.as_deref(), args.output.force)?;
     let settings = RunSettings {
         dt_s: args.dt_s,
         duration_s: args.duration_s,
         record_every: args.record_every.max(1),
     };
-    let n_steps = steps.round() as usize;
+    let n_steps = plan.steps;
     let mut samples: Vec<Sample> = Vec::with_capacity(n_steps / settings.record_every + 2);
     let mut body_modes: Vec<Vec<f64>> = Vec::with_capacity(samples.capacity());
     let mut progress = (!args.quiet).then(|| Progress::new("simulate", n_steps));

@@ -9,6 +9,7 @@ use hsv_core::registry::Registry;
 use super::{ConfigArg, JsonFlag, load_config};
 use crate::analysis::trim::{TrimRequest, TrimResult, trim};
 use crate::dynamics::GravityModel;
+use crate::outln;
 use crate::vehicle::assemble;
 use crate::vehicle::partitioned::{CouplingSettings, PartitionedVehicle, partitioned_needs};
 use crate::vehicle::rigid::{RigidVehicle, rigid_needs};
@@ -67,12 +68,12 @@ pub fn run(args: TrimArgs, registry: &Registry) -> Result<()> {
     };
     let model = if args.flexible { "flexible" } else { "rigid" };
     if args.json.json {
-        println!(
+        outln!(
             "{}",
             serde_json::to_string_pretty(&summary(&result, model))?
-        );
+        )?;
     } else {
-        print_table(&result, model);
+        print_table(&result, model)?;
     }
     Ok(())
 }
@@ -107,33 +108,33 @@ fn summary(r: &TrimResult, model: &str) -> serde_json::Value {
     })
 }
 
-fn print_table(r: &TrimResult, model: &str) {
+fn print_table(r: &TrimResult, model: &str) -> Result<()> {
     let t = &r.trim;
-    println!(
+    outln!(
         "Steady level flight, {model} vehicle, Mach {}, {} m ({:.0} kg)",
         r.mach, r.altitude_m, r.mass_kg
-    );
-    println!(
+    )?;
+    outln!(
         "{:<8} {:<40} {:>14} {:>14}",
         "symbol", "description", "trim", "restart"
-    );
+    )?;
     let row = |symbol: &str, what: &str, a: f64, b: f64| {
-        println!("{symbol:<8} {what:<40} {a:>14.6} {b:>14.6}");
+        outln!("{symbol:<8} {what:<40} {a:>14.6} {b:>14.6}")
     };
     let e = &r.restart;
-    row("alpha", "angle of attack (deg)", t.alpha_deg, e.alpha_deg);
+    row("alpha", "angle of attack (deg)", t.alpha_deg, e.alpha_deg)?;
     row(
         "delta_e",
         "elevon deflection (deg)",
         t.elevon_deg,
         e.elevon_deg,
-    );
+    )?;
     row(
         "phi",
         "fuel equivalence ratio",
         t.fuel_equivalence_ratio,
         e.fuel_equivalence_ratio,
-    );
+    )?;
     for (k, ((name, a), (_, b))) in t
         .modal_amplitudes
         .iter()
@@ -145,34 +146,34 @@ fn print_table(r: &TrimResult, model: &str) {
             &format!("{name} amplitude"),
             *a,
             *b,
-        );
+        )?;
     }
-    row("T", "thrust (N)", t.loads.thrust_n, e.loads.thrust_n);
-    row("D", "drag (N)", t.loads.drag_n, e.loads.drag_n);
-    println!("minimized parameters");
+    row("T", "thrust (N)", t.loads.thrust_n, e.loads.thrust_n)?;
+    row("D", "drag (N)", t.loads.drag_n, e.loads.drag_n)?;
+    outln!("minimized parameters")?;
     let sci = |symbol: &str, what: &str, a: f64, b: f64| {
-        println!("{symbol:<8} {what:<40} {a:>14.3e} {b:>14.3e}");
+        outln!("{symbol:<8} {what:<40} {a:>14.3e} {b:>14.3e}")
     };
     sci(
         "u_dot",
         "forward acceleration (m/s^2)",
         t.accelerations.u_dot_m_s2,
         e.accelerations.u_dot_m_s2,
-    );
+    )?;
     sci(
         "w_dot",
         "vertical acceleration (m/s^2)",
         t.accelerations.w_dot_m_s2,
         e.accelerations.w_dot_m_s2,
-    );
+    )?;
     sci(
         "q_dot",
         "pitch angular acceleration (deg/s^2)",
         t.accelerations.q_dot_rad_s2.to_degrees(),
         e.accelerations.q_dot_rad_s2.to_degrees(),
-    );
-    sci("J", "cost u_dot^2 + w_dot^2 + q_dot^2 (SI)", t.cost, e.cost);
-    println!(
+    )?;
+    sci("J", "cost u_dot^2 + w_dot^2 + q_dot^2 (SI)", t.cost, e.cost)?;
+    outln!(
         "evaluations {} + {}, wall time {:.2} s; restart from a 10 % perturbation {}",
         t.evaluations,
         e.evaluations,
@@ -182,5 +183,6 @@ fn print_table(r: &TrimResult, model: &str) {
         } else {
             "does NOT agree within 1 % (both minima shown)"
         }
-    );
+    )?;
+    Ok(())
 }

@@ -8,6 +8,7 @@ use hsv_core::registry::Registry;
 use hsv_core::structure::MassProperties;
 
 use super::{ConfigArg, JsonFlag, load_config};
+use crate::outln;
 use crate::vehicle::assemble;
 use crate::vehicle::rigid::rigid_needs;
 
@@ -71,10 +72,10 @@ pub fn run(args: VehicleArgs, registry: &Registry) -> Result<()> {
             "vehicle_mass_properties": total,
             "reference": reference,
         });
-        println!("{}", serde_json::to_string_pretty(&summary)?);
+        outln!("{}", serde_json::to_string_pretty(&summary)?)?;
         return Ok(());
     }
-    println!("vehicle from {}", loaded.file);
+    outln!("vehicle from {}", loaded.file)?;
     for r in &regions {
         let m = &r.models;
         let names: Vec<String> = [
@@ -87,33 +88,33 @@ pub fn run(args: VehicleArgs, registry: &Registry) -> Result<()> {
         .iter()
         .filter_map(|(role, name)| name.as_ref().map(|n| format!("{role} = {n}")))
         .collect();
-        println!("\n[{}] {} panels; {}", r.region, r.panels, names.join(", "));
+        outln!("\n[{}] {} panels; {}", r.region, r.panels, names.join(", "))?;
         if let Some(mp) = &r.mass_properties {
-            print_mass("  ", mp);
+            print_mass("  ", mp)?;
         }
         for (name, f) in &r.natural_frequencies_hz {
-            println!("  {name:<28} {f:>10.3} Hz");
+            outln!("  {name:<28} {f:>10.3} Hz")?;
         }
     }
     if let Some(t) = &total {
-        println!("\nwhole vehicle (structures' masses summed):");
-        print_mass("  ", t);
+        outln!("\nwhole vehicle (structures' masses summed):")?;
+        print_mass("  ", t)?;
     }
-    println!(
+    outln!(
         "\nreference: area {} m^2, chord {} m, span {} m, moment point {:?} m",
         reference.area_m2, reference.chord_m, reference.span_m, reference.moment_point_m
-    );
+    )?;
     Ok(())
 }
 
-fn print_mass(indent: &str, m: &MassProperties) {
+fn print_mass(indent: &str, m: &MassProperties) -> Result<()> {
     let c = m.center_of_mass_m;
     let i = m.inertia_kg_m2;
-    println!(
+    outln!(
         "{indent}mass {:.1} kg, centre of mass ({:.3}, {:.3}, {:.3}) m",
         m.mass_kg, c.x, c.y, c.z
-    );
-    println!(
+    )?;
+    outln!(
         "{indent}inertia about it (kg m^2): Ixx {:.4e}, Iyy {:.4e}, Izz {:.4e}, Ixy {:.3e}, Ixz {:.3e}, Iyz {:.3e}",
         i[(0, 0)],
         i[(1, 1)],
@@ -121,5 +122,6 @@ fn print_mass(indent: &str, m: &MassProperties) {
         i[(0, 1)],
         i[(0, 2)],
         i[(1, 2)]
-    );
+    )?;
+    Ok(())
 }

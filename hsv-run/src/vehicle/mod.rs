@@ -5,6 +5,7 @@
 //! A [`Region`] owns its models and state and talks to other regions only through topics it
 //! declares at assembly ([`wire`] fails when a subscribed topic has no publisher).
 
+pub mod friction;
 pub mod partitioned;
 pub mod rigid;
 
@@ -50,6 +51,9 @@ pub enum AssemblyError {
 pub struct RegionNeeds {
     pub roles: Vec<Role>,
     pub structure: Vec<Capability>,
+    /// Skin friction on the region's panels (unless the config turns it off with
+    /// `skin_friction = false`): the wall shear of its heat-flux model, `eckert` if it has none.
+    pub friction: bool,
 }
 
 /// What an analysis needs of every region, by region name.
@@ -78,6 +82,7 @@ impl AnalysisNeeds {
                 Capability::MassProperties,
                 Capability::RigidBodyCoupling,
             ],
+            friction: true,
         };
         Self {
             analysis: analysis.to_owned(),
@@ -87,6 +92,7 @@ impl AnalysisNeeds {
                     RegionNeeds {
                         roles: vec![Role::Aero, Role::Structure],
                         structure: vec![Capability::MassProperties, Capability::RigidBodyCoupling],
+                        friction: true,
                     },
                 ),
                 ("left_surface", surface.clone()),
@@ -96,6 +102,7 @@ impl AnalysisNeeds {
                     RegionNeeds {
                         roles: vec![Role::Propulsion],
                         structure: Vec::new(),
+                        friction: false,
                     },
                 ),
             ],
@@ -113,6 +120,9 @@ pub struct RegionModelSet {
     pub conduction: Option<Box<dyn ConductionModel>>,
     pub structure: Option<Box<dyn StructureModel>>,
     pub propulsion: Option<Box<dyn PropulsionModel>>,
+    /// The heat-flux model whose wall shear gives the region's skin friction, when the analysis
+    /// asks for friction and the config does not turn it off.
+    pub friction: Option<Box<dyn HeatFluxModel>>,
 }
 
 /// Builds model `name` of role `M` for `region`, naming the region on failure.
@@ -186,6 +196,7 @@ pub fn assemble(
                 registry,
                 wanted(Role::Propulsion, &names.propulsion).as_deref(),
             )?,
+            friction: friction_model(&info, registry, &names, need)?,
             info,
             names,
         };
@@ -193,6 +204,34 @@ pub fn assemble(
         sets.push(set);
     }
     Ok(sets)
+}
+
+/// The skin-friction model of a region: its heat-flux model (or `eckert`), which must have a
+/// wall-shear law.
+fn friction_model(
+    info: &RegionInfo,
+    registry: &Registry,
+    names: &RegionModels,
+    need: &RegionNeeds,
+) -> Result<Option<Box<dyn HeatFluxModel>>, AssemblyError> {
+    if !need.friction || names.skin_friction == Some(false) {
+        return Ok(None);
+    }
+    let name = names.heat_flux.as_deref().unwrap_or("eckert");
+    let mut model: Option<Box<dyn HeatFluxModel>> = build(info, registry, Some(name))?;
+    if model.as_mut().is_some_and(|m| m.skin_friction().is_none()) {
+        return Err(AssemblyError::Model {
+            file: info.file.clone(),
+            region: info.name.clone(),
+            source: format!(
+                "heat-flux model `{name}` has no wall-shear law for skin friction; name one that \
+                 has (eckert) or set `regions.{}.skin_friction = false`",
+                info.name
+            )
+            .into(),
+        });
+    }
+    Ok(model)
 }
 
 /// Checks one region's models against what the analysis needs.

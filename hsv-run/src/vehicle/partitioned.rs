@@ -33,6 +33,7 @@ use hsv_core::structure::{Capability, MassProperties, StructureModel};
 use hsv_core::vehicle::{LiftingSurfaceConfig, Side};
 use nalgebra::{DVector, Point3, Vector3};
 
+use super::friction::RegionFriction;
 use super::{AnalysisNeeds, AssemblyError, RegionModelSet, RegionNeeds};
 use crate::dynamics::{
     GravityModel, RigidBody, SurfaceAttachment, VehicleDerivative, VehicleDynamics, VehicleLoads,
@@ -49,6 +50,7 @@ pub fn partitioned_needs(analysis: &str) -> AnalysisNeeds {
             Capability::MassProperties,
             Capability::RigidBodyCoupling,
         ],
+        friction: true,
     };
     AnalysisNeeds {
         analysis: analysis.to_owned(),
@@ -58,6 +60,7 @@ pub fn partitioned_needs(analysis: &str) -> AnalysisNeeds {
                 RegionNeeds {
                     roles: vec![Role::Aero, Role::Structure],
                     structure: vec![Capability::MassProperties],
+                    friction: true,
                 },
             ),
             ("left_surface", surface.clone()),
@@ -67,6 +70,7 @@ pub fn partitioned_needs(analysis: &str) -> AnalysisNeeds {
                 RegionNeeds {
                     roles: vec![Role::Propulsion],
                     structure: Vec::new(),
+                    friction: false,
                 },
             ),
         ],
@@ -137,6 +141,7 @@ pub enum VehicleError {
 }
 
 struct Body {
+    friction: Option<RegionFriction>,
     base: PanelMesh,
     mesh: PanelMesh,
     shapes: ModeShapes,
@@ -148,6 +153,8 @@ struct Body {
 }
 
 struct Surface {
+    friction: Option<RegionFriction>,
+    friction_about_pivot: Loads,
     name: String,
     base: PanelMesh,
     deformed: PanelMesh,
@@ -250,7 +257,9 @@ impl PartitionedVehicle {
                     let shapes = structure.mode_shapes_on(&set.info.mesh).map_err(err)?;
                     let n = shapes.n_modes();
                     body_modal = Some(structure.modal_model().clone());
+                    let n_panels = set.info.mesh.panels.len();
                     body = Some(Body {
+                        friction: set.friction.map(|m| RegionFriction::new(m, n_panels)),
                         velocities: vec![Vector3::zeros(); set.info.mesh.panels.len()],
                         mesh: set.info.mesh.clone(),
                         base: set.info.mesh,
@@ -291,7 +300,10 @@ impl PartitionedVehicle {
                         }
                         None => None,
                     };
+                    let n_panels = set.info.mesh.panels.len();
                     surfaces.push(Surface {
+                        friction: set.friction.map(|m| RegionFriction::new(m, n_panels)),
+                        friction_about_pivot: Loads::default(),
                         name: name.clone(),
                         rigid: set.info.mesh.clone(),
                         history,
@@ -443,7 +455,13 @@ impl PartitionedVehicle {
             .evaluate(&b.mesh, flight, &motion, &mut b.solution)
             .map_err(&body_err)?;
         let main_body = |r: RegionKind| r == RegionKind::MainBody;
-        let body_aero = integrate_pressure(&b.mesh, &b.solution.pressure_pa, p_inf, &cg, main_body);
+        let mut body_aero =
+            integrate_pressure(&b.mesh, &b.solution.pressure_pa, p_inf, &cg, main_body);
+        if let Some(f) = &mut b.friction {
+            body_aero = body_aero
+                + f.loads(&b.mesh, flight, &b.solution, &motion, &cg, main_body)
+                    .map_err(&body_err)?;
+        }
         generalized_forces(
             &b.mesh,
             &b.shapes,
@@ -547,6 +565,20 @@ impl PartitionedVehicle {
                         .map_err(|e| err(ModelError::inconsistent("coupling", e.to_string())))?;
                 }
             }
+            // Skin friction on the deflected surface, about the pivot (root loads need it).
+            s.friction_about_pivot = match &mut s.friction {
+                Some(f) => f
+                    .loads(
+                        &s.deflected,
+                        flight,
+                        &s.solution,
+                        &PanelMotion::default(),
+                        &s.pivot_m,
+                        |r| r == RegionKind::LiftingSurface,
+                    )
+                    .map_err(&err)?,
+                None => Loads::default(),
+            };
             let thermal = s
                 .structure
                 .thermal_stiffness()
@@ -590,7 +622,7 @@ impl PartitionedVehicle {
                 p_inf,
                 &s.pivot_m,
                 |r| r == RegionKind::LiftingSurface,
-            );
+            ) + s.friction_about_pivot;
             // Force summation works in the surface's own (undeflected) frame.
             let applied_surface = Loads {
                 force_n: rotation.inverse_transform_vector(&applied.force_n),

@@ -21,6 +21,7 @@ use hsv_core::structure::{Capability, MassProperties};
 use hsv_core::vehicle::{LiftingSurfaceConfig, Side};
 use nalgebra::{Point3, Vector3};
 
+use super::friction::RegionFriction;
 use super::{AnalysisNeeds, AssemblyError, RegionModelSet, RegionNeeds};
 use hsv_core::registry::Role;
 
@@ -30,6 +31,7 @@ pub fn rigid_needs(analysis: &str) -> AnalysisNeeds {
     let with_mass = |roles: Vec<Role>| RegionNeeds {
         roles,
         structure: vec![Capability::MassProperties],
+        friction: true,
     };
     AnalysisNeeds {
         analysis: analysis.to_owned(),
@@ -45,6 +47,7 @@ pub fn rigid_needs(analysis: &str) -> AnalysisNeeds {
                 RegionNeeds {
                     roles: vec![Role::Propulsion],
                     structure: Vec::new(),
+                    friction: false,
                 },
             ),
         ],
@@ -70,8 +73,10 @@ pub struct RigidLoads {
     pub engine: Loads,
     pub gravity: Loads,
     pub total: Loads,
-    /// Drag (along −V) of the aero loads, N.
+    /// Drag (along −V) of the aero loads, skin friction included, N.
     pub drag_n: f64,
+    /// The skin-friction part of the drag, N.
+    pub friction_drag_n: f64,
     /// Engine thrust (body x), N.
     pub thrust_n: f64,
     pub engine_status: EngineStatus,
@@ -95,6 +100,7 @@ impl Accelerations {
 
 /// One lifting surface: its undeflected mesh, planform, side and aero model.
 struct Surface {
+    friction: Option<RegionFriction>,
     mesh: PanelMesh,
     deflected: PanelMesh,
     planform: LiftingSurfaceConfig,
@@ -104,6 +110,7 @@ struct Surface {
 
 /// The whole vehicle as a rigid body (module docs).
 pub struct RigidVehicle {
+    body_friction: Option<RegionFriction>,
     body_mesh: PanelMesh,
     body_aero: Box<dyn AeroModel>,
     surfaces: Vec<Surface>,
@@ -127,6 +134,7 @@ impl RigidVehicle {
     /// The rigid vehicle from assembled regions (checked with [`rigid_needs`]).
     pub fn new(sets: Vec<RegionModelSet>) -> Result<Self, AssemblyError> {
         let mut body = None;
+        let mut body_friction = None;
         let mut engine = None;
         let mut surfaces = Vec::new();
         let mut mass: Option<MassProperties> = None;
@@ -145,6 +153,8 @@ impl RigidVehicle {
             match (&set.info.geometry, region.as_str()) {
                 (_, "main_body") => {
                     let aero = set.aero.ok_or_else(|| missing(&region, "an aero model"))?;
+                    let n = set.info.mesh.panels.len();
+                    body_friction = set.friction.map(|m| RegionFriction::new(m, n));
                     body = Some((set.info.mesh, aero));
                 }
                 (_, "propulsion") => {
@@ -155,7 +165,9 @@ impl RigidVehicle {
                 }
                 (RegionGeometry::LiftingSurface { planform, side }, _) => {
                     let aero = set.aero.ok_or_else(|| missing(&region, "an aero model"))?;
+                    let n = set.info.mesh.panels.len();
                     surfaces.push(Surface {
+                        friction: set.friction.map(|m| RegionFriction::new(m, n)),
                         deflected: set.info.mesh.clone(),
                         mesh: set.info.mesh,
                         planform: planform.clone(),
@@ -168,6 +180,7 @@ impl RigidVehicle {
         }
         let (body_mesh, body_aero) = body.ok_or_else(|| missing("main_body", "the region"))?;
         Ok(Self {
+            body_friction,
             body_mesh,
             body_aero,
             surfaces,
@@ -216,13 +229,25 @@ impl RigidVehicle {
             &PanelMotion::default(),
             &mut self.solution,
         )?;
-        let body_aero = integrate_pressure(
+        let mut body_aero = integrate_pressure(
             &self.body_mesh,
             &self.solution.pressure_pa,
             p_inf,
             &cg,
             |r| r == RegionKind::MainBody,
         );
+        let mut friction = Loads::default();
+        if let Some(f) = &mut self.body_friction {
+            friction = f.loads(
+                &self.body_mesh,
+                &flight,
+                &self.solution,
+                &PanelMotion::default(),
+                &cg,
+                |r| r == RegionKind::MainBody,
+            )?;
+            body_aero = body_aero + friction;
+        }
         let elevon = ElevonCommand {
             symmetric_rad: controls.elevon_rad,
             differential_rad: 0.0,
@@ -247,6 +272,18 @@ impl RigidVehicle {
                 + integrate_pressure(&s.deflected, &self.solution.pressure_pa, p_inf, &cg, |r| {
                     r == RegionKind::LiftingSurface
                 });
+            if let Some(f) = &mut s.friction {
+                let shear = f.loads(
+                    &s.deflected,
+                    &flight,
+                    &self.solution,
+                    &PanelMotion::default(),
+                    &cg,
+                    |r| r == RegionKind::LiftingSurface,
+                )?;
+                friction = friction + shear;
+                surface_aero = surface_aero + shear;
+            }
         }
         self.engine.evaluate(
             &EngineInputs {
@@ -291,6 +328,8 @@ impl RigidVehicle {
             }
         }
         Ok(RigidLoads {
+            friction_drag_n: frames::wind_axis_forces(&friction.force_n, controls.alpha_rad, 0.0)
+                .drag_n,
             body_aero,
             surface_aero,
             engine,

@@ -351,6 +351,7 @@ impl FullOrder {
             for (m, material) in self.materials.iter().enumerate() {
                 let v = self.grid.volume_m3[i * nm + m];
                 if v > 0.0 {
+                    let t = crate::clamp_round_off_k(material, t);
                     let cp = material.specific_heat_j_kg_k(t).map_err(material_error)?;
                     c += material.density_kg_m3 * cp * v;
                 }
@@ -369,8 +370,9 @@ impl FullOrder {
         }
         for e in &self.grid.elements {
             let mean = e.dofs.iter().map(|&d| self.iterate[d]).sum::<f64>() / 8.0;
-            let k = self.materials[e.material]
-                .conductivity_w_m_k(mean)
+            let material = &self.materials[e.material];
+            let k = material
+                .conductivity_w_m_k(crate::clamp_round_off_k(material, mean))
                 .map_err(material_error)?;
             for a in 0..8 {
                 for b in 0..=a {
@@ -469,7 +471,8 @@ impl ConductionModel for FullOrder {
 
     fn uniform_state(&self, temperature_k: f64) -> Result<DVector<f64>, ModelError> {
         for m in &self.materials {
-            m.thermal_at(temperature_k).map_err(material_error)?;
+            m.thermal_at(crate::clamp_round_off_k(m, temperature_k))
+                .map_err(material_error)?;
         }
         Ok(DVector::from_element(self.grid.n_dofs(), temperature_k))
     }

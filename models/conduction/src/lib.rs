@@ -19,6 +19,22 @@ pub use full_order::{FullOrder, Settings as FullOrderSettings};
 pub use pod::{Pod, PodBasis, Settings as PodSettings, collect_snapshots};
 pub use training::Training as PodTraining;
 
+/// How far below a material table's lowest temperature, K, a temperature is taken as round-off
+/// of the table's floor (a wall at 293 K computed as 292.99999 K) and clamped to it, in every
+/// conduction model alike; further below, the table lookup reports the range.
+pub const ROUND_OFF_BELOW_TABLE_K: f64 = 0.5;
+
+/// `temperature_k` lifted to the floor of `material`'s thermal table when it lies below it by
+/// at most [`ROUND_OFF_BELOW_TABLE_K`]; otherwise unchanged.
+pub fn clamp_round_off_k(material: &hsv_core::material::Material, temperature_k: f64) -> f64 {
+    let (floor, _) = material.temperature_range_k();
+    if temperature_k < floor && temperature_k >= floor - ROUND_OFF_BELOW_TABLE_K {
+        floor
+    } else {
+        temperature_k
+    }
+}
+
 /// The settings error for `key` under the model's table.
 fn settings_error(ctx: &ModelContext<'_>, key: &str, value: f64, allowed: &str) -> ModelError {
     ctx.settings_error(
@@ -72,7 +88,8 @@ pub fn full_order_for(ctx: &ModelContext<'_>) -> Result<FullOrder, ModelError> {
 fn construct_pod(ctx: &ModelContext<'_>) -> Result<Box<dyn ConductionModel>, ModelError> {
     let settings: PodSettings = ctx.parse_settings()?;
     let mut full = full_order_for(ctx)?;
-    let path = std::path::Path::new(&settings.basis_file);
+    let path_buf = settings.basis_path(&ctx.region.name);
+    let path = path_buf.as_path();
     let basis = match &settings.training {
         None if !path.exists() => {
             return Err(ctx.settings_error(
@@ -82,7 +99,7 @@ fn construct_pod(ctx: &ModelContext<'_>) -> Result<Box<dyn ConductionModel>, Mod
                      train one, or build one from full-order snapshots \
                      (hsv_model_conduction::collect_snapshots, PodBasis::from_snapshots, \
                      PodBasis::save)",
-                    settings.basis_file
+                    path.display()
                 ),
             ));
         }
@@ -106,7 +123,9 @@ fn construct_pod(ctx: &ModelContext<'_>) -> Result<Box<dyn ConductionModel>, Mod
             }
         }
     };
-    Ok(Box::new(Pod::new(&full, basis, settings)?))
+    Ok(Box::new(
+        Pod::new(&full, basis, settings)?.with_basis_file(path.display().to_string()),
+    ))
 }
 
 hsv_core::register_model!(ModelDescriptor {

@@ -176,6 +176,14 @@ impl PodBasis {
         let text = serde_json::to_string(self).map_err(|e| {
             ModelError::inconsistent(NAME, format!("cannot encode the POD basis: {e}"))
         })?;
+        if let Some(folder) = path.parent().filter(|f| !f.as_os_str().is_empty()) {
+            std::fs::create_dir_all(folder).map_err(|e| {
+                ModelError::inconsistent(
+                    NAME,
+                    format!("cannot create the cache folder {}: {e}", folder.display()),
+                )
+            })?;
+        }
         std::fs::write(path, text).map_err(|e| {
             ModelError::inconsistent(
                 NAME,
@@ -294,16 +302,33 @@ fn linear_fit(
 /// Lines (k₀, k₁, c₀, c₁) of a material's conductivity and specific heat over [lo, hi].
 fn property_lines(m: &Material, lo: f64, hi: f64) -> Result<[f64; 4], ModelError> {
     let err = |e: hsv_core::material::MaterialError| e.into_model_error(NAME);
+    let (lo, hi) = (crate::clamp_round_off_k(m, lo), crate::clamp_round_off_k(m, hi));
     let (k0, k1) = linear_fit(|t| m.conductivity_w_m_k(t).map_err(err), lo, hi)?;
     let (c0, c1) = linear_fit(|t| m.specific_heat_j_kg_k(t).map_err(err), lo, hi)?;
     Ok([k0, k1, c0, c1])
+}
+
+/// Folder of the caches models build for themselves, relative to the working directory.
+pub const CACHE_DIR: &str = "hsv-cache";
+
+/// Default [`Settings::basis_file`].
+pub const DEFAULT_BASIS_FILE: &str = "hsv-cache/pod-basis-{region}.json";
+
+/// How far, K, a step's surface temperatures may leave the basis's snapshot range
+/// (`temperature_range_k`) before the step is refused: the larger of 25 K and a tenth of the
+/// range. Within it the property lines extrapolate little; beyond it the basis was built for
+/// another run (our choice, not the paper's).
+pub fn range_margin_k((lo, hi): (f64, f64)) -> f64 {
+    (0.1 * (hi - lo)).max(25.0)
 }
 
 /// Settings of `[models.pod]`; the grid and materials come from `[models.full-order]`.
 #[derive(Debug, Clone, PartialEq, serde::Deserialize, serde::Serialize)]
 #[serde(deny_unknown_fields, default)]
 pub struct Settings {
-    /// JSON basis file (written by `PodBasis::save`), relative to the working directory.
+    /// JSON basis file (written by `PodBasis::save`), relative to the working directory;
+    /// `{region}` is replaced by the region's name ([`Settings::basis_path`]). Default: in the
+    /// cache folder [`CACHE_DIR`], one per region.
     pub basis_file: String,
     /// Modes to use, at most the basis's (paper: 32).
     pub modes: usize,
@@ -316,10 +341,17 @@ pub struct Settings {
     pub training: Option<Training>,
 }
 
+impl Settings {
+    /// The basis file of region `region`: [`Self::basis_file`] with `{region}` replaced.
+    pub fn basis_path(&self, region: &str) -> std::path::PathBuf {
+        std::path::PathBuf::from(self.basis_file.replace("{region}", region))
+    }
+}
+
 impl Default for Settings {
     fn default() -> Self {
         Self {
-            basis_file: "pod-basis.json".to_owned(),
+            basis_file: DEFAULT_BASIS_FILE.to_owned(),
             modes: 32,
             picard_tolerance_k: 1e-3,
             max_picard_iterations: 30,
@@ -330,7 +362,7 @@ impl Default for Settings {
 
 /// What `hsv-run describe pod` prints.
 pub const SETTINGS_DOC: &str = "\
-basis_file = \"pod-basis.json\"  # POD basis (JSON); grid and materials from [models.full-order]
+basis_file = \"hsv-cache/pod-basis-{region}.json\"  # POD basis cache (JSON, folder created when missing); {region} = region name
 modes = 32                     # modes used (paper: 32), at most the basis's
 picard_tolerance_k = 1e-3      # Picard convergence on the mode coefficients, K
 max_picard_iterations = 30     # Picard iterations allowed per step
@@ -367,7 +399,10 @@ pub struct Pod {
     difference_map: DMatrix<f64>,
     /// Φᵀ 1: the coefficients of a uniform unit field.
     uniform: DVector<f64>,
+    /// Where the basis came from, for messages ("in memory" unless [`Pod::with_basis_file`]).
+    basis_file: String,
     // Scratch.
+    surface_k: Vec<f64>,
     matrix: BandedMatrix,
     capacity: DMatrix<f64>,
     conduction: DMatrix<f64>,
@@ -510,11 +545,53 @@ impl Pod {
             k1,
             c0,
             c1,
+            surface_k: vec![0.0; n_panels],
+            basis_file: "(a basis in memory)".to_owned(),
             load_map,
             surface_map,
             node_map,
             uniform,
         })
+    }
+
+    /// Names the file the basis was read from, for the messages of [`Pod::check_range`].
+    pub fn with_basis_file(mut self, path: impl Into<String>) -> Self {
+        self.basis_file = path.into();
+        self
+    }
+
+    /// Refuses coefficients whose surface temperatures leave the basis's snapshot range by
+    /// more than [`range_margin_k`]: the basis was built for another run, and its property
+    /// lines and modes would be extrapolated silently.
+    fn check_range(&mut self, coefficients: &DVector<f64>, dt_s: f64) -> Result<(), ModelError> {
+        let (lo, hi) = self.basis.temperature_range_k;
+        let margin = range_margin_k((lo, hi));
+        for (p, out) in self.surface_k.iter_mut().enumerate() {
+            *out = self.surface_map.column(p).dot(coefficients);
+        }
+        let (min, max) = self
+            .surface_k
+            .iter()
+            .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &t| {
+                (a.min(t), b.max(t))
+            });
+        let (value, side) = if max > hi + margin {
+            (max, "above")
+        } else if min < lo - margin {
+            (min, "below")
+        } else {
+            return Ok(());
+        };
+        Err(ModelError::inconsistent(
+            NAME,
+            format!(
+                "a wall temperature of {value:.1} K after a {dt_s} s step is {side} the range \
+                 {lo:.1}-{hi:.1} K (± {margin:.0} K) of the snapshots the POD basis {} was built \
+                 from; rebuild it from conditions that cover this run ([models.pod.training]) \
+                 or use the full-order model",
+                self.basis_file
+            ),
+        ))
     }
 
     pub fn basis(&self) -> &PodBasis {
@@ -638,6 +715,10 @@ impl ConductionModel for Pod {
             }
             if change < self.settings.picard_tolerance_k {
                 self.picard_iterations = iteration;
+                let converged = std::mem::replace(&mut self.iterate, DVector::zeros(0));
+                let checked = self.check_range(&converged, dt_s);
+                self.iterate = converged;
+                checked?;
                 state.copy_from(&self.iterate);
                 return Ok(());
             }

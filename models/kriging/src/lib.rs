@@ -142,7 +142,9 @@ pub struct Settings {
     pub emissivity: f64,
     /// Wall temperature above which the structure has melted, K.
     pub melting_point_k: f64,
-    /// JSON file the training is saved to and reloaded from; empty: train in memory every run.
+    /// JSON file the training is saved to and reloaded from (default [`DEFAULT_TRAINING_FILE`],
+    /// in the cache folder beside the POD basis and the convolution ROM); empty: train in
+    /// memory every run.
     pub training_file: String,
     /// User training data instead of a base model: CSV with header [`CSV_HEADER`]
     /// (`turbulent` 0 or 1; St referenced to T_aw − T_w).
@@ -179,7 +181,7 @@ impl Default for Settings {
             altitude_m: [10_000.0, 35_000.0],
             emissivity: 0.8,
             melting_point_k: Material::ti_6al_4v().melting_point_k,
-            training_file: String::new(),
+            training_file: DEFAULT_TRAINING_FILE.to_owned(),
             training_csv: String::new(),
             extrapolate: false,
             default_running_length_m: 1.0,
@@ -190,6 +192,9 @@ impl Default for Settings {
         }
     }
 }
+
+/// Default `training_file`: the cache folder of the working directory.
+pub const DEFAULT_TRAINING_FILE: &str = "hsv-cache/kriging-stanton.json";
 
 const SETTINGS_DOC: &str = "\
 base_model = \"eckert\"                 # heat-flux model sampled for training (emissivity forced to 0)
@@ -204,7 +209,7 @@ running_length_m = [0.02, 5.0]        # training box: running length, m (log-sam
 altitude_m = [10000.0, 35000.0]       # training box: altitude, m
 emissivity = 0.8                      # wall emissivity for re-radiation
 melting_point_k = 1877.0              # wall temperature limit (Ti-6Al-4V solidus), K
-training_file = \"\"                    # JSON save/reload of the training; empty: train every run
+training_file = \"hsv-cache/kriging-stanton.json\"  # JSON save/reload of the training (folder created when missing); empty: train every run
 training_csv = \"\"                     # user data instead (header mach,inclination_deg,wall_temperature_ratio,running_length_m,altitude_m,turbulent,stanton)
 extrapolate = false                   # clamp inputs outside the box instead of failing
 default_running_length_m = 1.0        # running length of panels in no strip, m
@@ -568,6 +573,14 @@ fn load(path: &Path, fingerprint: &str) -> Option<Surrogate> {
 fn save(path: &Path, surrogate: &Surrogate) -> Result<Surrogate, ModelError> {
     let text = serde_json::to_string(surrogate)
         .map_err(|e| ModelError::inconsistent(NAME, format!("saving the training: {e}")))?;
+    if let Some(folder) = path.parent().filter(|f| !f.as_os_str().is_empty()) {
+        std::fs::create_dir_all(folder).map_err(|e| {
+            ModelError::inconsistent(
+                NAME,
+                format!("cannot create the cache folder {}: {e}", folder.display()),
+            )
+        })?;
+    }
     std::fs::write(path, &text).map_err(|e| {
         ModelError::inconsistent(NAME, format!("cannot write {}: {e}", path.display()))
     })?;

@@ -305,6 +305,7 @@ pub fn panel_flutter(
                 .iter()
                 .map(Stability::least_damping_ratio)
                 .fold(f64::INFINITY, f64::min),
+            limited_by: None,
         }
     };
     let critical_mach = boundary.mach();

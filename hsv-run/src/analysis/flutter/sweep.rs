@@ -433,6 +433,9 @@ pub enum FlutterBoundary {
         max_real_per_s: f64,
         at_mach: f64,
         least_damping_ratio: f64,
+        /// The first grid point above the lowest analysed one that could not be analysed
+        /// (buckled, melting, past the material data): the range is stable only up to it.
+        limited_by: Option<String>,
     },
     /// Already unstable at the lowest analysed Mach number.
     FluttersEverywhere {
@@ -566,10 +569,15 @@ fn boundary(setup: &FlutterSetup, registry: &Registry, row: &[FlutterPoint]) -> 
         .windows(2)
         .find(|w| w[0].status == PointStatus::Stable && w[1].status == PointStatus::Unstable)
     else {
+        let limited_by = row
+            .iter()
+            .find(|p| p.mach > first.mach && !p.status.is_analysed())
+            .map(|p| format!("from Mach {}: {}", p.mach, status_text(&p.status)));
         return FlutterBoundary::NeverFlutters {
             max_real_per_s: max_real.0,
             at_mach: max_real.1,
             least_damping_ratio: least_damping,
+            limited_by,
         };
     };
     let (lo, hi) = (pair[0], pair[1]);

@@ -1,0 +1,111 @@
+//! Linearization of the trimmed partitioned vehicle: the phugoid against Lanchester's
+//! approximation with Scheubel's density-gradient stiffness, and the short period against the
+//! classical two-state approximation built from the same stability derivatives.
+
+use hsv_core::config::{SAMPLE_CONFIG_TOML, parse_config};
+use hsv_run::analysis::linearize::linearize;
+use hsv_run::analysis::trim::{TrimRequest, trim};
+use hsv_run::dynamics::{GravityModel, ModeName, PerturbationRule};
+use hsv_run::vehicle::assemble;
+use hsv_run::vehicle::partitioned::{
+    CouplingSettings, ElevonCommandData, FlightControls, PartitionedVehicle, partitioned_needs,
+};
+
+fn linearized() -> (hsv_run::analysis::linearize::Linearization, f64) {
+    let text = SAMPLE_CONFIG_TOML
+        .replace("free_vibration_modes = 10", "free_vibration_modes = 3")
+        .replace("static_shapes = 5", "static_shapes = 0")
+        .replace("elements_chordwise = 24", "elements_chordwise = 8")
+        .replace("elements_spanwise = 18", "elements_spanwise = 6");
+    let loaded = parse_config(&text, "test.toml").expect("config");
+    let registry = hsv_run::registry().expect("registry");
+    let sets = assemble(&loaded, &registry, &partitioned_needs("test")).expect("assembles");
+    let mut vehicle =
+        PartitionedVehicle::new(sets, GravityModel::default(), CouplingSettings::default())
+            .expect("vehicle");
+    let t = trim(&mut vehicle, &TrimRequest::default())
+        .expect("trims")
+        .trim;
+    let controls = FlightControls {
+        elevon: ElevonCommandData {
+            symmetric_rad: t.elevon_deg.to_radians(),
+            differential_rad: 0.0,
+        },
+        fuel_equivalence_ratio: t.fuel_equivalence_ratio,
+    };
+    let (state, _) = vehicle
+        .level_flight_state(6.0, 26_000.0, t.alpha_deg.to_radians(), &controls)
+        .expect("equilibrium");
+    let speed = state.rigid.velocity_body_m_s.norm();
+    let lin = linearize(&mut vehicle, &state, &controls, &PerturbationRule::default())
+        .expect("linearizes");
+    (lin, speed)
+}
+
+#[test]
+fn phugoid_and_short_period_agree_with_their_classical_approximations() {
+    let (lin, speed) = linearized();
+    // Phugoid: Lanchester's spring 2(g/V)² plus Scheubel's density-gradient spring g κ,
+    // κ = −(1/ρ) dρ/dh (Etkin & Reid, Dynamics of Flight, §6.5): ω² = 2 (g/V)² + g κ. At 26 km
+    // (USSA-1976, lapse +1 K/km) κ = g/(R T) + (dT/dh)/T.
+    let g = hsv_core::atmosphere::gravity(26_000.0);
+    let air = hsv_core::atmosphere::us_standard_atmosphere_1976(26_000.0).expect("atmosphere");
+    let t = air.temperature_k;
+    let kappa = g / (287.052_87 * t) + 0.001 / t;
+    let omega = (2.0 * (g / speed).powi(2) + g * kappa).sqrt();
+    // The phugoid trades altitude for speed: of the modes named phugoid, the one with the most
+    // altitude in its eigenvector (a slow speed-heading root can share the name).
+    let phugoid = lin
+        .modes
+        .iter()
+        .filter(|m| m.name == ModeName::Phugoid)
+        .max_by(|a, b| a.content.altitude.total_cmp(&b.content.altitude))
+        .expect("a phugoid");
+    let error = (phugoid.natural_frequency_rad_s - omega).abs() / omega;
+    // 10 %: the approximation neglects the drag, thrust and Mach variations along the path.
+    assert!(error < 0.10, "phugoid {:?} vs {omega} rad/s", phugoid);
+
+    // Short period: λ² − (Z_w + M_q) λ + (Z_w M_q − u0 M_w) = 0 from the A entries of w and q
+    // (Etkin & Reid §6.3, the short-period approximation).
+    let index = |name: &str| {
+        lin.model
+            .state_names
+            .iter()
+            .position(|n| n.starts_with(name))
+            .unwrap_or_else(|| panic!("state {name}"))
+    };
+    let (w, q) = (index("w_"), index("q_"));
+    let a = &lin.model.a;
+    let (z_w, m_w, m_q) = (a[(w, w)], a[(q, w)], a[(q, q)]);
+    let trace = z_w + m_q;
+    let det = z_w * m_q - speed * m_w;
+    let disc = trace * trace - 4.0 * det;
+    let short: Vec<f64> = lin
+        .modes
+        .iter()
+        .filter(|m| m.name == ModeName::ShortPeriod)
+        .map(|m| m.real_per_s)
+        .collect();
+    assert!(!short.is_empty(), "no short period in {:?}", lin.modes);
+    if disc >= 0.0 {
+        // Real roots: the sample vehicle is statically unstable (M_w > 0), as Bolender & Doman's.
+        let roots = [(trace - disc.sqrt()) / 2.0, (trace + disc.sqrt()) / 2.0];
+        for s in &short {
+            let nearest = roots
+                .iter()
+                .map(|r| (r - s).abs() / r.abs())
+                .fold(f64::INFINITY, f64::min);
+            assert!(nearest < 0.10, "short period {s} vs approximation {roots:?}");
+        }
+    } else {
+        let omega_sp = det.sqrt();
+        let full = lin
+            .modes
+            .iter()
+            .find(|m| m.name == ModeName::ShortPeriod)
+            .map(|m| m.natural_frequency_rad_s)
+            .expect("short period");
+        assert!((full - omega_sp).abs() < 0.10 * omega_sp);
+    }
+}
+

@@ -166,6 +166,10 @@ pub struct HsvConfig {
     /// `[simulation]`: settings of `hsv-run simulate` (its inputs), checked by the runner.
     #[serde(default)]
     pub simulation: toml::Table,
+    /// `[trade]`: the fidelity trade study of `hsv-run trade` (job, varied models), checked by
+    /// the runner.
+    #[serde(default)]
+    pub trade: toml::Table,
 }
 
 /// A parsed config together with its raw table (for model constructors) and its origin.

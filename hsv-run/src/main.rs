@@ -7,8 +7,10 @@ use std::process::ExitCode;
 use anyhow::Result;
 use clap::{Parser, Subcommand};
 use hsv_run::commands::{
-    self, ConfigArg, JsonFlag, aero::AeroArgs, engine::EngineArgs, flutter::FlutterArgs,
-    heat::HeatArgs, modes::ModesArgs, linearize::LinearizeArgs, simulate::SimulateArgs, trim::TrimArgs, vehicle::VehicleArgs,
+    self, ConfigArg, JsonFlag, aero::AeroArgs, compare::CompareArgs, engine::EngineArgs,
+    flutter::FlutterArgs, heat::HeatArgs, linearize::LinearizeArgs, merge::MergeArgs,
+    modes::ModesArgs, simulate::SimulateArgs, trade::TradeArgs, trim::TrimArgs,
+    vehicle::VehicleArgs,
 };
 use hsv_run::output;
 
@@ -63,6 +65,8 @@ enum Command {
     Engine(EngineArgs),
     /// The assembled vehicle: regions, models, mass, centre of mass, inertia, modal frequencies.
     Vehicle(VehicleArgs),
+    /// The partitioned and monolithic vehicles side by side: trims and doublet histories.
+    Compare(CompareArgs),
     /// Linear model (A, B, C, D) of the trimmed flexible vehicle and its named modes.
     Linearize(LinearizeArgs),
     /// Fly the partitioned flexible vehicle from trim under the control inputs (default: the
@@ -73,6 +77,12 @@ enum Command {
     /// Flutter of the heated lifting surface versus time in the flow (identified state matrix,
     /// eigenvalues, flutter Mach number); `--panel` for the classical simply supported panel.
     Flutter(FlutterArgs),
+    /// Fidelity trade study: every combination of the varied region models (--vary) through
+    /// trim or a simulation, compared with the highest-fidelity one, with its cost; --shard K/N
+    /// runs a share, --emit-slurm N writes a Slurm job array.
+    Trade(TradeArgs),
+    /// Join `hsv-run trade --shard` output folders into the study's table.
+    Merge(MergeArgs),
 }
 
 /// Exit status when standard output was closed early: 128 + SIGPIPE, as a Unix tool killed by
@@ -156,6 +166,9 @@ fn run(cli: Cli) -> Result<()> {
         Command::Flutter(args) => commands::flutter::run(args, &registry),
         Command::Simulate(args) => commands::simulate::run(args, &registry),
         Command::Linearize(args) => commands::linearize::run(args, &registry),
+        Command::Compare(args) => commands::compare::run(args, &registry),
         Command::Vehicle(args) => commands::vehicle::run(args, &registry),
+        Command::Trade(args) => commands::trade::run(args, &registry),
+        Command::Merge(args) => commands::merge::run(args, &registry),
     }
 }

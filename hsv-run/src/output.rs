@@ -444,14 +444,22 @@ fn legend_width(labels: &[&str], panel_width: u32) -> u32 {
 type Area<'a> = DrawingArea<BitMapBackend<'a>, plotters::coord::Shift>;
 
 /// A short sample of `style` from `(x, y)`, `length` pixels long.
-fn draw_sample(area: &Area<'_>, (x, y): (i32, i32), length: i32, style: LineStyle) -> Result<(), Box<dyn std::error::Error>> {
+fn draw_sample(
+    area: &Area<'_>,
+    (x, y): (i32, i32),
+    length: i32,
+    style: LineStyle,
+) -> Result<(), Box<dyn std::error::Error>> {
     let colour = PALETTE[style.colour % PALETTE.len()];
     if style.markers_only {
         area.draw(&Circle::new((x + length / 2, y), 4, colour.filled()))?;
         return Ok(());
     }
     match style.dash.pattern() {
-        None => area.draw(&PathElement::new(vec![(x, y), (x + length, y)], colour.stroke_width(2)))?,
+        None => area.draw(&PathElement::new(
+            vec![(x, y), (x + length, y)],
+            colour.stroke_width(2),
+        ))?,
         Some((on, off)) => {
             let mut start = 0;
             while start < length {
@@ -606,9 +614,17 @@ fn diverging(t: f64) -> RGBColor {
     let mix = |a: f64, b: f64, w: f64| (a + (b - a) * w).round() as u8;
     if t < 0.0 {
         let w = -t;
-        RGBColor(mix(247.0, 33.0, w), mix(247.0, 102.0, w), mix(247.0, 172.0, w))
+        RGBColor(
+            mix(247.0, 33.0, w),
+            mix(247.0, 102.0, w),
+            mix(247.0, 172.0, w),
+        )
     } else {
-        RGBColor(mix(247.0, 178.0, t), mix(247.0, 24.0, t), mix(247.0, 43.0, t))
+        RGBColor(
+            mix(247.0, 178.0, t),
+            mix(247.0, 24.0, t),
+            mix(247.0, 43.0, t),
+        )
     }
 }
 
@@ -619,7 +635,9 @@ fn band_colour(v: f64, peak: f64) -> RGBColor {
         return diverging(0.0);
     }
     let bands = CONTOUR_BANDS as f64;
-    let u = ((v / peak + 1.0) * 0.5 * bands).floor().clamp(0.0, bands - 1.0);
+    let u = ((v / peak + 1.0) * 0.5 * bands)
+        .floor()
+        .clamp(0.0, bands - 1.0);
     diverging((u + 0.5) / bands * 2.0 - 1.0)
 }
 
@@ -629,7 +647,12 @@ fn draw_map(area: &Area<'_>, map: &FieldMap) -> Result<(), Box<dyn std::error::E
     let area = area.titled(&map.title, ("sans-serif", 15))?;
     let (width, _) = area.dim_in_pixel();
     let (chart_area, bar_area) = area.split_horizontally(width.saturating_sub(70));
-    let peak = map.values.iter().map(|v| v.abs()).filter(|v| v.is_finite()).fold(0.0, f64::max);
+    let peak = map
+        .values
+        .iter()
+        .map(|v| v.abs())
+        .filter(|v| v.is_finite())
+        .fold(0.0, f64::max);
     let x_range = padded_range(map.vertices.iter().map(|v| v.0));
     let y_range = padded_range(map.vertices.iter().map(|v| v.1));
     let mut chart = ChartBuilder::on(&chart_area)
@@ -657,7 +680,10 @@ fn draw_map(area: &Area<'_>, map: &FieldMap) -> Result<(), Box<dyn std::error::E
         let at = |a: f64, b: f64| {
             let c = 1.0 - a - b;
             (
-                (a * p[0].0.0 + b * p[1].0.0 + c * p[2].0.0, a * p[0].0.1 + b * p[1].0.1 + c * p[2].0.1),
+                (
+                    a * p[0].0.0 + b * p[1].0.0 + c * p[2].0.0,
+                    a * p[0].0.1 + b * p[1].0.1 + c * p[2].0.1,
+                ),
                 a * p[0].1 + b * p[1].1 + c * p[2].1,
             )
         };
@@ -667,10 +693,15 @@ fn draw_map(area: &Area<'_>, map: &FieldMap) -> Result<(), Box<dyn std::error::E
                 let (a, b) = (i as f64 / n, j as f64 / n);
                 let mut small = vec![[(a, b), (a + 1.0 / n, b), (a, b + 1.0 / n)]];
                 if i + j + 1 < SUB {
-                    small.push([(a + 1.0 / n, b), (a + 1.0 / n, b + 1.0 / n), (a, b + 1.0 / n)]);
+                    small.push([
+                        (a + 1.0 / n, b),
+                        (a + 1.0 / n, b + 1.0 / n),
+                        (a, b + 1.0 / n),
+                    ]);
                 }
                 for corners in small {
-                    let pts: Vec<((f64, f64), f64)> = corners.iter().map(|&(a, b)| at(a, b)).collect();
+                    let pts: Vec<((f64, f64), f64)> =
+                        corners.iter().map(|&(a, b)| at(a, b)).collect();
                     let value = pts.iter().map(|p| p.1).sum::<f64>() / 3.0;
                     let colour = band_colour(value, peak);
                     chart.draw_series(std::iter::once(Polygon::new(
@@ -718,9 +749,21 @@ fn draw_map(area: &Area<'_>, map: &FieldMap) -> Result<(), Box<dyn std::error::E
         bar_area.draw(&Rectangle::new([(8, y1), (24, y0)], colour.filled()))?;
     }
     let font = ("sans-serif", 11).into_font();
-    bar_area.draw(&Text::new(format!("{:+.2}", peak), (27, top - 5), font.clone()))?;
-    bar_area.draw(&Text::new("0".to_owned(), (27, (top + bottom) / 2 - 5), font.clone()))?;
-    bar_area.draw(&Text::new(format!("{:+.2}", -peak), (27, bottom - 5), font.clone()))?;
+    bar_area.draw(&Text::new(
+        format!("{:+.2}", peak),
+        (27, top - 5),
+        font.clone(),
+    ))?;
+    bar_area.draw(&Text::new(
+        "0".to_owned(),
+        (27, (top + bottom) / 2 - 5),
+        font.clone(),
+    ))?;
+    bar_area.draw(&Text::new(
+        format!("{:+.2}", -peak),
+        (27, bottom - 5),
+        font.clone(),
+    ))?;
     bar_area.draw(&Text::new(map.value_label.clone(), (2, bottom + 12), font))?;
     Ok(())
 }
@@ -781,7 +824,14 @@ pub fn write_vtk_mesh(
     vertex_vectors: &[(&str, &[Vector3<f64>])],
     panel_scalars: &[(&str, &[f64])],
 ) -> Result<()> {
-    write_vtk_mesh_described(path, "hsv panel mesh", &[], mesh, vertex_vectors, panel_scalars)
+    write_vtk_mesh_described(
+        path,
+        "hsv panel mesh",
+        &[],
+        mesh,
+        vertex_vectors,
+        panel_scalars,
+    )
 }
 
 /// [`write_vtk_mesh`] with a one-line `title` in the file header (what the mesh shows, e.g.

@@ -37,8 +37,13 @@ fn linearized() -> (hsv_run::analysis::linearize::Linearization, f64) {
         .level_flight_state(6.0, 26_000.0, t.alpha_deg.to_radians(), &controls)
         .expect("equilibrium");
     let speed = state.rigid.velocity_body_m_s.norm();
-    let lin = linearize(&mut vehicle, &state, &controls, &PerturbationRule::default())
-        .expect("linearizes");
+    let lin = linearize(
+        &mut vehicle,
+        &state,
+        &controls,
+        &PerturbationRule::default(),
+    )
+    .expect("linearizes");
     (lin, speed)
 }
 
@@ -95,7 +100,10 @@ fn phugoid_and_short_period_agree_with_their_classical_approximations() {
                 .iter()
                 .map(|r| (r - s).abs() / r.abs())
                 .fold(f64::INFINITY, f64::min);
-            assert!(nearest < 0.10, "short period {s} vs approximation {roots:?}");
+            assert!(
+                nearest < 0.10,
+                "short period {s} vs approximation {roots:?}"
+            );
         }
     } else {
         let omega_sp = det.sqrt();
@@ -108,4 +116,3 @@ fn phugoid_and_short_period_agree_with_their_classical_approximations() {
         assert!((full - omega_sp).abs() < 0.10 * omega_sp);
     }
 }
-

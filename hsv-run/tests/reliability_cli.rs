@@ -77,8 +77,9 @@ fn a_closed_stdout_pipe_ends_quietly_without_a_panic() {
             "{args:?}: status {:?}: {err}",
             output.status
         );
+        // Validity warnings (item 5) may precede the output; nothing else is said.
         assert!(
-            err.is_empty(),
+            err.lines().all(|l| l.starts_with("warning:")),
             "{args:?}: a closed pipe is not an error: {err}"
         );
     }

@@ -4,4 +4,5 @@ pub mod flutter;
 pub mod heating;
 pub mod linearize;
 pub mod simulate;
+pub mod trade;
 pub mod trim;

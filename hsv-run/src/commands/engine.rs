@@ -2,6 +2,7 @@
 //! states of the vehicle's engine per propulsion model, with thrust versus φ and α written to
 //! the run folder (CSV and PNG).
 
+use std::io::Write as _;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
@@ -279,8 +280,33 @@ pub fn run(args: EngineArgs, registry: &Registry) -> Result<()> {
     let models: Vec<String> = rows.iter().map(|r| r.model.clone()).collect();
     let (alpha_deg, phi) = (request.alpha_deg, request.phi);
     let reference = loaded.config.reference.moment_point_m;
+    // Validity: the combustor models burn at most the stoichiometric fuel (phi = 1); a richer
+    // mixture releases no more heat in them, so its thrust is an extrapolation.
+    let mut warnings = Vec::new();
+    if phi > 1.0 {
+        warnings.push(format!(
+            "phi {phi} is above stoichiometric (1): the engine models do not represent a \
+             fuel-rich combustor"
+        ));
+    }
+    for r in &rows {
+        if matches!(
+            r.solution.status,
+            EngineStatus::ThermalChoking | EngineStatus::Unstart
+        ) {
+            warnings.push(format!(
+                "{}: the engine is {} at this point; its model trusts unchoked, started flow only",
+                r.model,
+                status_name(&r.solution)
+            ));
+        }
+    }
+    for w in &warnings {
+        let _ = writeln!(std::io::stderr(), "warning: {w}");
+    }
     let summary = || {
         serde_json::json!({
+            "warnings": warnings,
             "vehicle": loaded.file,
             "mach": request.mach,
             "altitude_m": request.altitude_m,

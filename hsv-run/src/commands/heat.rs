@@ -404,11 +404,7 @@ pub fn run(args: HeatArgs, registry: &Registry) -> Result<()> {
                 )
             });
         }
-        for w in super::aero::validity_warnings(
-            &s.aero,
-            &s.flight,
-            heating.aero_diagnostics(),
-        ) {
+        for w in super::aero::validity_warnings(&s.aero, &s.flight, heating.aero_diagnostics()) {
             let w = format!("{name}: {w}");
             if !warnings.contains(&w) {
                 warnings.push(w);
@@ -465,7 +461,13 @@ pub fn run(args: HeatArgs, registry: &Registry) -> Result<()> {
     }
     outln!(
         "{:<14} {:>7} {:>9} {:>12} {:>12} {:>12} {:>14}",
-        "model", "states", "t (s)", "min T (K)", "max T (K)", "mean T (K)", "wall time (s)"
+        "model",
+        "states",
+        "t (s)",
+        "min T (K)",
+        "max T (K)",
+        "mean T (K)",
+        "wall time (s)"
     )?;
     for h in &histories {
         outln!(

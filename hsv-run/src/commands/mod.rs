@@ -2,14 +2,17 @@
 
 pub mod aero;
 pub mod catalog;
+pub mod compare;
 pub mod config;
 pub mod engine;
 pub mod flutter;
 pub mod heat;
 pub mod linearize;
+pub mod merge;
 pub mod modes;
 pub mod simulate;
 pub mod steps;
+pub mod trade;
 pub mod trim;
 pub mod vehicle;
 

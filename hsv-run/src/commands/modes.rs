@@ -630,7 +630,13 @@ fn surface_maps(s: &StructureModes) -> Vec<output::FieldMap> {
             let col = shapes.vertex_displacement.column(k);
             let peak = largest_displacement(shapes, k);
             let values = (0..s.mesh.vertices.len())
-                .map(|v| if peak > 0.0 { col[3 * v + 2] / peak } else { 0.0 })
+                .map(|v| {
+                    if peak > 0.0 {
+                        col[3 * v + 2] / peak
+                    } else {
+                        0.0
+                    }
+                })
                 .collect();
             output::FieldMap {
                 title: format!("mode {}: {} ({:.2} Hz)", k + 1, row.name, row.frequency_hz),

@@ -97,7 +97,11 @@ pub fn run(args: SimulateArgs, registry: &Registry) -> Result<()> {
     let (loaded, registry) = load_config(args.config.config.as_deref(), registry)?;
     // Refused up front: a non-positive step or an absurd number of steps.
     let plan = time_steps(args.duration_s, args.dt_s).map_err(|e| {
-        anyhow::anyhow!("--duration-s {} with --dt-s {}: {e}", args.duration_s, args.dt_s)
+        anyhow::anyhow!(
+            "--duration-s {} with --dt-s {}: {e}",
+            args.duration_s,
+            args.dt_s
+        )
     })?;
     let inputs = inputs(&loaded)?;
     let mach = loaded.config.flight.mach;

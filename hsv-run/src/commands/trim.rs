@@ -112,11 +112,16 @@ fn print_table(r: &TrimResult, model: &str) -> Result<()> {
     let t = &r.trim;
     outln!(
         "Steady level flight, {model} vehicle, Mach {}, {} m ({:.0} kg)",
-        r.mach, r.altitude_m, r.mass_kg
+        r.mach,
+        r.altitude_m,
+        r.mass_kg
     )?;
     outln!(
         "{:<8} {:<40} {:>14} {:>14}",
-        "symbol", "description", "trim", "restart"
+        "symbol",
+        "description",
+        "trim",
+        "restart"
     )?;
     let row = |symbol: &str, what: &str, a: f64, b: f64| {
         outln!("{symbol:<8} {what:<40} {a:>14.6} {b:>14.6}")

@@ -102,7 +102,10 @@ pub fn run(args: VehicleArgs, registry: &Registry) -> Result<()> {
     }
     outln!(
         "\nreference: area {} m^2, chord {} m, span {} m, moment point {:?} m",
-        reference.area_m2, reference.chord_m, reference.span_m, reference.moment_point_m
+        reference.area_m2,
+        reference.chord_m,
+        reference.span_m,
+        reference.moment_point_m
     )?;
     Ok(())
 }
@@ -112,7 +115,10 @@ fn print_mass(indent: &str, m: &MassProperties) -> Result<()> {
     let i = m.inertia_kg_m2;
     outln!(
         "{indent}mass {:.1} kg, centre of mass ({:.3}, {:.3}, {:.3}) m",
-        m.mass_kg, c.x, c.y, c.z
+        m.mass_kg,
+        c.x,
+        c.y,
+        c.z
     )?;
     outln!(
         "{indent}inertia about it (kg m^2): Ixx {:.4e}, Iyy {:.4e}, Izz {:.4e}, Ixy {:.3e}, Ixz {:.3e}, Iyz {:.3e}",

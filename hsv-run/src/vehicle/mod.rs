@@ -313,3 +313,24 @@ pub fn wire(regions: &mut [Box<dyn Region>]) -> Result<DataManager, AssemblyErro
     }
     Ok(builder.build()?)
 }
+
+/// The flexible vehicle of `model` assembled from the config, with the default gravity and
+/// coupling settings: what trim, simulate, linearize and compare start from.
+pub fn flexible_vehicle(
+    loaded: &LoadedConfig,
+    registry: &Registry,
+    model: partitioned::SurfaceModel,
+    analysis: &str,
+) -> Result<partitioned::PartitionedVehicle, AssemblyError> {
+    let needs = match model {
+        partitioned::SurfaceModel::Partitioned => partitioned::partitioned_needs(analysis),
+        partitioned::SurfaceModel::Monolithic { .. } => partitioned::monolithic_needs(analysis),
+    };
+    let sets = assemble(loaded, registry, &needs)?;
+    partitioned::PartitionedVehicle::build(
+        sets,
+        crate::dynamics::GravityModel::default(),
+        partitioned::CouplingSettings::default(),
+        model,
+    )
+}

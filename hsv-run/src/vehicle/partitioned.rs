@@ -77,6 +77,54 @@ pub fn partitioned_needs(analysis: &str) -> AnalysisNeeds {
     }
 }
 
+/// How the lifting surfaces are modelled.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum SurfaceModel {
+    /// Paper §III: each surface has its own Ritz modes, driven at its root and coupled to the
+    /// body by root loads.
+    Partitioned,
+    /// Paper §IV's monolithic comparison model: the whole vehicle is one flexible body; the
+    /// surfaces are OML that follow the fuselage's beam modes (their loads go straight to the
+    /// body). With `lumped_mass` the surfaces' mass and inertia join the body's, the
+    /// correction the paper proposes for its response mismatch; without it the body has the
+    /// beam's mass alone (paper Table 1).
+    Monolithic { lumped_mass: bool },
+}
+
+/// What the monolithic vehicle needs: aero and mass on the body and surfaces, an engine.
+pub fn monolithic_needs(analysis: &str) -> AnalysisNeeds {
+    let surface = RegionNeeds {
+        roles: vec![Role::Aero, Role::Structure],
+        structure: vec![Capability::MassProperties],
+        friction: true,
+    };
+    let mut needs = partitioned_needs(analysis);
+    for (name, need) in &mut needs.regions {
+        if name.ends_with("_surface") {
+            *need = surface.clone();
+        }
+    }
+    needs
+}
+
+/// A lifting surface of the monolithic model: OML that follows the body's modes.
+struct FollowerSurface {
+    name: String,
+    base: PanelMesh,
+    deformed: PanelMesh,
+    deflected: PanelMesh,
+    /// The body's beam modes on this surface's vertices.
+    shapes: ModeShapes,
+    aero: Box<dyn AeroModel>,
+    friction: Option<RegionFriction>,
+    planform: LiftingSurfaceConfig,
+    side: Side,
+    velocities: Vec<Vector3<f64>>,
+    solution: AeroSolution,
+    generalized: Vec<f64>,
+}
+
 /// The controls at one instant.
 #[derive(Debug, Clone, Copy, PartialEq, Default, serde::Serialize, serde::Deserialize)]
 pub struct FlightControls {
@@ -181,6 +229,9 @@ pub struct PartitionedVehicle {
     dynamics: VehicleDynamics,
     body: Body,
     surfaces: Vec<Surface>,
+    /// The monolithic model's surfaces (empty for the partitioned vehicle).
+    followers: Vec<FollowerSurface>,
+    surface_model: SurfaceModel,
     engine: Box<dyn PropulsionModel>,
     engine_solution: PropulsionSolution,
     mass: MassProperties,
@@ -220,13 +271,31 @@ fn assembly_error(region: &str, message: String) -> AssemblyError {
 }
 
 impl PartitionedVehicle {
-    /// The vehicle from assembled regions (checked with [`partitioned_needs`]).
+    /// The partitioned vehicle from assembled regions (checked with [`partitioned_needs`]).
     pub fn new(
         sets: Vec<RegionModelSet>,
         gravity: GravityModel,
         settings: CouplingSettings,
     ) -> Result<Self, AssemblyError> {
+        Self::build(sets, gravity, settings, SurfaceModel::Partitioned)
+    }
+
+    /// The vehicle with its surfaces modelled as `surface_model` (regions checked with
+    /// [`partitioned_needs`] or [`monolithic_needs`]).
+    pub fn build(
+        sets: Vec<RegionModelSet>,
+        gravity: GravityModel,
+        settings: CouplingSettings,
+        surface_model: SurfaceModel,
+    ) -> Result<Self, AssemblyError> {
+        let monolithic = matches!(surface_model, SurfaceModel::Monolithic { .. });
+        let lumped = matches!(
+            surface_model,
+            SurfaceModel::Monolithic { lumped_mass: true }
+        );
         let mut body = None;
+        let mut body_structure: Option<Box<dyn StructureModel>> = None;
+        let mut follower_sets = Vec::new();
         let mut body_modal = None;
         let mut surfaces = Vec::new();
         let mut engine = None;
@@ -238,13 +307,19 @@ impl PartitionedVehicle {
             let err = |e: ModelError| assembly_error(&name, e.to_string());
             reference_point_m = set.info.reference.moment_point();
             gas = set.info.gas;
+            let is_surface = matches!(set.info.geometry, RegionGeometry::LiftingSurface { .. });
             if let Some(m) = set
                 .structure
                 .as_ref()
                 .and_then(|s| s.mass_properties())
                 .map(|m| m.mass_properties())
+                && (!monolithic || lumped || !is_surface)
             {
                 mass = Some(mass.map_or(m, |t| t.combined(&m)));
+            }
+            if monolithic && is_surface {
+                follower_sets.push(set);
+                continue;
             }
             match (&set.info.geometry, name.as_str()) {
                 (_, "main_body") => {
@@ -257,6 +332,7 @@ impl PartitionedVehicle {
                     let shapes = structure.mode_shapes_on(&set.info.mesh).map_err(err)?;
                     let n = shapes.n_modes();
                     body_modal = Some(structure.modal_model().clone());
+                    body_structure = Some(structure);
                     let n_panels = set.info.mesh.panels.len();
                     body = Some(Body {
                         friction: set.friction.map(|m| RegionFriction::new(m, n_panels)),
@@ -327,6 +403,36 @@ impl PartitionedVehicle {
             }
         }
         let body = body.ok_or_else(|| assembly_error("main_body", "the region".into()))?;
+        let mut followers = Vec::new();
+        for set in follower_sets {
+            let name = set.info.name.clone();
+            let RegionGeometry::LiftingSurface { planform, side } = &set.info.geometry else {
+                continue;
+            };
+            let beam = body_structure
+                .as_ref()
+                .ok_or_else(|| assembly_error("main_body", "a structure model".into()))?;
+            let shapes = beam
+                .mode_shapes_on(&set.info.mesh)
+                .map_err(|e| assembly_error(&name, e.to_string()))?;
+            let n_panels = set.info.mesh.panels.len();
+            followers.push(FollowerSurface {
+                name: name.clone(),
+                generalized: vec![0.0; shapes.n_modes()],
+                shapes,
+                aero: set
+                    .aero
+                    .ok_or_else(|| assembly_error(&name, "an aero model".into()))?,
+                friction: set.friction.map(|m| RegionFriction::new(m, n_panels)),
+                planform: planform.clone(),
+                side: *side,
+                velocities: vec![Vector3::zeros(); n_panels],
+                solution: AeroSolution::default(),
+                deformed: set.info.mesh.clone(),
+                deflected: set.info.mesh.clone(),
+                base: set.info.mesh,
+            });
+        }
         let body_modal =
             body_modal.ok_or_else(|| assembly_error("main_body", "a modal model".into()))?;
         let body_modal_names = body_modal.names.clone();
@@ -363,6 +469,8 @@ impl PartitionedVehicle {
             dynamics,
             body,
             surfaces,
+            followers,
+            surface_model,
             engine: engine.ok_or_else(|| assembly_error("propulsion", "the region".into()))?,
             engine_solution: PropulsionSolution::default(),
             mass,
@@ -506,6 +614,7 @@ impl PartitionedVehicle {
         for (k, q) in self.loads.body_generalized_force.iter_mut().enumerate() {
             *q = b.generalized[k] + b.engine_generalized[k];
         }
+        self.follower_loads(state, controls, flight)?;
         // Lifting surfaces.
         let elevon = ElevonCommand {
             symmetric_rad: controls.elevon.symmetric_rad,
@@ -589,6 +698,84 @@ impl PartitionedVehicle {
             }
         }
         Ok(())
+    }
+
+    /// The monolithic model's surfaces: OML following the body's modes, rotated by the elevon;
+    /// their aero loads go straight to the body and to its generalized forces.
+    fn follower_loads(
+        &mut self,
+        state: &VehicleState,
+        controls: &FlightControls,
+        flight: &FlightCondition,
+    ) -> Result<(), VehicleError> {
+        let cg = self.mass.center_of_mass_m;
+        let p_inf = flight.freestream.pressure_pa;
+        let elevon = ElevonCommand {
+            symmetric_rad: controls.elevon.symmetric_rad,
+            differential_rad: controls.elevon.differential_rad,
+        };
+        let surface = |r: RegionKind| r == RegionKind::LiftingSurface;
+        for f in &mut self.followers {
+            let err = model_error(&f.name);
+            let deflection = elevon.deflection_rad(f.side);
+            f.shapes
+                .deform(&f.base, &state.body_modes.q, &mut f.deformed);
+            deflect_lifting_surface(
+                &f.deformed,
+                &f.planform,
+                f.side,
+                deflection,
+                &mut f.deflected,
+            )
+            .map_err(|e| err(ModelError::inconsistent("elevon", e.to_string())))?;
+            let rotation =
+                rotation_about_axis(&pivot_axis(), elevon_rotation_angle_rad(deflection))
+                    .map_err(|e| err(ModelError::inconsistent("elevon", e.to_string())))?;
+            f.shapes
+                .panel_velocities(&f.base, &state.body_modes.q_dot, &mut f.velocities);
+            for v in &mut f.velocities {
+                *v = rotation * *v;
+            }
+            let motion = PanelMotion {
+                elastic_velocity_m_s: Some(&f.velocities),
+            };
+            f.aero
+                .evaluate(&f.deflected, flight, &motion, &mut f.solution)
+                .map_err(&err)?;
+            let mut loads =
+                integrate_pressure(&f.deflected, &f.solution.pressure_pa, p_inf, &cg, surface);
+            if let Some(friction) = &mut f.friction {
+                loads = loads
+                    + friction
+                        .loads(&f.deflected, flight, &f.solution, &motion, &cg, surface)
+                        .map_err(&err)?;
+            }
+            generalized_forces(
+                &f.deflected,
+                &f.shapes,
+                &f.solution.pressure_pa,
+                p_inf,
+                surface,
+                &mut f.generalized,
+            )
+            .map_err(|e| err(ModelError::inconsistent("coupling", e.to_string())))?;
+            self.loads.body = self.loads.body + loads;
+            self.aero_loads = self.aero_loads + loads;
+            for (q, g) in self
+                .loads
+                .body_generalized_force
+                .iter_mut()
+                .zip(&f.generalized)
+            {
+                *q += g;
+            }
+        }
+        Ok(())
+    }
+
+    /// How the surfaces are modelled.
+    pub fn surface_model(&self) -> SurfaceModel {
+        self.surface_model
     }
 
     /// The surfaces' root loads on the body for the current q̈ guess, added to the body loads

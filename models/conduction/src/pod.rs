@@ -302,7 +302,10 @@ fn linear_fit(
 /// Lines (k₀, k₁, c₀, c₁) of a material's conductivity and specific heat over [lo, hi].
 fn property_lines(m: &Material, lo: f64, hi: f64) -> Result<[f64; 4], ModelError> {
     let err = |e: hsv_core::material::MaterialError| e.into_model_error(NAME);
-    let (lo, hi) = (crate::clamp_round_off_k(m, lo), crate::clamp_round_off_k(m, hi));
+    let (lo, hi) = (
+        crate::clamp_round_off_k(m, lo),
+        crate::clamp_round_off_k(m, hi),
+    );
     let (k0, k1) = linear_fit(|t| m.conductivity_w_m_k(t).map_err(err), lo, hi)?;
     let (c0, c1) = linear_fit(|t| m.specific_heat_j_kg_k(t).map_err(err), lo, hi)?;
     Ok([k0, k1, c0, c1])

@@ -242,7 +242,39 @@ impl Settings {
 }
 
 fn construct(ctx: &ModelContext<'_>) -> Result<Box<dyn AeroModel>, ModelError> {
+    if ctx.region.geometry == hsv_core::region::RegionGeometry::Mesh {
+        // A bare mesh (the `aero` command's whole vehicle, an STL) has no structure whose modes
+        // could be identified: the ROM is its source's plain evaluation, as it is everywhere
+        // outside a modal history.
+        let settings: Settings = ctx.parse_settings()?;
+        let source_settings = ctx.settings_for(&settings.source);
+        let source = ctx
+            .build::<dyn AeroModel>(&settings.source, &source_settings)
+            .map_err(|e| ctx.settings_error("source", e.to_string()))?;
+        return Ok(Box::new(SourceOnly { source }));
+    }
     Ok(Box::new(ConvolutionRom::new(ctx)?))
+}
+
+/// The ROM on a mesh without modes: its source model's plain evaluation.
+struct SourceOnly {
+    source: Box<dyn AeroModel>,
+}
+
+impl AeroModel for SourceOnly {
+    fn name(&self) -> &str {
+        NAME
+    }
+
+    fn evaluate(
+        &mut self,
+        mesh: &hsv_core::mesh::PanelMesh,
+        flight: &hsv_core::flow::FlightCondition,
+        motion: &hsv_core::aero::PanelMotion<'_>,
+        out: &mut hsv_core::aero::AeroSolution,
+    ) -> Result<(), ModelError> {
+        self.source.evaluate(mesh, flight, motion, out)
+    }
 }
 
 hsv_core::register_model!(ModelDescriptor {

@@ -3,7 +3,7 @@
 //! `scramjet-1d` (propulsion, sample body at φ = 0.13) exported in process with
 //! `hsv_core::plugin_header!` and called through the host adapters (plain-buffer marshalling,
 //! panic catching, NaN checks), and the two example cdylib plugins loaded from disk against the
-//! nearest built-in model (`ackeret` beside `piston-theory`, `laminar-plate` beside `eckert`).
+//! nearest built-in model (`ackeret` beside `piston-theory`, `laminar-flat-plate` (crate laminar-plate) beside `eckert`).
 //!
 //! `cargo bench -p hsv-benches --bench plugins -- --measurement-time 3 --warm-up-time 1`.
 
@@ -148,7 +148,7 @@ fn plugins(c: &mut Criterion) {
     for (name, settings_of) in [
         ("eckert", "eckert"),
         ("eckert-abi", "eckert"),
-        ("laminar-plate", "laminar-plate"),
+        ("laminar-flat-plate", "laminar-flat-plate"),
     ] {
         let mut model: Box<dyn HeatFluxModel> = build(&registry, name, surface, settings_of);
         group.bench_function(name, |b| {

@@ -43,6 +43,9 @@ pub struct CompareArgs {
     pub json: JsonFlag,
 }
 
+/// A plotted quantity: title, axis label and how to read it from a sample.
+type Quantity = (&'static str, &'static str, fn(&Sample) -> f64);
+
 /// One model's trim and history.
 struct Case {
     label: &'static str,
@@ -166,7 +169,7 @@ pub fn run(args: CompareArgs, registry: &Registry) -> Result<()> {
     }
     // Histories, overlaid.
     let mut plots = Vec::new();
-    let quantities: [(&str, &str, fn(&Sample) -> f64); 6] = [
+    let quantities: [Quantity; 6] = [
         (
             "Altitude change (paper Fig. 11)",
             "altitude - initial (m)",

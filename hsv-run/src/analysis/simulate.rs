@@ -158,6 +158,11 @@ pub struct Sample {
     pub fuel_equivalence_ratio: f64,
     pub coupling_iterations: usize,
     pub coupling_residual: f64,
+    /// Lowest, highest and mean structure temperature over the heated surfaces, K (NaN when no
+    /// surface heats).
+    pub surface_min_temperature_k: f64,
+    pub surface_max_temperature_k: f64,
+    pub surface_mean_temperature_k: f64,
 }
 
 /// Step size and length of a run.
@@ -199,7 +204,19 @@ pub fn simulate(
     let mut scratch = state.clone();
     let mut derivative = vehicle.dynamics().zero_derivative();
     let steps = (settings.duration_s / settings.dt_s).round().max(0.0) as usize;
-    let record = |vehicle: &PartitionedVehicle, state: &VehicleState, t: f64| {
+    let record = |vehicle: &mut PartitionedVehicle, state: &VehicleState, t: f64| {
+        let temperatures = vehicle.surface_temperatures();
+        let (mut lo, mut hi, mut sum) = (f64::INFINITY, f64::NEG_INFINITY, 0.0);
+        for (_, t) in &temperatures {
+            lo = lo.min(t.min_k);
+            hi = hi.max(t.max_k);
+            sum += t.mean_k;
+        }
+        let (lo, hi, mean) = if temperatures.is_empty() {
+            (f64::NAN, f64::NAN, f64::NAN)
+        } else {
+            (lo, hi, sum / temperatures.len() as f64)
+        };
         let rigid = &state.rigid;
         let (airspeed, alpha, beta) = rigid.air_data(&nalgebra::Vector3::zeros());
         let (roll, pitch, yaw) = rigid.euler_angles();
@@ -227,9 +244,12 @@ pub fn simulate(
             fuel_equivalence_ratio: c.fuel_equivalence_ratio,
             coupling_iterations: report.iterations,
             coupling_residual: report.residual,
+            surface_min_temperature_k: lo,
+            surface_max_temperature_k: hi,
+            surface_mean_temperature_k: mean,
         }
     };
-    if !observe(&record(vehicle, state, 0.0), state) {
+    if !observe(&record(&mut *vehicle, state, 0.0), state) {
         return Ok(0);
     }
     for k in 0..steps {
@@ -249,8 +269,15 @@ pub fn simulate(
             .map_err(|e| wrap(t)(e.into()))?;
         layout.unpack(&x, state).map_err(|e| wrap(t)(e.into()))?;
         let done = k + 1;
+        // The accepted step: models with memory commit their history, the surfaces heat.
+        vehicle
+            .commit_step(state, done as f64 * settings.dt_s)
+            .map_err(wrap(t))?;
         if (done % settings.record_every.max(1) == 0 || done == steps)
-            && !observe(&record(vehicle, state, done as f64 * settings.dt_s), state)
+            && !observe(
+                &record(&mut *vehicle, state, done as f64 * settings.dt_s),
+                state,
+            )
         {
             return Ok(done);
         }

@@ -51,6 +51,11 @@ pub const HISTORY_CHANNELS: [&str; 5] = [
     "q_deg_s",
 ];
 
+/// Smallest scale of each [`HISTORY_CHANNELS`] entry in the simulate error (1 cm, 1 cm/s,
+/// 0.001 deg, 0.001 deg, 0.001 deg/s): a channel that stays near zero (q before the doublet)
+/// is not divided by its round-off.
+pub const HISTORY_FLOORS: [f64; 5] = [1e-2, 1e-2, 1e-3, 1e-3, 1e-3];
+
 /// One varied model key and the names it takes, e.g. `main_body.aero=newtonian-scalar,shock-expansion`.
 #[derive(Debug, Clone, PartialEq, Eq, Serialize, Deserialize)]
 pub struct Variation {
@@ -577,7 +582,8 @@ pub struct TradeRow {
     /// |value − reference| of each trim value, or RMS(history − reference) of each channel.
     pub deviations: BTreeMap<String, f64>,
     /// Trim: the largest relative deviation of α, δe, φ; simulate: the largest channel RMS
-    /// deviation over the reference channel's peak-to-peak range. `None` when either failed.
+    /// deviation over the reference channel's scale, max(RMS, peak-to-peak, floor)
+    /// ([`HISTORY_FLOORS`]). `None` when either failed.
     pub error: Option<f64>,
     pub reference: bool,
     /// On the Pareto front of (cost, error): no other case is both cheaper and more accurate.
@@ -668,7 +674,7 @@ fn deviation(
             }
         }
         TradeJob::Simulate => {
-            for ch in HISTORY_CHANNELS {
+            for (ch, floor) in HISTORY_CHANNELS.into_iter().zip(HISTORY_FLOORS) {
                 let (Some(v), Some(r)) = (case.history.get(ch), reference.history.get(ch)) else {
                     return (deviations, None);
                 };
@@ -685,13 +691,21 @@ fn deviation(
                     / n as f64)
                     .sqrt();
                 deviations.insert(ch.to_owned(), rms);
-                let range = r[..n].iter().copied().fold(f64::NEG_INFINITY, f64::max)
-                    - r[..n].iter().copied().fold(f64::INFINITY, f64::min);
-                error = error.max(if range > 0.0 { rms / range } else { rms });
+                error = error.max(rms / history_scale(&r[..n], floor));
             }
         }
     }
     (deviations, error.is_finite().then_some(error))
+}
+
+/// Scale of a reference history: max(RMS, peak-to-peak, `floor`), so the error is relative to
+/// the signal's size or its excursion, whichever is larger.
+fn history_scale(reference: &[f64], floor: f64) -> f64 {
+    let n = reference.len().max(1) as f64;
+    let rms = (reference.iter().map(|x| x * x).sum::<f64>() / n).sqrt();
+    let hi = reference.iter().copied().fold(f64::NEG_INFINITY, f64::max);
+    let lo = reference.iter().copied().fold(f64::INFINITY, f64::min);
+    rms.max(hi - lo).max(floor)
 }
 
 /// Marks the non-dominated rows of (cost, error): sorted by cost, each row whose error is below
@@ -761,6 +775,70 @@ mod tests {
         assert_eq!(
             "1/4".parse::<Shard>().unwrap(),
             Shard { index: 1, count: 4 }
+        );
+    }
+
+    fn case(index: usize, values: &[(&str, f64)], history: &[(&str, Vec<f64>)]) -> CaseResult {
+        CaseResult {
+            index,
+            models: Vec::new(),
+            wall_time_s: 1.0,
+            values: values.iter().map(|(k, v)| ((*k).to_owned(), *v)).collect(),
+            history: history
+                .iter()
+                .map(|(k, v)| ((*k).to_owned(), v.clone()))
+                .collect(),
+            failure: None,
+        }
+    }
+
+    /// Hand-computed: trim error = max |Δ|/|ref| = max(0.5/2, 1/4, 0.01/0.1) = 0.25; a history
+    /// offset by a constant 0.3 deg from an alpha of 0 ± 1 deg (RMS 1, peak-to-peak 2) has
+    /// RMS deviation 0.3 and error 0.3/2 = 0.15; a q that stays at zero is scaled by its floor.
+    #[test]
+    fn errors_follow_their_definitions() {
+        let reference = case(
+            0,
+            &[
+                ("alpha_deg", 2.0),
+                ("elevon_deg", -4.0),
+                ("fuel_equivalence_ratio", 0.1),
+            ],
+            &[],
+        );
+        let other = case(
+            1,
+            &[
+                ("alpha_deg", 1.5),
+                ("elevon_deg", -3.0),
+                ("fuel_equivalence_ratio", 0.11),
+            ],
+            &[],
+        );
+        let (d, e) = deviation(TradeJob::Trim, &other, &reference);
+        assert!((e.unwrap() - 0.25).abs() < 1e-12);
+        assert!((d["alpha_deg"] - 0.5).abs() < 1e-12);
+
+        let flat = |v: f64| vec![v; 4];
+        let history = |alpha: Vec<f64>, q: f64| {
+            vec![
+                ("altitude_m", flat(26_000.0)),
+                ("airspeed_m_s", flat(1800.0)),
+                ("alpha_deg", alpha),
+                ("pitch_deg", flat(1.0)),
+                ("q_deg_s", flat(q)),
+            ]
+        };
+        let reference = case(0, &[], &history(vec![1.0, -1.0, 1.0, -1.0], 0.0));
+        let other = case(1, &[], &history(vec![1.3, -0.7, 1.3, -0.7], 0.0));
+        let (d, e) = deviation(TradeJob::Simulate, &other, &reference);
+        assert!((d["alpha_deg"] - 0.3).abs() < 1e-12);
+        assert!((e.unwrap() - 0.15).abs() < 1e-12);
+        let q_off = case(1, &[], &history(vec![1.0, -1.0, 1.0, -1.0], 2e-4));
+        let (_, e) = deviation(TradeJob::Simulate, &q_off, &reference);
+        assert!(
+            (e.unwrap() - 0.2).abs() < 1e-12,
+            "2e-4 deg/s over the 1e-3 floor"
         );
     }
 

@@ -12,14 +12,11 @@ use super::steps::time_steps;
 use super::{ConfigArg, JsonFlag, OutArgs, load_config};
 use crate::analysis::simulate::{Inputs, RunSettings, Sample, simulate};
 use crate::analysis::trim::{TrimRequest, trim};
-use crate::dynamics::GravityModel;
 use crate::outln;
 use crate::output::{LinePlot, RunFolder, RunStatus, Series, write_csv, write_line_plots_png};
 use crate::progress::Progress;
-use crate::vehicle::assemble;
-use crate::vehicle::partitioned::{
-    CouplingSettings, ElevonCommandData, FlightControls, PartitionedVehicle, partitioned_needs,
-};
+use crate::vehicle::flexible_vehicle_with;
+use crate::vehicle::partitioned::{ElevonCommandData, FlightControls, HeatingRates, SurfaceModel};
 
 /// Arguments of `hsv-run simulate`.
 #[derive(Args, Debug, Clone)]
@@ -52,8 +49,64 @@ pub struct SimulateArgs {
     /// No progress bar.
     #[arg(long)]
     pub quiet: bool,
+    /// Keep the lifting surfaces at their initial temperature (no in-flight heating).
+    #[arg(long = "no-heating")]
+    pub no_heating: bool,
+    /// Fly the monolithic comparison model (paper §IV): surfaces as OML following the body's
+    /// modes, not heated.
+    #[arg(long)]
+    pub monolithic: bool,
+    /// With --monolithic, lump the surfaces' mass and inertia into the body (the paper's
+    /// proposed correction).
+    #[arg(long = "lumped-surface-mass", requires = "monolithic")]
+    pub lumped_surface_mass: bool,
     #[command(flatten)]
     pub json: JsonFlag,
+}
+
+/// The heating rates: `[simulation]` keys `heat_transfer_dt_s`, `aerothermal_dt_s`,
+/// `stiffness_interval_s`, `initial_temperature_k` over the paper's Table 3 defaults.
+fn heating_rates(loaded: &hsv_core::config::LoadedConfig) -> Result<HeatingRates> {
+    let mut rates = HeatingRates::default();
+    for (key, slot) in [
+        ("heat_transfer_dt_s", &mut rates.conduction_s),
+        ("aerothermal_dt_s", &mut rates.heat_flux_s),
+        ("stiffness_interval_s", &mut rates.stiffness_s),
+        ("initial_temperature_k", &mut rates.initial_k),
+    ] {
+        if let Some(value) = loaded.config.simulation.get(key) {
+            let v = value
+                .as_float()
+                .or_else(|| value.as_integer().map(|i| i as f64));
+            match v {
+                Some(v) if v.is_finite() && v > 0.0 => *slot = v,
+                _ => bail!(
+                    "{}: key `simulation.{key}` must be a positive number, got {value}",
+                    loaded.file
+                ),
+            }
+        }
+    }
+    let known = [
+        "inputs",
+        "heat_transfer_dt_s",
+        "aerothermal_dt_s",
+        "stiffness_interval_s",
+        "initial_temperature_k",
+    ];
+    if let Some(key) = loaded
+        .config
+        .simulation
+        .keys()
+        .find(|k| !known.contains(&k.as_str()))
+    {
+        bail!(
+            "{}: key `simulation.{key}` is unknown; expected one of {}",
+            loaded.file,
+            known.join(", ")
+        );
+    }
+    Ok(rates)
 }
 
 /// The inputs: `[simulation.inputs]` of the config, or the paper's doublet.
@@ -106,13 +159,17 @@ pub fn run(args: SimulateArgs, registry: &Registry) -> Result<()> {
     let inputs = inputs(&loaded)?;
     let mach = loaded.config.flight.mach;
     let altitude_m = loaded.config.flight.altitude_m;
-    let sets = assemble(
-        &loaded,
-        &registry,
-        &partitioned_needs("the time simulation"),
-    )?;
+    let rates = heating_rates(&loaded)?;
+    let model = if args.monolithic {
+        SurfaceModel::Monolithic {
+            lumped_mass: args.lumped_surface_mass,
+        }
+    } else {
+        SurfaceModel::Partitioned
+    };
+    let heated = !args.no_heating && model == SurfaceModel::Partitioned;
     let mut vehicle =
-        PartitionedVehicle::new(sets, GravityModel::default(), CouplingSettings::default())?;
+        flexible_vehicle_with(&loaded, &registry, model, heated, "the time simulation")?;
     if !args.quiet {
         eprintln!("simulate: trimming the flexible vehicle at Mach {mach}, {altitude_m} m");
     }
@@ -132,6 +189,7 @@ pub fn run(args: SimulateArgs, registry: &Registry) -> Result<()> {
     };
     let (mut state, _) =
         vehicle.level_flight_state(mach, altitude_m, t.alpha_deg.to_radians(), &trim_controls)?;
+    vehicle.start_heating(&rates)?;
     let mut folder = RunFolder::create("simulate", args.output.out.as_deref(), args.output.force)?;
     let settings = RunSettings {
         dt_s: args.dt_s,
@@ -251,6 +309,18 @@ fn write_history(
             column(|s| s.coupling_iterations as f64),
         ),
         ("coupling_residual", column(|s| s.coupling_residual)),
+        (
+            "surface_min_temperature_k",
+            column(|s| s.surface_min_temperature_k),
+        ),
+        (
+            "surface_max_temperature_k",
+            column(|s| s.surface_max_temperature_k),
+        ),
+        (
+            "surface_mean_temperature_k",
+            column(|s| s.surface_mean_temperature_k),
+        ),
     ];
     let n_modes = body_modes.first().map_or(0, Vec::len);
     let mode_names: Vec<String> = (0..n_modes)
@@ -295,9 +365,26 @@ fn write_history(
             column(|s| s.alpha_deg),
         ),
         plot("Elevon (Fig. 10)", "elevon (deg)", column(|s| s.elevon_deg)),
+        LinePlot {
+            title: "Lifting-surface structure temperature (Fig. 14)".to_owned(),
+            x_label: "time (s)".to_owned(),
+            y_label: "temperature (K)".to_owned(),
+            series: [
+                ("max", column(|s| s.surface_max_temperature_k)),
+                ("mean", column(|s| s.surface_mean_temperature_k)),
+                ("min", column(|s| s.surface_min_temperature_k)),
+            ]
+            .into_iter()
+            .map(|(label, y)| Series {
+                label: label.to_owned(),
+                x: time.clone(),
+                y,
+            })
+            .collect(),
+        },
     ];
     let png = folder.join("history.png");
-    write_line_plots_png(&png, &figures, 2, (1200, 1100))?;
+    write_line_plots_png(&png, &figures, 2, (1200, 1400))?;
     folder.record(png);
     Ok(())
 }

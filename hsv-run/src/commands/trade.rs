@@ -477,7 +477,7 @@ pub fn table_json(table: &TradeTable) -> serde_json::Value {
         "reference_case": table.reference_case,
         "error_definition": match table.spec.job {
             TradeJob::Trim => "max over alpha, elevon, phi of |value - reference| / |reference|",
-            TradeJob::Simulate => "max over altitude, airspeed, alpha, pitch, q of RMS(history - reference) / peak-to-peak(reference)",
+            TradeJob::Simulate => "max over altitude, airspeed, alpha, pitch, q of RMS(history - reference) / max(RMS(reference), peak-to-peak(reference), floor); floors 0.01 m, 0.01 m/s, 0.001 deg, 0.001 deg, 0.001 deg/s",
         },
         "rows": rows,
     })
@@ -610,7 +610,7 @@ fn print_table(table: &TradeTable) -> Result<()> {
         match spec.job {
             TradeJob::Trim => "largest relative deviation of alpha, elevon, phi from the reference",
             TradeJob::Simulate =>
-                "largest RMS deviation of altitude, airspeed, alpha, pitch, q over the reference's peak-to-peak range",
+                "largest RMS deviation of altitude, airspeed, alpha, pitch, q relative to the reference's size (max of its RMS and peak-to-peak)",
         }
     )?;
     Ok(())
@@ -682,6 +682,7 @@ fn shard_arguments(
 pub fn slurm_scripts(
     program: &str,
     arguments: &[String],
+    merge_arguments: &[String],
     shards: usize,
     cpus: usize,
     time: &str,
@@ -720,10 +721,15 @@ pub fn slurm_scripts(
         .map(|k| format!("shard-{k}"))
         .collect::<Vec<_>>()
         .join(" ");
-    let merge = format!(
-        "{} merge {shard_dirs} --out merged --force",
-        shell_quote(program)
-    );
+    let merge = std::iter::once(shell_quote(program))
+        .chain([
+            "merge".to_owned(),
+            shard_dirs,
+            "--out merged --force".to_owned(),
+        ])
+        .chain(merge_arguments.iter().map(|a| shell_quote(a)))
+        .collect::<Vec<_>>()
+        .join(" ");
     let mut submit = String::new();
     let _ = writeln!(submit, "#!/bin/bash");
     let _ = writeln!(
@@ -770,9 +776,15 @@ fn emit_slurm(
         None => std::env::current_exe().context("cannot find this executable's path")?,
     };
     let arguments = shard_arguments(args, spec, costs)?;
+    // The merge computes the table, so it needs the same cost file.
+    let merge_arguments = match costs {
+        Some(c) => vec!["--costs".to_owned(), absolute(c)?.display().to_string()],
+        None => Vec::new(),
+    };
     let (array, submit) = slurm_scripts(
         &program.display().to_string(),
         &arguments,
+        &merge_arguments,
         shards,
         args.slurm_cpus.max(1),
         &args.slurm_time,

@@ -322,7 +322,19 @@ pub fn flexible_vehicle(
     model: partitioned::SurfaceModel,
     analysis: &str,
 ) -> Result<partitioned::PartitionedVehicle, AssemblyError> {
+    flexible_vehicle_with(loaded, registry, model, false, analysis)
+}
+
+/// [`flexible_vehicle`], with the partitioned surfaces heating in flight when `heated`.
+pub fn flexible_vehicle_with(
+    loaded: &LoadedConfig,
+    registry: &Registry,
+    model: partitioned::SurfaceModel,
+    heated: bool,
+    analysis: &str,
+) -> Result<partitioned::PartitionedVehicle, AssemblyError> {
     let needs = match model {
+        partitioned::SurfaceModel::Partitioned if heated => partitioned::heated_needs(analysis),
         partitioned::SurfaceModel::Partitioned => partitioned::partitioned_needs(analysis),
         partitioned::SurfaceModel::Monolithic { .. } => partitioned::monolithic_needs(analysis),
     };

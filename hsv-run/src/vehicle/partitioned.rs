@@ -92,6 +92,72 @@ pub enum SurfaceModel {
     Monolithic { lumped_mass: bool },
 }
 
+/// The partitioned vehicle with its surfaces heating in flight: also a heat-flux model, a
+/// conduction model and temperature-dependent stiffness on each surface.
+pub fn heated_needs(analysis: &str) -> AnalysisNeeds {
+    let mut needs = partitioned_needs(analysis);
+    for (name, need) in &mut needs.regions {
+        if name.ends_with("_surface") {
+            need.roles.extend([Role::HeatFlux, Role::Conduction]);
+            need.structure.push(Capability::ThermalStiffness);
+        }
+    }
+    needs
+}
+
+/// Rates of the in-flight heating (paper Table 3).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct HeatingRates {
+    /// Conduction step, s (paper: heat transfer 1 ms).
+    pub conduction_s: f64,
+    /// Interval between heat-flux updates, s (paper: aerothermal 10 ms).
+    pub heat_flux_s: f64,
+    /// Interval between stiffness updates from the temperature field, s (our choice).
+    pub stiffness_s: f64,
+    /// Initial uniform temperature, K (paper: 293 K).
+    pub initial_k: f64,
+}
+
+impl Default for HeatingRates {
+    fn default() -> Self {
+        Self {
+            conduction_s: 1e-3,
+            heat_flux_s: 1e-2,
+            stiffness_s: 0.1,
+            initial_k: 293.0,
+        }
+    }
+}
+
+/// One surface's thermal model and state: heat flux from its latest aero solution, conduction,
+/// and the structure's stiffness updated from the temperature field.
+struct SurfaceThermal {
+    heat_flux: Box<dyn hsv_core::thermal::HeatFluxModel>,
+    conduction: Box<dyn hsv_core::thermal::ConductionModel>,
+    /// The conduction state: simulation state of the region.
+    state: DVector<f64>,
+    trial: DVector<f64>,
+    wall_k: Vec<f64>,
+    flux_w_m2: Vec<f64>,
+    node_k: Vec<f64>,
+    node_difference_k: Vec<f64>,
+    structure_k: Vec<f64>,
+    structure_difference_k: Vec<f64>,
+    transfer: Option<hsv_core::coupling::GridTransfer>,
+    /// Time up to which conduction has been stepped, and of the last flux and stiffness update.
+    conduction_time_s: f64,
+    flux_time_s: f64,
+    stiffness_time_s: f64,
+}
+
+/// Temperatures of one heated surface, K.
+#[derive(Debug, Clone, Copy, PartialEq, Default, serde::Serialize)]
+pub struct SurfaceTemperatures {
+    pub min_k: f64,
+    pub max_k: f64,
+    pub mean_k: f64,
+}
+
 /// What the monolithic vehicle needs: aero and mass on the body and surfaces, an engine.
 pub fn monolithic_needs(analysis: &str) -> AnalysisNeeds {
     let surface = RegionNeeds {
@@ -201,6 +267,7 @@ struct Body {
 }
 
 struct Surface {
+    thermal: Option<SurfaceThermal>,
     friction: Option<RegionFriction>,
     friction_about_pivot: Loads,
     name: String,
@@ -245,6 +312,7 @@ pub struct PartitionedVehicle {
     previous_step: Vec<DVector<f64>>,
     report: CouplingReport,
     warm_start: Option<VehicleState>,
+    heating: HeatingRates,
     /// Simulation time of the next derivative, s (for models with memory).
     time_s: f64,
     /// Aero loads of the body panels, and with the surfaces' applied loads, about the CG.
@@ -260,6 +328,75 @@ fn model_error(region: &str) -> impl Fn(ModelError) -> VehicleError + '_ {
         region: region.to_owned(),
         source,
     }
+}
+
+/// A surface's thermal model, with the transfer of its conduction nodes onto the structure's
+/// temperature grid (mirrored when the structure keeps the other side's grid).
+fn surface_thermal(
+    name: &str,
+    heat_flux: Box<dyn hsv_core::thermal::HeatFluxModel>,
+    conduction: Box<dyn hsv_core::thermal::ConductionModel>,
+    structure: &dyn StructureModel,
+    n_panels: usize,
+) -> Result<SurfaceThermal, AssemblyError> {
+    let thermal = structure
+        .thermal_stiffness()
+        .ok_or_else(|| assembly_error(name, "temperature-dependent stiffness".into()))?;
+    let n_structure = thermal.temperature_nodes();
+    let transfer = match (conduction.node_grid(), thermal.temperature_grid()) {
+        (Some(source), Some(target)) => {
+            let mut target = target.clone();
+            if target.side != source.side {
+                for p in &mut target.positions_m {
+                    p.y = -p.y;
+                }
+                target.side = source.side;
+            }
+            Some(
+                hsv_core::coupling::GridTransfer::new(source, &target)
+                    .map_err(|e| assembly_error(name, e.to_string()))?,
+            )
+        }
+        _ if conduction.n_nodes() == n_structure => None,
+        _ => {
+            return Err(assembly_error(
+                name,
+                format!(
+                    "conduction `{}` reports {} node temperatures and has no grid to transfer \
+                     them onto the structure's {n_structure}",
+                    conduction.name(),
+                    conduction.n_nodes()
+                ),
+            ));
+        }
+    };
+    if conduction.n_surface_panels() != n_panels {
+        return Err(assembly_error(
+            name,
+            format!(
+                "conduction `{}` takes {} surface panels, the region's mesh has {n_panels}",
+                conduction.name(),
+                conduction.n_surface_panels()
+            ),
+        ));
+    }
+    let n_nodes = conduction.n_nodes();
+    Ok(SurfaceThermal {
+        state: DVector::zeros(conduction.n_states()),
+        trial: DVector::zeros(conduction.n_states()),
+        heat_flux,
+        conduction,
+        wall_k: vec![0.0; n_panels],
+        flux_w_m2: vec![0.0; n_panels],
+        node_k: vec![0.0; n_nodes],
+        node_difference_k: vec![0.0; n_nodes],
+        structure_k: vec![0.0; n_structure],
+        structure_difference_k: vec![0.0; n_structure],
+        transfer,
+        conduction_time_s: 0.0,
+        flux_time_s: f64::NEG_INFINITY,
+        stiffness_time_s: 0.0,
+    })
 }
 
 fn assembly_error(region: &str, message: String) -> AssemblyError {
@@ -377,7 +514,18 @@ impl PartitionedVehicle {
                         None => None,
                     };
                     let n_panels = set.info.mesh.panels.len();
+                    let thermal = match (set.heat_flux, set.conduction) {
+                        (Some(heat_flux), Some(conduction)) => Some(surface_thermal(
+                            &name,
+                            heat_flux,
+                            conduction,
+                            structure.as_ref(),
+                            n_panels,
+                        )?),
+                        _ => None,
+                    };
                     surfaces.push(Surface {
+                        thermal,
                         friction: set.friction.map(|m| RegionFriction::new(m, n_panels)),
                         friction_about_pivot: Loads::default(),
                         name: name.clone(),
@@ -480,6 +628,7 @@ impl PartitionedVehicle {
             loads,
             report: CouplingReport::default(),
             warm_start: None,
+            heating: HeatingRates::default(),
             time_s: 0.0,
             aero_loads: Loads::default(),
             aero_with_surfaces: Loads::default(),
@@ -514,6 +663,7 @@ impl PartitionedVehicle {
                     .map_err(model_error(&s.name))?;
             }
         }
+        self.advance_heating(state, time_s)?;
         self.time_s = time_s;
         Ok(())
     }
@@ -771,6 +921,117 @@ impl PartitionedVehicle {
             }
         }
         Ok(())
+    }
+
+    /// Starts every heated surface at a uniform temperature with `rates` (call before flying).
+    pub fn start_heating(&mut self, rates: &HeatingRates) -> Result<(), VehicleError> {
+        self.heating = *rates;
+        for s in &mut self.surfaces {
+            if let Some(t) = &mut s.thermal {
+                t.state = t
+                    .conduction
+                    .uniform_state(rates.initial_k)
+                    .map_err(model_error(&s.name))?;
+                t.trial.clone_from(&t.state);
+                t.conduction_time_s = 0.0;
+                t.flux_time_s = f64::NEG_INFINITY;
+                t.stiffness_time_s = 0.0;
+            }
+        }
+        Ok(())
+    }
+
+    /// Advances every heated surface to `time_s`: heat flux from the surface's latest aero
+    /// solution every heat-flux interval, conduction steps, and the structure's stiffness (and
+    /// the modal equations) from the temperature field every stiffness interval.
+    fn advance_heating(&mut self, state: &VehicleState, time_s: f64) -> Result<(), VehicleError> {
+        let flight = self.flight(state)?;
+        let rates = self.heating;
+        for (i, s) in self.surfaces.iter_mut().enumerate() {
+            let Some(t) = &mut s.thermal else {
+                continue;
+            };
+            let err = model_error(&s.name);
+            let mut stepped = false;
+            while time_s - t.conduction_time_s > 1e-9 * rates.conduction_s {
+                if t.conduction_time_s - t.flux_time_s >= rates.heat_flux_s - 1e-12 {
+                    t.conduction.surface_temperatures(&t.state, &mut t.wall_k);
+                    t.heat_flux
+                        .heat_flux(
+                            &s.deflected,
+                            &flight,
+                            &s.solution,
+                            &t.wall_k,
+                            &mut t.flux_w_m2,
+                        )
+                        .map_err(&err)?;
+                    t.flux_time_s = t.conduction_time_s;
+                }
+                let dt = rates.conduction_s.min(time_s - t.conduction_time_s);
+                t.trial.copy_from(&t.state);
+                t.conduction
+                    .step(&mut t.trial, &t.flux_w_m2, dt)
+                    .map_err(&err)?;
+                std::mem::swap(&mut t.state, &mut t.trial);
+                t.conduction_time_s += dt;
+                stepped = true;
+            }
+            if stepped && time_s - t.stiffness_time_s >= rates.stiffness_s - 1e-12 {
+                t.conduction.node_temperatures(&t.state, &mut t.node_k);
+                t.conduction
+                    .node_temperature_differences(&t.state, &mut t.node_difference_k);
+                match &t.transfer {
+                    Some(transfer) => {
+                        let to_err = |e: hsv_core::coupling::CouplingError| {
+                            err(ModelError::inconsistent(
+                                "temperature transfer",
+                                e.to_string(),
+                            ))
+                        };
+                        transfer
+                            .apply(&t.node_k, &mut t.structure_k)
+                            .map_err(to_err)?;
+                        transfer
+                            .apply(&t.node_difference_k, &mut t.structure_difference_k)
+                            .map_err(to_err)?;
+                    }
+                    None => {
+                        t.structure_k.copy_from_slice(&t.node_k);
+                        t.structure_difference_k
+                            .copy_from_slice(&t.node_difference_k);
+                    }
+                }
+                if let Some(thermal) = s.structure.thermal_stiffness_mut() {
+                    thermal
+                        .set_temperature_field(&t.structure_k, &t.structure_difference_k)
+                        .map_err(&err)?;
+                }
+                self.dynamics
+                    .set_surface_matrices(i, s.structure.modal_model())?;
+                t.stiffness_time_s = time_s;
+            }
+        }
+        Ok(())
+    }
+
+    /// Structure temperatures of each heated surface (empty for unheated surfaces).
+    pub fn surface_temperatures(&mut self) -> Vec<(String, SurfaceTemperatures)> {
+        let mut out = Vec::new();
+        for s in &mut self.surfaces {
+            if let Some(t) = &mut s.thermal {
+                t.conduction.node_temperatures(&t.state, &mut t.node_k);
+                let n = t.node_k.len().max(1) as f64;
+                out.push((
+                    s.name.clone(),
+                    SurfaceTemperatures {
+                        min_k: t.node_k.iter().copied().fold(f64::INFINITY, f64::min),
+                        max_k: t.node_k.iter().copied().fold(f64::NEG_INFINITY, f64::max),
+                        mean_k: t.node_k.iter().sum::<f64>() / n,
+                    },
+                ));
+            }
+        }
+        out
     }
 
     /// How the surfaces are modelled.

@@ -9,6 +9,7 @@ pub mod dynamics;
 pub mod linked;
 pub mod output;
 pub mod progress;
+pub mod steps;
 pub mod vehicle;
 
 pub use linked::registry;

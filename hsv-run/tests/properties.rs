@@ -1,4 +1,4 @@
-//! Property tests of the `aero` and `engine` jobs (issue 16): random flight conditions,
+//! Property tests of the `aero`, `engine`, `trim` and `modes` jobs (issue 16): random flight conditions,
 //! including extreme and non-finite values, and random edits of the sample config give finite
 //! results or a clear error, never a panic or a NaN.
 
@@ -184,6 +184,61 @@ proptest! {
                 }
             }
             Err(error) => assert_clear(&error),
+        }
+    }
+}
+
+/// A clear error: one line that names what went wrong (not a panic, not empty).
+fn clear(message: &str) -> bool {
+    !message.is_empty() && !message.contains("panicked")
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig { cases: 6, failure_persistence: None, ..ProptestConfig::default() })]
+
+    /// The trim job (rigid vehicle) at random flight conditions: finite trim values and
+    /// residuals, or a clear error (untrimmable, outside the atmosphere, an engine refusing).
+    #[test]
+    fn trim_gives_finite_values_or_a_clear_error(
+        mach in awkward(3.0..12.0),
+        altitude_m in awkward(15_000.0..40_000.0),
+    ) {
+        use hsv_run::analysis::trim::{TrimRequest, trim};
+        use hsv_run::vehicle::rigid::{RigidVehicle, rigid_needs};
+        let registry = hsv_run::registry().expect("registry");
+        let loaded = LoadedConfig::sample().expect("sample");
+        let sets = hsv_run::vehicle::assemble(&loaded, &registry, &rigid_needs("trim"))
+            .expect("assembles");
+        let mut vehicle = RigidVehicle::new(sets).expect("vehicle");
+        let request = TrimRequest { mach, altitude_m, max_iterations: 400, ..TrimRequest::default() };
+        match trim(&mut vehicle, &request) {
+            Ok(r) => {
+                let t = &r.trim;
+                prop_assert!(t.alpha_deg.is_finite() && t.elevon_deg.is_finite());
+                prop_assert!(t.fuel_equivalence_ratio.is_finite() && t.cost.is_finite());
+            }
+            Err(e) => prop_assert!(clear(&e.to_string()), "{e}"),
+        }
+    }
+
+    /// The modes job at random uniform surface temperatures: finite frequencies, a surface
+    /// reported as buckled, or a clear error (outside the material's data).
+    #[test]
+    fn modes_give_finite_frequencies_or_a_clear_error(
+        temperature_k in awkward(0.0..2_500.0),
+    ) {
+        use hsv_run::commands::modes::{ModesOutcome, Temperature, compute};
+        let registry = hsv_run::registry().expect("registry");
+        let loaded = LoadedConfig::sample().expect("sample");
+        match compute(&loaded, &registry, Temperature::Uniform(temperature_k)) {
+            Ok(report) => {
+                for (_, s) in &report.surfaces {
+                    if let ModesOutcome::Modes(rows) = &s.outcome {
+                        prop_assert!(rows.iter().all(|r| r.frequency_hz.is_finite() && r.frequency_hz > 0.0));
+                    }
+                }
+            }
+            Err(e) => prop_assert!(clear(&format!("{e:#}")), "{e:#}"),
         }
     }
 }

@@ -161,3 +161,15 @@ fn halving_the_aeroelastic_step_leaves_the_doublet_response_unchanged() {
         "the doublet moved nothing: {a:?}"
     );
 }
+
+#[test]
+fn a_duration_that_is_not_a_whole_number_of_steps_ends_exactly_at_it() {
+    // 0.205 s at 2 ms: 102 full steps and a last one of 1 ms, never a silent 0.206 s.
+    let still = Inputs {
+        symmetric_elevon_deg: InputTable::constant(0.0),
+        ..Inputs::paper_doublet()
+    };
+    let samples = fly_with(0.205, 0.002, &still);
+    let last = samples.last().expect("samples");
+    assert!((last.time_s - 0.205).abs() < 1e-12, "{last:?}");
+}

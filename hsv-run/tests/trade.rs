@@ -98,13 +98,24 @@ fn two_aero_models_trim_study_produces_its_table() {
     let _ = std::fs::remove_dir_all(&out);
 }
 
+/// With model costs from a file, the whole table but the measured wall times is deterministic
+/// (without one, the Pareto front is drawn on wall times, which vary from run to run).
 #[test]
 fn shards_merged_equal_one_unsharded_run() {
     let whole = scratch("whole");
+    let costs = std::env::temp_dir().join(format!("hsv-trade-{}-costs.csv", std::process::id()));
+    std::fs::write(
+        &costs,
+        "model,seconds\nnewtonian-scalar,2.5e-5\nshock-expansion,2.4e-4\n",
+    )
+    .unwrap();
+    let costs = costs.to_str().unwrap();
     let run = hsv_run(&[
         "trade",
         "--vary",
         VARY,
+        "--costs",
+        costs,
         "--quiet",
         "--out",
         whole.to_str().unwrap(),
@@ -142,7 +153,12 @@ fn shards_merged_equal_one_unsharded_run() {
     let mut args = vec!["merge".to_owned()];
     // Given in reverse: the order of the folders does not matter.
     args.extend(shard_dirs.iter().rev().map(|d| d.display().to_string()));
-    args.extend(["--out".to_owned(), merged.display().to_string()]);
+    args.extend([
+        "--out".to_owned(),
+        merged.display().to_string(),
+        "--costs".to_owned(),
+        costs.to_owned(),
+    ]);
     let args: Vec<&str> = args.iter().map(String::as_str).collect();
     let run = hsv_run(&args);
     assert!(
@@ -165,6 +181,7 @@ fn shards_merged_equal_one_unsharded_run() {
     assert!(!run.status.success());
     let stderr = String::from_utf8_lossy(&run.stderr);
     assert!(stderr.contains("1/2"), "{stderr}");
+    let _ = std::fs::remove_file(costs);
     for dir in shard_dirs.iter().chain([&whole, &merged]) {
         let _ = std::fs::remove_dir_all(dir);
     }

@@ -203,7 +203,10 @@ pub fn simulate(
     let mut rk4 = Rk4::new(layout.len());
     let mut scratch = state.clone();
     let mut derivative = vehicle.dynamics().zero_derivative();
-    let steps = (settings.duration_s / settings.dt_s).round().max(0.0) as usize;
+    // The last step is shortened so the run ends exactly at the duration.
+    let plan = crate::steps::time_steps(settings.duration_s, settings.dt_s)
+        .map_err(|e| wrap(0.0)(VehicleError::Input(e.to_string())))?;
+    let steps = plan.steps;
     let record = |vehicle: &mut PartitionedVehicle, state: &VehicleState, t: f64| {
         let temperatures = vehicle.surface_temperatures();
         let (mut lo, mut hi, mut sum) = (f64::INFINITY, f64::NEG_INFINITY, 0.0);
@@ -253,7 +256,8 @@ pub fn simulate(
         return Ok(0);
     }
     for k in 0..steps {
-        let t = k as f64 * settings.dt_s;
+        let t = plan.start_s(k);
+        let dt = plan.dt_of(k);
         let mut f = |time: f64, x: &DVector<f64>, dx: &mut DVector<f64>| {
             layout.unpack(x, &mut scratch)?;
             let controls = inputs.controls(trim, time);
@@ -262,22 +266,16 @@ pub fn simulate(
             layout.pack_derivative(x, &derivative, dx)?;
             Ok::<(), VehicleError>(())
         };
-        rk4.step(&mut f, t, settings.dt_s, &mut x)
-            .map_err(wrap(t))?;
+        rk4.step(&mut f, t, dt, &mut x).map_err(wrap(t))?;
         layout
             .normalize_attitude(&mut x)
             .map_err(|e| wrap(t)(e.into()))?;
         layout.unpack(&x, state).map_err(|e| wrap(t)(e.into()))?;
         let done = k + 1;
         // The accepted step: models with memory commit their history, the surfaces heat.
-        vehicle
-            .commit_step(state, done as f64 * settings.dt_s)
-            .map_err(wrap(t))?;
+        vehicle.commit_step(state, plan.end_s(k)).map_err(wrap(t))?;
         if (done % settings.record_every.max(1) == 0 || done == steps)
-            && !observe(
-                &record(&mut *vehicle, state, done as f64 * settings.dt_s),
-                state,
-            )
+            && !observe(&record(&mut *vehicle, state, plan.end_s(k)), state)
         {
             return Ok(done);
         }

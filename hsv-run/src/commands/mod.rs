@@ -11,9 +11,11 @@ pub mod linearize;
 pub mod merge;
 pub mod modes;
 pub mod simulate;
-pub mod steps;
 pub mod trade;
 pub mod trim;
+
+/// The step rule every timed command uses (kept at this path for the commands).
+pub use crate::steps;
 pub mod vehicle;
 
 use std::path::{Path, PathBuf};

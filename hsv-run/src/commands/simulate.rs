@@ -220,6 +220,20 @@ pub fn run(args: SimulateArgs, registry: &Registry) -> Result<()> {
         p.finish();
     }
     let wall_time_s = start.elapsed().as_secs_f64();
+    // Where the aero models stood outside their range at the last evaluation.
+    let final_flight = vehicle.flight(&state)?;
+    let warnings: Vec<String> = vehicle
+        .aero_diagnostics()
+        .iter()
+        .flat_map(|(region, model, d)| {
+            super::aero::validity_warnings(model, &final_flight, d)
+                .into_iter()
+                .map(move |w| format!("{region}: {w}"))
+        })
+        .collect();
+    for w in &warnings {
+        eprintln!("warning: {w}");
+    }
     let status = match &outcome {
         Ok(_) => RunStatus::Completed,
         Err(e) => RunStatus::Failed(e.to_string()),
@@ -241,6 +255,7 @@ pub fn run(args: SimulateArgs, registry: &Registry) -> Result<()> {
         "min_altitude_m": samples.iter().map(|s| s.altitude_m).fold(f64::INFINITY, f64::min),
         "max_coupling_iterations": samples.iter().map(|s| s.coupling_iterations).max(),
         "wall_time_s": wall_time_s,
+        "warnings": warnings,
     });
     let written = folder.write_summary(summary, &status)?;
     if args.json.json {

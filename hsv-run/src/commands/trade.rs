@@ -65,7 +65,8 @@ pub struct TradeArgs {
     #[arg(long = "record-every")]
     pub record_every: Option<usize>,
     /// Per-model cost CSV `model,seconds` (scripts/criterion_costs.py writes it from the
-    /// benches): a case's cost is the sum over its varied models (default: its wall time).
+    /// benches): a case's cost is the sum over its varied models (default: its wall time,
+    /// which varies from run to run).
     #[arg(long, value_name = "FILE")]
     pub costs: Option<PathBuf>,
     /// Run only shard K of N (0-based; case i belongs to shard i mod N); join the shard folders

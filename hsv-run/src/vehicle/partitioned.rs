@@ -242,6 +242,9 @@ pub enum VehicleError {
     },
     #[error(transparent)]
     Dynamics(#[from] crate::dynamics::DynamicsError),
+    /// A run's inputs are refused (its steps, its tables).
+    #[error("{0}")]
+    Input(String),
     #[error(
         "body-surface coupling did not converge in {iterations} iterations at the pivots of \
          {interfaces}: last relative root-load changes {residuals:?} (tolerance {tolerance})"
@@ -1030,6 +1033,30 @@ impl PartitionedVehicle {
                     },
                 ));
             }
+        }
+        out
+    }
+
+    /// Each region's aero model and the validity diagnostics of its latest evaluation.
+    pub fn aero_diagnostics(&self) -> Vec<(String, String, hsv_core::aero::AeroDiagnostics)> {
+        let mut out = vec![(
+            "main_body".to_owned(),
+            self.body.aero.name().to_owned(),
+            self.body.solution.diagnostics,
+        )];
+        for s in &self.surfaces {
+            out.push((
+                s.name.clone(),
+                s.aero.name().to_owned(),
+                s.solution.diagnostics,
+            ));
+        }
+        for f in &self.followers {
+            out.push((
+                f.name.clone(),
+                f.aero.name().to_owned(),
+                f.solution.diagnostics,
+            ));
         }
         out
     }

@@ -109,8 +109,9 @@ fn heating_rates(loaded: &hsv_core::config::LoadedConfig) -> Result<HeatingRates
     Ok(rates)
 }
 
-/// The inputs: `[simulation.inputs]` of the config, or the paper's doublet.
-fn inputs(loaded: &hsv_core::config::LoadedConfig) -> Result<Inputs> {
+/// The inputs: `[simulation.inputs]` of the config over the paper's doublet (also what a
+/// simulate trade study flies).
+pub(crate) fn inputs(loaded: &hsv_core::config::LoadedConfig) -> Result<Inputs> {
     let Some(table) = loaded.config.simulation.get("inputs") else {
         return Ok(Inputs::paper_doublet());
     };

@@ -15,7 +15,7 @@ use hsv_core::registry::Registry;
 use rayon::prelude::*;
 
 use super::{ConfigArg, JsonFlag, OutArgs, load_config};
-use crate::analysis::simulate::{InputTable, Inputs};
+use crate::analysis::simulate::Inputs;
 use crate::analysis::trade::{
     CaseResult, FlightSpec, Shard, StudySpec, TradeCases, TradeJob, TradeTable, Variation, compare,
     fingerprint, read_costs, run_case,
@@ -206,39 +206,6 @@ fn study(
     Ok((spec, costs))
 }
 
-/// The control inputs of a simulate study: `[simulation.inputs]` over the paper's doublet, as
-/// `hsv-run simulate` reads them.
-fn inputs(loaded: &LoadedConfig) -> Result<Inputs> {
-    let mut merged = Inputs::paper_doublet();
-    let Some(table) = loaded.config.simulation.get("inputs") else {
-        return Ok(merged);
-    };
-    let table = table
-        .as_table()
-        .with_context(|| format!("{}: key `simulation.inputs` must be a table", loaded.file))?;
-    for (key, value) in table {
-        let path = format!("simulation.inputs.{key}");
-        let value = value
-            .as_table()
-            .with_context(|| format!("{}: key `{path}` must be a table", loaded.file))?;
-        let t: InputTable = hsv_core::config::parse_table(value, &loaded.file, &path)?;
-        match key.as_str() {
-            "symmetric_elevon_deg" => merged.symmetric_elevon_deg = t,
-            "differential_elevon_deg" => merged.differential_elevon_deg = t,
-            "fuel_equivalence_ratio" => merged.fuel_equivalence_ratio = t,
-            other => bail!(
-                "{}: key `simulation.inputs.{other}` is unknown; expected symmetric_elevon_deg, \
-                 differential_elevon_deg or fuel_equivalence_ratio",
-                loaded.file
-            ),
-        }
-    }
-    merged
-        .check("simulation.inputs")
-        .with_context(|| loaded.file.clone())?;
-    Ok(merged)
-}
-
 /// Runs the study (or its shard, or writes the Slurm scripts).
 pub fn run(args: TradeArgs, registry: &Registry) -> Result<()> {
     let (loaded, registry) = load_config(args.config.config.as_deref(), registry)?;
@@ -262,7 +229,7 @@ pub fn run(args: TradeArgs, registry: &Registry) -> Result<()> {
         .transpose()?
         .unwrap_or(Shard::ALL);
     let inputs = match spec.job {
-        TradeJob::Simulate => inputs(&loaded)?,
+        TradeJob::Simulate => super::simulate::inputs(&loaded)?,
         TradeJob::Trim => Inputs::paper_doublet(),
     };
     let indices = shard.cases(spec.case_count());

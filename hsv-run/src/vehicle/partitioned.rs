@@ -32,6 +32,7 @@ use hsv_core::region::RegionGeometry;
 use hsv_core::structure::{Capability, MassProperties, StructureModel};
 use hsv_core::vehicle::{LiftingSurfaceConfig, Side};
 use nalgebra::{DVector, Point3, Vector3};
+use rayon::prelude::*;
 
 use super::friction::RegionFriction;
 use super::{AnalysisNeeds, AssemblyError, RegionModelSet, RegionNeeds};
@@ -410,6 +411,164 @@ fn assembly_error(region: &str, message: String) -> AssemblyError {
     }
 }
 
+/// The main body's aero (pressure and friction) and engine loads about the centre of mass, and
+/// its generalized forces, on the OML deformed by the beam modes.
+#[allow(clippy::too_many_arguments)]
+fn body_region_loads(
+    b: &mut Body,
+    engine: &mut dyn PropulsionModel,
+    engine_solution: &mut PropulsionSolution,
+    state: &VehicleState,
+    controls: &FlightControls,
+    flight: &FlightCondition,
+    cg: &Point3<f64>,
+    reference_point_m: &Point3<f64>,
+) -> Result<(Loads, Loads), VehicleError> {
+    let p_inf = flight.freestream.pressure_pa;
+    let body_err = model_error("main_body");
+    b.shapes.deform(&b.base, &state.body_modes.q, &mut b.mesh);
+    b.shapes
+        .panel_velocities(&b.base, &state.body_modes.q_dot, &mut b.velocities);
+    let motion = PanelMotion {
+        elastic_velocity_m_s: Some(&b.velocities),
+    };
+    b.aero
+        .evaluate(&b.mesh, flight, &motion, &mut b.solution)
+        .map_err(&body_err)?;
+    let main_body = |r: RegionKind| r == RegionKind::MainBody;
+    let mut body_aero = integrate_pressure(&b.mesh, &b.solution.pressure_pa, p_inf, cg, main_body);
+    if let Some(f) = &mut b.friction {
+        body_aero = body_aero
+            + f.loads(&b.mesh, flight, &b.solution, &motion, cg, main_body)
+                .map_err(&body_err)?;
+    }
+    generalized_forces(
+        &b.mesh,
+        &b.shapes,
+        &b.solution.pressure_pa,
+        p_inf,
+        main_body,
+        &mut b.generalized,
+    )
+    .map_err(|e| body_err(ModelError::inconsistent("coupling", e.to_string())))?;
+    // Engine on the deformed underside; its moment comes about the reference point.
+    let engine_err = model_error("propulsion");
+    engine
+        .evaluate(
+            &EngineInputs {
+                flight,
+                body: &b.mesh,
+                fuel_equivalence_ratio: controls.fuel_equivalence_ratio,
+            },
+            engine_solution,
+        )
+        .map_err(&engine_err)?;
+    let e = engine_solution.loads;
+    let engine_loads = Loads {
+        force_n: e.force_n,
+        moment_nm: e.moment_nm + (reference_point_m - cg).cross(&e.force_n),
+    };
+    if engine_solution.panel_pressure_pa.len() == b.mesh.panels.len() {
+        generalized_forces(
+            &b.mesh,
+            &b.shapes,
+            &engine_solution.panel_pressure_pa,
+            p_inf,
+            |r| r == RegionKind::Propulsion,
+            &mut b.engine_generalized,
+        )
+        .map_err(|e| engine_err(ModelError::inconsistent("coupling", e.to_string())))?;
+    } else {
+        b.engine_generalized.iter_mut().for_each(|q| *q = 0.0);
+    }
+    Ok((body_aero, engine_loads))
+}
+
+/// One lifting surface's aero on its Ritz-deformed mesh rotated by its elevon, its
+/// generalized forces (aero and thermal) into `out`, and its skin friction about the pivot.
+fn surface_region_loads(
+    s: &mut Surface,
+    modes: &crate::dynamics::ModalState,
+    elevon: &ElevonCommand,
+    flight: &FlightCondition,
+    time_s: f64,
+    out: &mut DVector<f64>,
+) -> Result<(), VehicleError> {
+    let p_inf = flight.freestream.pressure_pa;
+    let err = model_error(&s.name);
+    let deflection = elevon.deflection_rad(s.side);
+    s.shapes.deform(&s.base, &modes.q, &mut s.deformed);
+    deflect_lifting_surface(
+        &s.deformed,
+        &s.planform,
+        s.side,
+        deflection,
+        &mut s.deflected,
+    )
+    .map_err(|e| err(ModelError::inconsistent("elevon", e.to_string())))?;
+    let rotation = rotation_about_axis(&pivot_axis(), elevon_rotation_angle_rad(deflection))
+        .map_err(|e| err(ModelError::inconsistent("elevon", e.to_string())))?;
+    s.shapes
+        .panel_velocities(&s.base, &modes.q_dot, &mut s.velocities);
+    for v in &mut s.velocities {
+        *v = rotation * *v;
+    }
+    let motion = PanelMotion {
+        elastic_velocity_m_s: Some(&s.velocities),
+    };
+    let dt_since_commit = time_s - s.history.as_ref().map_or(0.0, |h| h.time_s);
+    match (s.aero.modal_history(), s.history.as_ref()) {
+        // A model with memory (convolution ROM): generalized forces from the modal history on
+        // the rigidly deflected mesh.
+        (Some(rom), Some(history)) => {
+            deflect_lifting_surface(&s.base, &s.planform, s.side, deflection, &mut s.rigid)
+                .map_err(|e| err(ModelError::inconsistent("elevon", e.to_string())))?;
+            rom.evaluate_modal(
+                &s.rigid,
+                flight,
+                history,
+                dt_since_commit.max(0.0),
+                &modes.q,
+                &modes.q_dot,
+                &mut s.generalized,
+                Some(&mut s.solution),
+            )
+            .map_err(&err)?;
+        }
+        _ => {
+            s.aero
+                .evaluate(&s.deflected, flight, &motion, &mut s.solution)
+                .map_err(&err)?;
+            // The modes turn with the surface, so A n·φ is that of the reference geometry.
+            s.projection
+                .generalized_forces(&s.solution.pressure_pa, p_inf, &mut s.generalized)
+                .map_err(|e| err(ModelError::inconsistent("coupling", e.to_string())))?;
+        }
+    }
+    // Skin friction on the deflected surface, about the pivot (root loads need it).
+    s.friction_about_pivot = match &mut s.friction {
+        Some(f) => f
+            .loads(
+                &s.deflected,
+                flight,
+                &s.solution,
+                &PanelMotion::default(),
+                &s.pivot_m,
+                |r| r == RegionKind::LiftingSurface,
+            )
+            .map_err(&err)?,
+        None => Loads::default(),
+    };
+    let thermal = s
+        .structure
+        .thermal_stiffness()
+        .and_then(|t| t.thermal_generalized_forces());
+    for (k, q) in out.iter_mut().enumerate() {
+        *q = s.generalized[k] + thermal.map_or(0.0, |t| t[k]);
+    }
+    Ok(())
+}
+
 impl PartitionedVehicle {
     /// The partitioned vehicle from assembled regions (checked with [`partitioned_needs`]).
     pub fn new(
@@ -694,7 +853,8 @@ impl PartitionedVehicle {
         Ok(flight)
     }
 
-    /// Loads of every region except the root loads' inertia term (which waits for q̈).
+    /// Loads of every region except the root loads' inertia term (which waits for q̈): the
+    /// main body with its engine, and each lifting surface, run side by side (rayon).
     fn region_loads(
         &mut self,
         state: &VehicleState,
@@ -702,155 +862,49 @@ impl PartitionedVehicle {
         flight: &FlightCondition,
     ) -> Result<(), VehicleError> {
         let cg = self.mass.center_of_mass_m;
-        let p_inf = flight.freestream.pressure_pa;
-        // Main body.
-        let b = &mut self.body;
-        let body_err = model_error("main_body");
-        b.shapes.deform(&b.base, &state.body_modes.q, &mut b.mesh);
-        b.shapes
-            .panel_velocities(&b.base, &state.body_modes.q_dot, &mut b.velocities);
-        let motion = PanelMotion {
-            elastic_velocity_m_s: Some(&b.velocities),
-        };
-        b.aero
-            .evaluate(&b.mesh, flight, &motion, &mut b.solution)
-            .map_err(&body_err)?;
-        let main_body = |r: RegionKind| r == RegionKind::MainBody;
-        let mut body_aero =
-            integrate_pressure(&b.mesh, &b.solution.pressure_pa, p_inf, &cg, main_body);
-        if let Some(f) = &mut b.friction {
-            body_aero = body_aero
-                + f.loads(&b.mesh, flight, &b.solution, &motion, &cg, main_body)
-                    .map_err(&body_err)?;
-        }
-        generalized_forces(
-            &b.mesh,
-            &b.shapes,
-            &b.solution.pressure_pa,
-            p_inf,
-            main_body,
-            &mut b.generalized,
-        )
-        .map_err(|e| body_err(ModelError::inconsistent("coupling", e.to_string())))?;
-        // Engine on the deformed underside; its moment comes about the reference point.
-        let engine_err = model_error("propulsion");
-        self.engine
-            .evaluate(
-                &EngineInputs {
-                    flight,
-                    body: &b.mesh,
-                    fuel_equivalence_ratio: controls.fuel_equivalence_ratio,
-                },
-                &mut self.engine_solution,
-            )
-            .map_err(&engine_err)?;
-        let e = self.engine_solution.loads;
-        let engine = Loads {
-            force_n: e.force_n,
-            moment_nm: e.moment_nm + (self.reference_point_m - cg).cross(&e.force_n),
-        };
-        if self.engine_solution.panel_pressure_pa.len() == b.mesh.panels.len() {
-            generalized_forces(
-                &b.mesh,
-                &b.shapes,
-                &self.engine_solution.panel_pressure_pa,
-                p_inf,
-                |r| r == RegionKind::Propulsion,
-                &mut b.engine_generalized,
-            )
-            .map_err(|e| engine_err(ModelError::inconsistent("coupling", e.to_string())))?;
-        } else {
-            b.engine_generalized.iter_mut().for_each(|q| *q = 0.0);
-        }
-        self.loads.body = body_aero + engine;
-        self.aero_loads = body_aero;
-        for (k, q) in self.loads.body_generalized_force.iter_mut().enumerate() {
-            *q = b.generalized[k] + b.engine_generalized[k];
-        }
-        self.follower_loads(state, controls, flight)?;
-        // Lifting surfaces.
+        let reference_point_m = self.reference_point_m;
         let elevon = ElevonCommand {
             symmetric_rad: controls.elevon.symmetric_rad,
             differential_rad: controls.elevon.differential_rad,
         };
-        for (i, s) in self.surfaces.iter_mut().enumerate() {
-            let err = model_error(&s.name);
-            let modes = &state.surface_modes[i];
-            let deflection = elevon.deflection_rad(s.side);
-            s.shapes.deform(&s.base, &modes.q, &mut s.deformed);
-            deflect_lifting_surface(
-                &s.deformed,
-                &s.planform,
-                s.side,
-                deflection,
-                &mut s.deflected,
-            )
-            .map_err(|e| err(ModelError::inconsistent("elevon", e.to_string())))?;
-            let rotation =
-                rotation_about_axis(&pivot_axis(), elevon_rotation_angle_rad(deflection))
-                    .map_err(|e| err(ModelError::inconsistent("elevon", e.to_string())))?;
-            s.shapes
-                .panel_velocities(&s.base, &modes.q_dot, &mut s.velocities);
-            for v in &mut s.velocities {
-                *v = rotation * *v;
-            }
-            let motion = PanelMotion {
-                elastic_velocity_m_s: Some(&s.velocities),
-            };
-            let dt_since_commit = self.time_s - s.history.as_ref().map_or(0.0, |h| h.time_s);
-            match (s.aero.modal_history(), s.history.as_ref()) {
-                // A model with memory (convolution ROM): generalized forces from the modal
-                // history on the rigidly deflected mesh.
-                (Some(rom), Some(history)) => {
-                    deflect_lifting_surface(&s.base, &s.planform, s.side, deflection, &mut s.rigid)
-                        .map_err(|e| err(ModelError::inconsistent("elevon", e.to_string())))?;
-                    rom.evaluate_modal(
-                        &s.rigid,
-                        flight,
-                        history,
-                        dt_since_commit.max(0.0),
-                        &modes.q,
-                        &modes.q_dot,
-                        &mut s.generalized,
-                        Some(&mut s.solution),
-                    )
-                    .map_err(&err)?;
-                }
-                _ => {
-                    s.aero
-                        .evaluate(&s.deflected, flight, &motion, &mut s.solution)
-                        .map_err(&err)?;
-                    // The modes turn with the surface, so A n·φ is that of the reference
-                    // geometry.
-                    s.projection
-                        .generalized_forces(&s.solution.pressure_pa, p_inf, &mut s.generalized)
-                        .map_err(|e| err(ModelError::inconsistent("coupling", e.to_string())))?;
-                }
-            }
-            // Skin friction on the deflected surface, about the pivot (root loads need it).
-            s.friction_about_pivot = match &mut s.friction {
-                Some(f) => f
-                    .loads(
-                        &s.deflected,
-                        flight,
-                        &s.solution,
-                        &PanelMotion::default(),
-                        &s.pivot_m,
-                        |r| r == RegionKind::LiftingSurface,
-                    )
-                    .map_err(&err)?,
-                None => Loads::default(),
-            };
-            let thermal = s
-                .structure
-                .thermal_stiffness()
-                .and_then(|t| t.thermal_generalized_forces());
-            let out = &mut self.loads.surface_generalized_forces[i];
-            for (k, q) in out.iter_mut().enumerate() {
-                *q = s.generalized[k] + thermal.map_or(0.0, |t| t[k]);
-            }
+        let time_s = self.time_s;
+        let body = &mut self.body;
+        let engine = self.engine.as_mut();
+        let engine_solution = &mut self.engine_solution;
+        let surfaces = &mut self.surfaces;
+        let surface_forces = &mut self.loads.surface_generalized_forces;
+        let (body_loads, surfaces_done) = rayon::join(
+            || {
+                body_region_loads(
+                    body,
+                    engine,
+                    engine_solution,
+                    state,
+                    controls,
+                    flight,
+                    &cg,
+                    &reference_point_m,
+                )
+            },
+            || {
+                surfaces
+                    .par_iter_mut()
+                    .zip(surface_forces.par_iter_mut())
+                    .zip(state.surface_modes.par_iter())
+                    .try_for_each(|((s, out), modes)| {
+                        surface_region_loads(s, modes, &elevon, flight, time_s, out)
+                    })
+            },
+        );
+        let (body_aero, engine_loads) = body_loads?;
+        surfaces_done?;
+        self.loads.body = body_aero + engine_loads;
+        self.aero_loads = body_aero;
+        let b = &self.body;
+        for (k, q) in self.loads.body_generalized_force.iter_mut().enumerate() {
+            *q = b.generalized[k] + b.engine_generalized[k];
         }
-        Ok(())
+        self.follower_loads(state, controls, flight)
     }
 
     /// The monolithic model's surfaces: OML following the body's modes, rotated by the elevon;

@@ -1,4 +1,4 @@
-//! Property tests of the `aero`, `engine`, `trim` and `modes` jobs (issue 16): random flight conditions,
+//! Property tests of the `aero`, `engine`, `trim`, `modes` and `heat` jobs (issue 16): random flight conditions,
 //! including extreme and non-finite values, and random edits of the sample config give finite
 //! results or a clear error, never a panic or a NaN.
 
@@ -239,6 +239,50 @@ proptest! {
                 }
             }
             Err(e) => prop_assert!(clear(&format!("{e:#}")), "{e:#}"),
+        }
+    }
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig { cases: 6, failure_persistence: None, ..ProptestConfig::default() })]
+
+    /// The heat job (a lifting surface heating in steady flow, full-order conduction, ten
+    /// steps) at random flight conditions: finite temperatures, or a clear error (outside the
+    /// atmosphere, a melted wall, a material table left).
+    #[test]
+    fn heat_gives_finite_temperatures_or_a_clear_error(
+        (mach, altitude_m, alpha_deg) in flight(),
+    ) {
+        use hsv_run::analysis::heating::{HeatingModels, HeatingSteps, SurfaceHeating};
+        let registry = hsv_run::registry().expect("registry");
+        let loaded = LoadedConfig::sample().expect("sample");
+        let region = loaded.region("right_surface").expect("region");
+        let flight = hsv_core::flow::Freestream::standard(mach, altitude_m, loaded.config.gas)
+            .map(|f| hsv_core::flow::FlightCondition::steady(f, alpha_deg.to_radians(), 0.0));
+        let flight = match flight {
+            Ok(f) => f,
+            Err(e) => {
+                prop_assert!(clear(&e.to_string()), "{e}");
+                return Ok(());
+            }
+        };
+        let models = HeatingModels {
+            aero: "shock-expansion".to_owned(),
+            heat_flux: "eckert".to_owned(),
+            conduction: "full-order".to_owned(),
+        };
+        let steps = HeatingSteps { dt_s: 0.1, flux_every: 1, initial_k: 293.0 };
+        let run = SurfaceHeating::new(region, &registry, models, flight, steps)
+            .map_err(|e| e.to_string())
+            .and_then(|mut h| {
+                for _ in 0..10 {
+                    h.advance(0.1).map_err(|e| e.to_string())?;
+                }
+                Ok(h.node_temperatures_k().to_vec())
+            });
+        match run {
+            Ok(t) => prop_assert!(t.iter().all(|v| v.is_finite() && *v > 0.0)),
+            Err(e) => prop_assert!(clear(&e), "{e}"),
         }
     }
 }

@@ -91,7 +91,7 @@ fn jobs(c: &mut Criterion) {
                     &controls,
                     &inputs,
                     &settings,
-                    |_, _| true,
+                    |_, _, _| true,
                 )
                 .expect("flies");
                 black_box(steps)

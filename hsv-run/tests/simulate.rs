@@ -63,7 +63,7 @@ fn fly_with(duration_s: f64, dt_s: f64, inputs: &Inputs) -> Vec<Sample> {
         &controls,
         inputs,
         &settings,
-        |s, _| {
+        |s, _, _| {
             samples.push(s.clone());
             true
         },

@@ -92,3 +92,44 @@ fn trim_prints_the_table_2_layout_and_a_json_summary() {
     assert!(phi > 0.0 && phi <= 1.0, "{v}");
     assert_eq!(v["restart_agrees_within_1_percent"], true);
 }
+
+#[test]
+fn simulate_writes_history_plots_vtk_frames_and_a_summary() {
+    let dir = std::env::temp_dir().join(format!("hsv-simulate-cli-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    let out = dir.to_str().expect("utf-8");
+    let v = json(&[
+        "simulate",
+        "--duration-s",
+        "0.01",
+        "--vtk-interval-s",
+        "0.005",
+        "--quiet",
+        "--json",
+        "--out",
+        out,
+    ]);
+    assert_eq!(v["status"]["state"], "completed", "{v}");
+    let files = v["files"].to_string();
+    for name in [
+        "history.csv",
+        "history.png",
+        "vehicle.pvd",
+        "vehicle_0000.vtk",
+        "summary.json",
+    ] {
+        assert!(files.contains(name), "`{name}` not in {files}");
+    }
+    let csv = std::fs::read_to_string(dir.join("history.csv")).expect("csv");
+    let header = csv.lines().next().expect("header");
+    for column in [
+        "time_s",
+        "altitude_m",
+        "alpha_deg",
+        "surface_max_temperature_k",
+        "body_mode_1_q",
+    ] {
+        assert!(header.contains(column), "`{column}` not in {header}");
+    }
+    let _ = std::fs::remove_dir_all(&dir);
+}

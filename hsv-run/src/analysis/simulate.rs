@@ -185,14 +185,15 @@ pub struct SimulationError {
 }
 
 /// Marches `state` from t = 0 under `inputs` around the trim controls, handing each recorded
-/// sample and the state to `observe` (which may stop the run by returning false).
+/// sample, the state and the vehicle (for snapshots) to `observe`, which may stop the run by
+/// returning false.
 pub fn simulate(
     vehicle: &mut PartitionedVehicle,
     state: &mut VehicleState,
     trim: &FlightControls,
     inputs: &Inputs,
     settings: &RunSettings,
-    mut observe: impl FnMut(&Sample, &VehicleState) -> bool,
+    mut observe: impl FnMut(&Sample, &VehicleState, &mut PartitionedVehicle) -> bool,
 ) -> Result<usize, SimulationError> {
     let layout = vehicle.dynamics().layout(AttitudeCoordinates::Quaternion);
     let mut x = DVector::zeros(layout.len());
@@ -252,7 +253,8 @@ pub fn simulate(
             surface_mean_temperature_k: mean,
         }
     };
-    if !observe(&record(&mut *vehicle, state, 0.0), state) {
+    let first = record(&mut *vehicle, state, 0.0);
+    if !observe(&first, state, vehicle) {
         return Ok(0);
     }
     for k in 0..steps {
@@ -274,9 +276,10 @@ pub fn simulate(
         let done = k + 1;
         // The accepted step: models with memory commit their history, the surfaces heat.
         vehicle.commit_step(state, plan.end_s(k)).map_err(wrap(t))?;
-        if (done % settings.record_every.max(1) == 0 || done == steps)
-            && !observe(&record(&mut *vehicle, state, plan.end_s(k)), state)
-        {
+        if (done % settings.record_every.max(1) == 0 || done == steps) && {
+            let sample = record(&mut *vehicle, state, plan.end_s(k));
+            !observe(&sample, state, vehicle)
+        } {
             return Ok(done);
         }
     }

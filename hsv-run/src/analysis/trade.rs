@@ -442,7 +442,7 @@ fn simulate_case(
         &controls,
         inputs,
         &settings,
-        |s, _| {
+        |s, _, _| {
             for (name, value) in [
                 ("time_s", s.time_s),
                 ("altitude_m", s.altitude_m),

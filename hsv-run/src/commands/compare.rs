@@ -91,7 +91,7 @@ fn fly(
         &controls,
         &Inputs::paper_doublet(),
         &settings,
-        |s, _| {
+        |s, _, _| {
             samples.push(s.clone());
             true
         },

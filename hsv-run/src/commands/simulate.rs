@@ -13,7 +13,10 @@ use super::{ConfigArg, JsonFlag, OutArgs, load_config};
 use crate::analysis::simulate::{Inputs, RunSettings, Sample, simulate};
 use crate::analysis::trim::{TrimRequest, trim};
 use crate::outln;
-use crate::output::{LinePlot, RunFolder, RunStatus, Series, write_csv, write_line_plots_png};
+use crate::output::{
+    LinePlot, RunFolder, RunStatus, Series, write_csv, write_line_plots_png, write_pvd,
+    write_vtk_mesh,
+};
 use crate::progress::Progress;
 use crate::vehicle::flexible_vehicle_with;
 use crate::vehicle::partitioned::{ElevonCommandData, FlightControls, HeatingRates, SurfaceModel};
@@ -49,6 +52,13 @@ pub struct SimulateArgs {
     /// No progress bar.
     #[arg(long)]
     pub quiet: bool,
+    /// Interval between VTK frames of the deformed, heated vehicle, s (0: none).
+    #[arg(
+        long = "vtk-interval-s",
+        default_value_t = 0.1,
+        allow_negative_numbers = true
+    )]
+    pub vtk_interval_s: f64,
     /// Keep the lifting surfaces at their initial temperature (no in-flight heating).
     #[arg(long = "no-heating")]
     pub no_heating: bool,
@@ -202,15 +212,34 @@ pub fn run(args: SimulateArgs, registry: &Registry) -> Result<()> {
     let mut body_modes: Vec<Vec<f64>> = Vec::with_capacity(samples.capacity());
     let mut progress = (!args.quiet).then(|| Progress::new("simulate", n_steps));
     let start = Instant::now();
+    let mut frames: Vec<(f64, String)> = Vec::new();
+    let mut frame_error: Option<anyhow::Error> = None;
+    let mut next_frame_s = 0.0;
+    let vtk_every = args.vtk_interval_s;
+    let folder_path = folder.path.clone();
     let outcome = simulate(
         &mut vehicle,
         &mut state,
         &trim_controls,
         &inputs,
         &settings,
-        |sample, state| {
+        |sample, state, vehicle| {
             samples.push(sample.clone());
             body_modes.push(state.body_modes.q.iter().copied().collect());
+            if vtk_every > 0.0 && sample.time_s >= next_frame_s - 1e-9 && frame_error.is_none() {
+                let name = format!("vehicle_{:04}.vtk", frames.len());
+                let (mesh, pressure, wall) = vehicle.oml_snapshot();
+                match write_vtk_mesh(
+                    &folder_path.join(&name),
+                    &mesh,
+                    &[],
+                    &[("pressure_pa", &pressure), ("wall_temperature_k", &wall)],
+                ) {
+                    Ok(()) => frames.push((sample.time_s, name)),
+                    Err(e) => frame_error = Some(e),
+                }
+                next_frame_s += vtk_every;
+            }
             if let Some(p) = progress.as_mut() {
                 p.update((sample.time_s / args.dt_s).round() as usize);
             }
@@ -221,6 +250,18 @@ pub fn run(args: SimulateArgs, registry: &Registry) -> Result<()> {
         p.finish();
     }
     let wall_time_s = start.elapsed().as_secs_f64();
+    if let Some(e) = frame_error {
+        return Err(e.context("writing the VTK frames"));
+    }
+    for (_, name) in &frames {
+        folder.record(folder.join(name));
+    }
+    if !frames.is_empty() {
+        let entries: Vec<(f64, &str)> = frames.iter().map(|(t, f)| (*t, f.as_str())).collect();
+        let pvd = folder.join("vehicle.pvd");
+        write_pvd(&pvd, &entries)?;
+        folder.record(pvd);
+    }
     // Where the aero models stood outside their range at the last evaluation.
     let final_flight = vehicle.flight(&state)?;
     let warnings: Vec<String> = vehicle

@@ -1091,6 +1091,33 @@ impl PartitionedVehicle {
         out
     }
 
+    /// The vehicle's OML as last evaluated (body deformed by its modes, surfaces deformed and
+    /// deflected) merged into one mesh, with the absolute pressure (Pa) and, for heated surfaces,
+    /// the wall temperature (K; NaN elsewhere) of each panel: what a VTK frame shows.
+    pub fn oml_snapshot(&mut self) -> (PanelMesh, Vec<f64>, Vec<f64>) {
+        let mut mesh = self.body.mesh.clone();
+        let mut pressure = self.body.solution.pressure_pa.clone();
+        let mut wall = vec![f64::NAN; mesh.panels.len()];
+        for s in &mut self.surfaces {
+            mesh.merge(&s.deflected);
+            pressure.extend_from_slice(&s.solution.pressure_pa);
+            match &mut s.thermal {
+                Some(t) => {
+                    t.conduction.surface_temperatures(&t.state, &mut t.wall_k);
+                    wall.extend_from_slice(&t.wall_k);
+                }
+                None => wall.extend(std::iter::repeat_n(f64::NAN, s.deflected.panels.len())),
+            }
+        }
+        for f in &self.followers {
+            mesh.merge(&f.deflected);
+            pressure.extend_from_slice(&f.solution.pressure_pa);
+            wall.extend(std::iter::repeat_n(f64::NAN, f.deflected.panels.len()));
+        }
+        pressure.resize(mesh.panels.len(), f64::NAN);
+        (mesh, pressure, wall)
+    }
+
     /// Each region's aero model and the validity diagnostics of its latest evaluation.
     pub fn aero_diagnostics(&self) -> Vec<(String, String, hsv_core::aero::AeroDiagnostics)> {
         let mut out = vec![(

@@ -80,6 +80,7 @@ fn jobs(c: &mut Criterion) {
         dt_s: 0.0005,
         duration_s: 0.1,
         record_every: 20,
+        start_step: 0,
     };
     group.bench_function("simulate 0.1 s (partitioned, dt 0.5 ms)", |b| {
         b.iter_batched(

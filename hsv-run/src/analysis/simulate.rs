@@ -173,6 +173,8 @@ pub struct RunSettings {
     pub duration_s: f64,
     /// Steps between recorded samples.
     pub record_every: usize,
+    /// The step to start from: 0, or where a restart file left off.
+    pub start_step: usize,
 }
 
 /// Why a run stopped.
@@ -253,11 +255,15 @@ pub fn simulate(
             surface_mean_temperature_k: mean,
         }
     };
-    let first = record(&mut *vehicle, state, 0.0);
+    let first = record(
+        &mut *vehicle,
+        state,
+        plan.start_s(settings.start_step.min(steps)),
+    );
     if !observe(&first, state, vehicle) {
         return Ok(0);
     }
-    for k in 0..steps {
+    for k in settings.start_step.min(steps)..steps {
         let t = plan.start_s(k);
         let dt = plan.dt_of(k);
         let mut f = |time: f64, x: &DVector<f64>, dx: &mut DVector<f64>| {

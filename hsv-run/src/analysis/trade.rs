@@ -434,6 +434,7 @@ fn simulate_case(
         dt_s: flight.dt_s,
         duration_s: flight.duration_s,
         record_every: flight.record_every.max(1),
+        start_step: 0,
     };
     let mut history: BTreeMap<String, Vec<f64>> = BTreeMap::new();
     simulate(

@@ -83,6 +83,7 @@ fn fly(
         dt_s: args.dt_s,
         duration_s: args.duration_s,
         record_every: 10,
+        start_step: 0,
     };
     let mut samples = Vec::new();
     let outcome = simulate(

@@ -2,6 +2,7 @@
 //! the control inputs (default: the paper's elevon doublet), written to a run folder: CSV
 //! history with units in the header, JSON summary, PNG plots of the paper's Figs. 11-13.
 
+use std::path::PathBuf;
 use std::time::Instant;
 
 use anyhow::{Context, Result, bail};
@@ -52,6 +53,10 @@ pub struct SimulateArgs {
     /// No progress bar.
     #[arg(long)]
     pub quiet: bool,
+    /// Continue the run that wrote this `restart.json` (same config and --dt-s; a longer
+    /// --duration-s), bit for bit.
+    #[arg(long, value_name = "FILE")]
+    pub resume: Option<PathBuf>,
     /// Interval between VTK frames of the deformed, heated vehicle, s (0: none).
     #[arg(
         long = "vtk-interval-s",
@@ -72,6 +77,40 @@ pub struct SimulateArgs {
     pub lumped_surface_mass: bool,
     #[command(flatten)]
     pub json: JsonFlag,
+}
+
+/// Tag of the restart file format.
+const RESTART_FORMAT: &str = "hsv-restart-1";
+
+/// What `--resume` continues from: written as `restart.json` at the end of every run.
+#[derive(Debug, Clone, serde::Serialize, serde::Deserialize)]
+struct RestartFile {
+    format: String,
+    dt_s: f64,
+    /// Steps done (the next step's index).
+    step: usize,
+    time_s: f64,
+    trim_alpha_deg: f64,
+    controls: FlightControls,
+    state: crate::dynamics::VehicleState,
+    vehicle: crate::vehicle::partitioned::VehicleRestart,
+}
+
+impl RestartFile {
+    fn read(path: &std::path::Path) -> Result<Self> {
+        let text = std::fs::read_to_string(path)
+            .with_context(|| format!("{}: cannot read the restart file", path.display()))?;
+        let file: Self = serde_json::from_str(&text)
+            .with_context(|| format!("{}: not an hsv restart file", path.display()))?;
+        if file.format != RESTART_FORMAT {
+            bail!(
+                "{}: restart format `{}`, this hsv-run reads `{RESTART_FORMAT}`",
+                path.display(),
+                file.format
+            );
+        }
+        Ok(file)
+    }
 }
 
 /// The heating rates: `[simulation]` keys `heat_transfer_dt_s`, `aerothermal_dt_s`,
@@ -189,23 +228,70 @@ pub fn run(args: SimulateArgs, registry: &Registry) -> Result<()> {
         altitude_m,
         ..TrimRequest::default()
     };
-    let trimmed = trim(&mut vehicle, &request)?;
-    let t = &trimmed.trim;
-    let trim_controls = FlightControls {
-        elevon: ElevonCommandData {
-            symmetric_rad: t.elevon_deg.to_radians(),
-            differential_rad: 0.0,
-        },
-        fuel_equivalence_ratio: t.fuel_equivalence_ratio,
+    // From trim, or from where a restart file left off (bit for bit).
+    let (trim_point, trim_controls, mut state, start_step) = match &args.resume {
+        None => {
+            let t = trim(&mut vehicle, &request)?.trim;
+            let controls = FlightControls {
+                elevon: ElevonCommandData {
+                    symmetric_rad: t.elevon_deg.to_radians(),
+                    differential_rad: 0.0,
+                },
+                fuel_equivalence_ratio: t.fuel_equivalence_ratio,
+            };
+            let (state, _) = vehicle.level_flight_state(
+                mach,
+                altitude_m,
+                t.alpha_deg.to_radians(),
+                &controls,
+            )?;
+            vehicle.start_heating(&rates)?;
+            let point = (
+                t.alpha_deg,
+                t.elevon_deg,
+                t.fuel_equivalence_ratio,
+                t.modal_amplitudes,
+            );
+            (point, controls, state, 0)
+        }
+        Some(path) => {
+            let restart = RestartFile::read(path)?;
+            if restart.dt_s.to_bits() != args.dt_s.to_bits() {
+                bail!(
+                    "{}: the run used --dt-s {}, not {}; resume with the same step",
+                    path.display(),
+                    restart.dt_s,
+                    args.dt_s
+                );
+            }
+            if restart.step > plan.steps
+                || (plan.start_s(restart.step) - restart.time_s).abs() > 1e-9 * args.dt_s
+            {
+                bail!(
+                    "{}: the run stopped at t = {} s (step {}), which --duration-s {} does not \
+                     continue (give a longer duration, a whole number of steps)",
+                    path.display(),
+                    restart.time_s,
+                    restart.step,
+                    args.duration_s
+                );
+            }
+            vehicle.restore(&restart.vehicle)?;
+            let point = (
+                restart.trim_alpha_deg,
+                restart.controls.elevon.symmetric_rad.to_degrees(),
+                restart.controls.fuel_equivalence_ratio,
+                Vec::new(),
+            );
+            (point, restart.controls, restart.state, restart.step)
+        }
     };
-    let (mut state, _) =
-        vehicle.level_flight_state(mach, altitude_m, t.alpha_deg.to_radians(), &trim_controls)?;
-    vehicle.start_heating(&rates)?;
     let mut folder = RunFolder::create("simulate", args.output.out.as_deref(), args.output.force)?;
     let settings = RunSettings {
         dt_s: args.dt_s,
         duration_s: args.duration_s,
         record_every: args.record_every.max(1),
+        start_step,
     };
     let n_steps = plan.steps;
     let mut samples: Vec<Sample> = Vec::with_capacity(n_steps / settings.record_every + 2);
@@ -276,6 +362,26 @@ pub fn run(args: SimulateArgs, registry: &Registry) -> Result<()> {
     for w in &warnings {
         eprintln!("warning: {w}");
     }
+    // The restart file: the last accepted state and everything the next step depends on.
+    let reached = match &outcome {
+        Ok(done) => *done,
+        Err(_) => samples
+            .last()
+            .map_or(start_step, |s| (s.time_s / args.dt_s).round() as usize),
+    };
+    let restart = RestartFile {
+        format: RESTART_FORMAT.to_owned(),
+        dt_s: args.dt_s,
+        step: reached,
+        time_s: plan.start_s(reached.min(plan.steps)).min(plan.duration_s),
+        trim_alpha_deg: trim_point.0,
+        controls: trim_controls,
+        state: state.clone(),
+        vehicle: vehicle.restart(),
+    };
+    let restart_path = folder.join("restart.json");
+    crate::output::write_file(&restart_path, serde_json::to_string(&restart)?)?;
+    folder.record(restart_path);
     let status = match &outcome {
         Ok(_) => RunStatus::Completed,
         Err(e) => RunStatus::Failed(e.to_string()),
@@ -285,11 +391,12 @@ pub fn run(args: SimulateArgs, registry: &Registry) -> Result<()> {
         "mach": mach,
         "altitude_m": altitude_m,
         "trim": {
-            "alpha_deg": t.alpha_deg,
-            "elevon_deg": t.elevon_deg,
-            "fuel_equivalence_ratio": t.fuel_equivalence_ratio,
-            "body_modal_amplitudes": t.modal_amplitudes,
+            "alpha_deg": trim_point.0,
+            "elevon_deg": trim_point.1,
+            "fuel_equivalence_ratio": trim_point.2,
+            "body_modal_amplitudes": trim_point.3,
         },
+        "resumed_from": args.resume.as_ref().map(|p| p.display().to_string()),
         "dt_s": args.dt_s,
         "duration_s": args.duration_s,
         "final_time_s": samples.last().map(|s| s.time_s),
@@ -307,9 +414,9 @@ pub fn run(args: SimulateArgs, registry: &Registry) -> Result<()> {
         outln!(
             "trim: alpha {:.4} deg, elevon {:.4} deg, phi {:.4}; flew {:.3} s in {:.2} s of wall \
              time",
-            t.alpha_deg,
-            t.elevon_deg,
-            t.fuel_equivalence_ratio,
+            trim_point.0,
+            trim_point.1,
+            trim_point.2,
             last.time_s,
             wall_time_s
         )?;

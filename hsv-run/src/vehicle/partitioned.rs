@@ -151,6 +151,35 @@ struct SurfaceThermal {
     stiffness_time_s: f64,
 }
 
+/// One heated surface's thermal state for a restart file.
+#[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
+pub struct ThermalRestart {
+    pub state: DVector<f64>,
+    pub flux_w_m2: Vec<f64>,
+    pub structure_k: Vec<f64>,
+    pub structure_difference_k: Vec<f64>,
+    pub conduction_time_s: f64,
+    pub flux_time_s: f64,
+    pub stiffness_time_s: f64,
+}
+
+/// Everything of the vehicle, beyond its [`VehicleState`], that the next step depends on: the
+/// coupling iteration's guesses, the surfaces' thermal states and modal histories. With it a
+/// run continues bit for bit.
+#[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
+pub struct VehicleRestart {
+    pub time_s: f64,
+    pub q_ddot: Vec<DVector<f64>>,
+    pub previous_step: Vec<DVector<f64>>,
+    pub root_force_n: Vec<Vector3<f64>>,
+    pub thermal: Vec<Option<ThermalRestart>>,
+    pub histories: Vec<Option<hsv_core::aero::ModalHistory>>,
+    pub heating_conduction_s: f64,
+    pub heating_heat_flux_s: f64,
+    pub heating_stiffness_s: f64,
+    pub heating_initial_k: f64,
+}
+
 /// Temperatures of one heated surface, K.
 #[derive(Debug, Clone, Copy, PartialEq, Default, serde::Serialize)]
 pub struct SurfaceTemperatures {
@@ -1116,6 +1145,105 @@ impl PartitionedVehicle {
         }
         pressure.resize(mesh.panels.len(), f64::NAN);
         (mesh, pressure, wall)
+    }
+
+    /// The vehicle's own state for a restart file ([`VehicleRestart`]).
+    pub fn restart(&self) -> VehicleRestart {
+        VehicleRestart {
+            time_s: self.time_s,
+            q_ddot: self.q_ddot.clone(),
+            previous_step: self.previous_step.clone(),
+            root_force_n: self.surfaces.iter().map(|s| s.root_force_n).collect(),
+            thermal: self
+                .surfaces
+                .iter()
+                .map(|s| {
+                    s.thermal.as_ref().map(|t| ThermalRestart {
+                        state: t.state.clone(),
+                        flux_w_m2: t.flux_w_m2.clone(),
+                        structure_k: t.structure_k.clone(),
+                        structure_difference_k: t.structure_difference_k.clone(),
+                        conduction_time_s: t.conduction_time_s,
+                        flux_time_s: t.flux_time_s,
+                        stiffness_time_s: t.stiffness_time_s,
+                    })
+                })
+                .collect(),
+            histories: self.surfaces.iter().map(|s| s.history.clone()).collect(),
+            heating_conduction_s: self.heating.conduction_s,
+            heating_heat_flux_s: self.heating.heat_flux_s,
+            heating_stiffness_s: self.heating.stiffness_s,
+            heating_initial_k: self.heating.initial_k,
+        }
+    }
+
+    /// Restores the vehicle's own state from a restart file: the surfaces' stiffness is set from
+    /// the saved temperature field again, so the modal matrices are those of the run.
+    pub fn restore(&mut self, r: &VehicleRestart) -> Result<(), VehicleError> {
+        let n = self.surfaces.len();
+        for (what, len) in [
+            ("coupling accelerations", r.q_ddot.len()),
+            ("coupling steps", r.previous_step.len()),
+            ("root forces", r.root_force_n.len()),
+            ("thermal states", r.thermal.len()),
+            ("modal histories", r.histories.len()),
+        ] {
+            if len != n {
+                return Err(VehicleError::Input(format!(
+                    "restart file: {len} {what} for a vehicle of {n} lifting surfaces"
+                )));
+            }
+        }
+        self.time_s = r.time_s;
+        self.q_ddot.clone_from(&r.q_ddot);
+        self.previous_step.clone_from(&r.previous_step);
+        self.heating = HeatingRates {
+            conduction_s: r.heating_conduction_s,
+            heat_flux_s: r.heating_heat_flux_s,
+            stiffness_s: r.heating_stiffness_s,
+            initial_k: r.heating_initial_k,
+        };
+        for (i, s) in self.surfaces.iter_mut().enumerate() {
+            s.root_force_n = r.root_force_n[i];
+            s.history.clone_from(&r.histories[i]);
+            match (&mut s.thermal, &r.thermal[i]) {
+                (Some(t), Some(saved)) => {
+                    if saved.state.len() != t.state.len() {
+                        return Err(VehicleError::Input(format!(
+                            "restart file: {} thermal states for `{}`, whose conduction model has {}",
+                            saved.state.len(),
+                            s.name,
+                            t.state.len()
+                        )));
+                    }
+                    t.state.clone_from(&saved.state);
+                    t.flux_w_m2.clone_from(&saved.flux_w_m2);
+                    t.structure_k.clone_from(&saved.structure_k);
+                    t.structure_difference_k
+                        .clone_from(&saved.structure_difference_k);
+                    t.conduction_time_s = saved.conduction_time_s;
+                    t.flux_time_s = saved.flux_time_s;
+                    t.stiffness_time_s = saved.stiffness_time_s;
+                    if t.stiffness_time_s > 0.0 {
+                        if let Some(thermal) = s.structure.thermal_stiffness_mut() {
+                            thermal
+                                .set_temperature_field(&t.structure_k, &t.structure_difference_k)
+                                .map_err(model_error(&s.name))?;
+                        }
+                        self.dynamics
+                            .set_surface_matrices(i, s.structure.modal_model())?;
+                    }
+                }
+                (None, None) => {}
+                _ => {
+                    return Err(VehicleError::Input(format!(
+                        "restart file: `{}` heats in one run and not in the other",
+                        s.name
+                    )));
+                }
+            }
+        }
+        Ok(())
     }
 
     /// Each region's aero model and the validity diagnostics of its latest evaluation.

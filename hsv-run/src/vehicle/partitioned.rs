@@ -1246,6 +1246,12 @@ impl PartitionedVehicle {
         Ok(())
     }
 
+    /// Force (N) and moment about the centre of mass (N m) of every load but gravity at the
+    /// latest derivative evaluation: aero, engine and the surfaces' root loads, body axes.
+    pub fn body_loads(&self) -> Loads {
+        self.loads.body
+    }
+
     /// Each region's aero model and the validity diagnostics of its latest evaluation.
     pub fn aero_diagnostics(&self) -> Vec<(String, String, hsv_core::aero::AeroDiagnostics)> {
         let mut out = vec![(

@@ -91,6 +91,8 @@ fn trim_prints_the_table_2_layout_and_a_json_summary() {
     let phi = v["trim"]["fuel_equivalence_ratio"].as_f64().expect("phi");
     assert!(phi > 0.0 && phi <= 1.0, "{v}");
     assert_eq!(v["restart_agrees_within_1_percent"], true);
+    assert_eq!(v["status"]["state"], "completed");
+    assert_eq!(v["files"], serde_json::json!([]));
 }
 
 #[test]

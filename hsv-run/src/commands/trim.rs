@@ -105,6 +105,9 @@ fn summary(r: &TrimResult, model: &str) -> serde_json::Value {
         "restart": point(&r.restart),
         "restart_agrees_within_1_percent": r.agreed,
         "wall_time_s": r.wall_time_s,
+        // Trim prints; it writes no file.
+        "status": crate::output::RunStatus::Completed.to_json(),
+        "files": Vec::<String>::new(),
     })
 }
 

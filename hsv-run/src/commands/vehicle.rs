@@ -71,6 +71,9 @@ pub fn run(args: VehicleArgs, registry: &Registry) -> Result<()> {
             "regions": regions,
             "vehicle_mass_properties": total,
             "reference": reference,
+            // `vehicle` prints; it writes no file.
+            "status": crate::output::RunStatus::Completed.to_json(),
+            "files": Vec::<String>::new(),
         });
         outln!("{}", serde_json::to_string_pretty(&summary)?)?;
         return Ok(());

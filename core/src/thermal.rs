@@ -166,6 +166,14 @@ pub trait SkinFriction {
     ) -> Result<(), ModelError>;
 }
 
+/// A cache a model was built from: its file and whether it was reused or (re)built.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct CacheUse {
+    pub path: std::path::PathBuf,
+    /// True when the file held what the model needed; false when the model built it anew.
+    pub reused: bool,
+}
+
 /// Transient heat conduction in a structure, advanced by the heat flux on its wetted panels.
 ///
 /// The thermal state is plain data owned by the caller (a full temperature field or POD
@@ -207,6 +215,11 @@ pub trait ConductionModel: Send {
     fn node_temperature_differences(&self, state: &DVector<f64>, out_k: &mut [f64]) {
         let _ = state;
         out_k.fill(0.0);
+    }
+
+    /// The cache file the model was built from (a reduced model's basis), if any.
+    fn cache(&self) -> Option<CacheUse> {
+        None
     }
 
     /// The surface grid whose nodes [`Self::node_temperatures`] reports on, if the model has

@@ -14,7 +14,7 @@
 //! temperature closely but the sharp leading edge's peak less well (Mach 6, 26 km, 20 s from
 //! Mach 5 and 7 snapshots: 43 K low at a 533 K peak; from Mach 4, 5, 7, 8: 14 K).
 
-use std::path::{Path, PathBuf};
+use std::path::Path;
 
 use anyhow::{Context, Result, bail};
 use clap::Args;
@@ -330,15 +330,6 @@ fn check_model(registry: &Registry, flag: &str, name: &str, role: Role) -> Resul
     Ok(())
 }
 
-/// The POD basis file of the run's `pod` settings, as the model resolves it.
-fn pod_basis_path(s: &Setup) -> Result<PathBuf> {
-    let table = s.region.model_settings("pod").table;
-    let settings: hsv_model_conduction::PodSettings = toml::Value::Table(table)
-        .try_into()
-        .context("[models.pod]")?;
-    Ok(settings.basis_path(&s.region.name))
-}
-
 /// Runs the heating job and writes the run folder.
 pub fn run(args: HeatArgs, registry: &Registry) -> Result<()> {
     let (loaded, registry) = load_config(args.config.config.as_deref(), registry)?;
@@ -373,36 +364,19 @@ pub fn run(args: HeatArgs, registry: &Registry) -> Result<()> {
         summary_json(&args, &s, mach, histories, notes, warnings)
     };
     for name in &models {
-        let basis = if name == "pod" {
-            let basis = pod_basis_path(&s)?;
-            let before = std::fs::metadata(&basis).and_then(|m| m.modified()).ok();
-            if before.is_none() {
-                eprintln!(
-                    "heat: training the POD basis {} from full-order runs (once)",
-                    basis.display()
-                );
-            }
-            Some((basis, before))
-        } else {
-            None
-        };
         let (history, heating) = run.run(
             |_| run_model(name, &s, registry, &args, &plan, 200),
             || partial(&histories, &notes, &warnings),
         )?;
-        if let Some((basis, before)) = basis {
-            let after = std::fs::metadata(&basis).and_then(|m| m.modified()).ok();
-            notes.push(if before.is_some() && before == after {
-                format!(
-                    "POD basis {}: reused (built from these conditions)",
-                    basis.display()
-                )
+        // A model built from a cache (the POD basis) says where it is and whether it was reused.
+        if let Some(cache) = heating.conduction().cache() {
+            let how = if cache.reused {
+                "reused (built from these conditions)"
             } else {
-                format!(
-                    "POD basis {}: trained from full-order runs at this run's conditions",
-                    basis.display()
-                )
-            });
+                "trained from full-order runs at this run's conditions"
+            };
+            eprintln!("heat: `{name}` cache {}: {how}", cache.path.display());
+            notes.push(format!("`{name}` cache {}: {how}", cache.path.display()));
         }
         for w in super::aero::validity_warnings(&s.aero, &s.flight, heating.aero_diagnostics()) {
             let w = format!("{name}: {w}");

@@ -90,6 +90,7 @@ fn construct_pod(ctx: &ModelContext<'_>) -> Result<Box<dyn ConductionModel>, Mod
     let mut full = full_order_for(ctx)?;
     let path_buf = settings.basis_path(&ctx.region.name);
     let path = path_buf.as_path();
+    let mut reused = true;
     let basis = match &settings.training {
         None if !path.exists() => {
             return Err(ctx.settings_error(
@@ -113,6 +114,7 @@ fn construct_pod(ctx: &ModelContext<'_>) -> Result<Box<dyn ConductionModel>, Mod
                 Ok(basis) if basis.fingerprint == fingerprint => basis,
                 // Missing, unreadable or built from something else: train and replace it.
                 _ => {
+                    reused = false;
                     let mut basis =
                         training::train_basis(ctx, training, &mut full, settings.modes)?;
                     basis.training = Some(training.clone());
@@ -124,7 +126,12 @@ fn construct_pod(ctx: &ModelContext<'_>) -> Result<Box<dyn ConductionModel>, Mod
         }
     };
     Ok(Box::new(
-        Pod::new(&full, basis, settings)?.with_basis_file(path.display().to_string()),
+        Pod::new(&full, basis, settings)?
+            .with_basis_file(path.display().to_string())
+            .with_cache_use(hsv_core::thermal::CacheUse {
+                path: path_buf.clone(),
+                reused,
+            }),
     ))
 }
 

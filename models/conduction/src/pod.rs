@@ -404,6 +404,8 @@ pub struct Pod {
     uniform: DVector<f64>,
     /// Where the basis came from, for messages ("in memory" unless [`Pod::with_basis_file`]).
     basis_file: String,
+    /// The cache file the basis came from (when built through the registry).
+    cache: Option<hsv_core::thermal::CacheUse>,
     // Scratch.
     surface_k: Vec<f64>,
     matrix: BandedMatrix,
@@ -550,6 +552,7 @@ impl Pod {
             c1,
             surface_k: vec![0.0; n_panels],
             basis_file: "(a basis in memory)".to_owned(),
+            cache: None,
             load_map,
             surface_map,
             node_map,
@@ -560,6 +563,12 @@ impl Pod {
     /// Names the file the basis was read from, for the messages of [`Pod::check_range`].
     pub fn with_basis_file(mut self, path: impl Into<String>) -> Self {
         self.basis_file = path.into();
+        self
+    }
+
+    /// Records the cache file the basis came from and whether it was reused or trained.
+    pub fn with_cache_use(mut self, cache: hsv_core::thermal::CacheUse) -> Self {
+        self.cache = Some(cache);
         self
     }
 
@@ -737,6 +746,10 @@ impl ConductionModel for Pod {
 
     fn node_grid(&self) -> Option<&SurfaceGrid> {
         Some(&self.plate)
+    }
+
+    fn cache(&self) -> Option<hsv_core::thermal::CacheUse> {
+        self.cache.clone()
     }
 
     fn surface_temperatures(&self, state: &DVector<f64>, out_k: &mut [f64]) {

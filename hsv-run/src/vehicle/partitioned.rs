@@ -1,6 +1,7 @@
-//! The partitioned flexible vehicle (paper §III): the loads every region computes from the
-//! vehicle state, and the state derivative with the body-surface coupling closed by a
-//! fixed-point iteration with Aitken relaxation.
+//! The partitioned flexible vehicle (paper §III), one file because the partitioned and monolithic
+//! models, in-flight heating and restart share its regions' buffers: the loads every region
+//! computes from the vehicle state, and the state derivative with the body-surface coupling closed
+//! by a fixed-point iteration with Aitken relaxation.
 //!
 //! Per derivative evaluation:
 //! 1. flight condition from the rigid state (airspeed, α, β, rates about the centre of mass);

@@ -2,40 +2,15 @@
 //! approximation with Scheubel's density-gradient stiffness, and the short period against the
 //! classical two-state approximation built from the same stability derivatives.
 
-use hsv_core::config::{SAMPLE_CONFIG_TOML, parse_config};
 use hsv_run::analysis::linearize::linearize;
-use hsv_run::analysis::trim::{TrimRequest, trim};
-use hsv_run::dynamics::{GravityModel, ModeName, PerturbationRule};
-use hsv_run::vehicle::assemble;
-use hsv_run::vehicle::partitioned::{
-    CouplingSettings, ElevonCommandData, FlightControls, PartitionedVehicle, partitioned_needs,
-};
+use hsv_run::dynamics::{ModeName, PerturbationRule};
+use hsv_run::vehicle::partitioned::SurfaceModel;
+
+mod common;
 
 fn linearized() -> (hsv_run::analysis::linearize::Linearization, f64) {
-    let text = SAMPLE_CONFIG_TOML
-        .replace("free_vibration_modes = 10", "free_vibration_modes = 3")
-        .replace("static_shapes = 5", "static_shapes = 0")
-        .replace("elements_chordwise = 24", "elements_chordwise = 8")
-        .replace("elements_spanwise = 18", "elements_spanwise = 6");
-    let loaded = parse_config(&text, "test.toml").expect("config");
-    let registry = hsv_run::registry().expect("registry");
-    let sets = assemble(&loaded, &registry, &partitioned_needs("test")).expect("assembles");
-    let mut vehicle =
-        PartitionedVehicle::new(sets, GravityModel::default(), CouplingSettings::default())
-            .expect("vehicle");
-    let t = trim(&mut vehicle, &TrimRequest::default())
-        .expect("trims")
-        .trim;
-    let controls = FlightControls {
-        elevon: ElevonCommandData {
-            symmetric_rad: t.elevon_deg.to_radians(),
-            differential_rad: 0.0,
-        },
-        fuel_equivalence_ratio: t.fuel_equivalence_ratio,
-    };
-    let (state, _) = vehicle
-        .level_flight_state(6.0, 26_000.0, t.alpha_deg.to_radians(), &controls)
-        .expect("equilibrium");
+    let loaded = common::parse(&common::coarse_text());
+    let (mut vehicle, state, controls) = common::trimmed(&loaded, SurfaceModel::Partitioned, false);
     let speed = state.rigid.velocity_body_m_s.norm();
     let lin = linearize(
         &mut vehicle,

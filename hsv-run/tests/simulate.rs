@@ -1,48 +1,23 @@
 //! Time simulation of the partitioned vehicle from trim (paper §IV.C): a trimmed state stays
 //! put, the elevon doublet's altitude response is non-minimum phase (paper Fig. 11), and input
-//! tables are checked.
+//! tables are checked; restarts are bit-identical and a glide conserves energy with its loads.
 
-use hsv_core::config::{SAMPLE_CONFIG_TOML, parse_config};
 use hsv_run::analysis::simulate::{InputTable, Inputs, RunSettings, Sample, simulate};
-use hsv_run::analysis::trim::{TrimRequest, trim};
-use hsv_run::dynamics::GravityModel;
-use hsv_run::vehicle::assemble;
-use hsv_run::vehicle::partitioned::{
-    CouplingSettings, ElevonCommandData, FlightControls, PartitionedVehicle, partitioned_needs,
-};
+use hsv_run::vehicle::partitioned::{FlightControls, PartitionedVehicle};
 
-/// The sample vehicle with a coarse lifting-surface structure of its three lowest modes (the
-/// highest near 60 Hz, so a 2 ms Runge-Kutta step is stable), trimmed; returns the vehicle,
-/// its trimmed state and controls.
+mod common;
+
+/// The coarse sample vehicle (partitioned, unheated), trimmed.
 fn trimmed() -> (
     PartitionedVehicle,
     hsv_run::dynamics::VehicleState,
     FlightControls,
 ) {
-    let text = SAMPLE_CONFIG_TOML
-        .replace("free_vibration_modes = 10", "free_vibration_modes = 3")
-        .replace("static_shapes = 5", "static_shapes = 0")
-        .replace("elements_chordwise = 24", "elements_chordwise = 8")
-        .replace("elements_spanwise = 18", "elements_spanwise = 6");
-    let loaded = parse_config(&text, "test.toml").expect("config");
-    let registry = hsv_run::registry().expect("registry");
-    let sets = assemble(&loaded, &registry, &partitioned_needs("test")).expect("assembles");
-    let mut vehicle =
-        PartitionedVehicle::new(sets, GravityModel::default(), CouplingSettings::default())
-            .expect("vehicle");
-    let result = trim(&mut vehicle, &TrimRequest::default()).expect("trims");
-    let t = result.trim;
-    let controls = FlightControls {
-        elevon: ElevonCommandData {
-            symmetric_rad: t.elevon_deg.to_radians(),
-            differential_rad: 0.0,
-        },
-        fuel_equivalence_ratio: t.fuel_equivalence_ratio,
-    };
-    let (state, _) = vehicle
-        .level_flight_state(6.0, 26_000.0, t.alpha_deg.to_radians(), &controls)
-        .expect("equilibrium");
-    (vehicle, state, controls)
+    common::trimmed(
+        &common::parse(&common::coarse_text()),
+        hsv_run::vehicle::partitioned::SurfaceModel::Partitioned,
+        false,
+    )
 }
 
 fn fly(duration_s: f64, inputs: &Inputs) -> Vec<Sample> {
@@ -181,14 +156,9 @@ fn a_run_resumed_from_its_restart_file_continues_bit_for_bit() {
     // The heated partitioned vehicle (coarse surfaces), trimmed and flown for 0.2 s in one go,
     // and again stopped at 0.1 s, written to JSON, read back into a freshly built vehicle and
     // resumed: the final states must be identical to the last bit.
-    let text = SAMPLE_CONFIG_TOML
-        .replace("free_vibration_modes = 10", "free_vibration_modes = 3")
-        .replace("static_shapes = 5", "static_shapes = 0")
-        .replace("elements_chordwise = 24", "elements_chordwise = 8")
-        .replace("elements_spanwise = 18", "elements_spanwise = 6")
-        .replace("conduction = \"pod\"", "conduction = \"full-order\"");
-    let loaded = parse_config(&text, "test.toml").expect("config");
-    let registry = hsv_run::registry().expect("registry");
+    let loaded = common::parse(
+        &common::coarse_text().replace("conduction = \"pod\"", "conduction = \"full-order\""),
+    );
     let rates = HeatingRates {
         conduction_s: 0.01,
         heat_flux_s: 0.02,
@@ -196,27 +166,8 @@ fn a_run_resumed_from_its_restart_file_continues_bit_for_bit() {
         initial_k: 293.0,
     };
     let start = || {
-        let mut vehicle = hsv_run::vehicle::flexible_vehicle_with(
-            &loaded,
-            &registry,
-            SurfaceModel::Partitioned,
-            true,
-            "test",
-        )
-        .expect("vehicle");
-        let t = trim(&mut vehicle, &TrimRequest::default())
-            .expect("trims")
-            .trim;
-        let controls = FlightControls {
-            elevon: ElevonCommandData {
-                symmetric_rad: t.elevon_deg.to_radians(),
-                differential_rad: 0.0,
-            },
-            fuel_equivalence_ratio: t.fuel_equivalence_ratio,
-        };
-        let (state, _) = vehicle
-            .level_flight_state(6.0, 26_000.0, t.alpha_deg.to_radians(), &controls)
-            .expect("equilibrium");
+        let (mut vehicle, state, controls) =
+            common::trimmed(&loaded, SurfaceModel::Partitioned, true);
         vehicle.start_heating(&rates).expect("heating");
         (vehicle, state, controls)
     };
@@ -297,40 +248,17 @@ fn a_gliding_rigid_vehicle_loses_kinetic_and_potential_energy_to_the_work_of_its
     // Structures stiffened a hundredfold make the vehicle nearly rigid (their frequencies, up to
     // 270 Hz, still within the explicit step's reach); with the fuel cut (φ = 0) it glides. The
     // loads' power is integrated by the trapezoidal rule over 0.5 ms steps.
-    let text = SAMPLE_CONFIG_TOML
-        .replace("free_vibration_modes = 10", "free_vibration_modes = 3")
-        .replace("static_shapes = 5", "static_shapes = 0")
-        .replace("elements_chordwise = 24", "elements_chordwise = 8")
-        .replace("elements_spanwise = 18", "elements_spanwise = 6")
-        .replace("= 5.06e10", "= 5.06e12")
-        .replace("= 6.32e9 ", "= 6.32e11 ")
-        .replace("= 4.74e9 ", "= 4.74e11 ");
-    let loaded = parse_config(&text, "stiff.toml").expect("config");
-    let registry = hsv_run::registry().expect("registry");
-    let mut vehicle = hsv_run::vehicle::flexible_vehicle(
+    let loaded = common::parse(&common::stiffer_beam(&common::coarse_text(), 2));
+    let (mut vehicle, mut state, controls) = common::trimmed(
         &loaded,
-        &registry,
         SurfaceModel::Monolithic { lumped_mass: true },
-        "test",
-    )
-    .expect("vehicle");
-    let t = trim(&mut vehicle, &TrimRequest::default())
-        .expect("trims")
-        .trim;
-    let controls = FlightControls {
-        elevon: ElevonCommandData {
-            symmetric_rad: t.elevon_deg.to_radians(),
-            differential_rad: 0.0,
-        },
-        fuel_equivalence_ratio: t.fuel_equivalence_ratio,
-    };
-    let (mut state, _) = vehicle
-        .level_flight_state(6.0, 26_000.0, t.alpha_deg.to_radians(), &controls)
-        .expect("equilibrium");
+        false,
+    );
+    let trim_phi = controls.fuel_equivalence_ratio;
     let glide = Inputs {
         symmetric_elevon_deg: InputTable::constant(0.0),
         differential_elevon_deg: InputTable::constant(0.0),
-        fuel_equivalence_ratio: InputTable::constant(-t.fuel_equivalence_ratio),
+        fuel_equivalence_ratio: InputTable::constant(-trim_phi),
     };
     let mass = *vehicle.mass_properties();
     let (m, j) = (mass.mass_kg, mass.inertia_kg_m2);

@@ -101,24 +101,18 @@ fn the_sample_vehicle_trims_at_mach_6_26_km_with_a_physical_fuel_ratio() {
     assert!((lift * t.alpha_deg.to_radians().cos() - weight).abs() < 0.01 * weight);
 }
 
-/// The sample config with structures stiffened a thousandfold (beam EI and GJ, and the lifting
-/// surfaces' modulus), three surface modes on a coarse grid.
+mod common;
+
+/// The coarse sample config with structures stiffened a thousandfold (beam EI and GJ, and the
+/// lifting surfaces' modulus).
 fn stiff_config() -> hsv_core::config::LoadedConfig {
     let ti = "material = { name = \"stiff-titanium\", density_kg_m3 = 4430.0, poisson_ratio = 0.31, \
               melting_point_k = 1877.0, table = [{ temperature_k = 200.0, youngs_modulus_pa = 1.1e14, \
               thermal_expansion_per_k = 8.6e-6, conductivity_w_m_k = 6.7, specific_heat_j_kg_k = 526.0 }, \
               { temperature_k = 1800.0, youngs_modulus_pa = 1.1e14, thermal_expansion_per_k = 8.6e-6, \
               conductivity_w_m_k = 6.7, specific_heat_j_kg_k = 526.0 }] }";
-    let text = hsv_core::config::SAMPLE_CONFIG_TOML
-        .replace("free_vibration_modes = 10", "free_vibration_modes = 3")
-        .replace("static_shapes = 5", "static_shapes = 0")
-        .replace("elements_chordwise = 24", "elements_chordwise = 8")
-        .replace("elements_spanwise = 18", "elements_spanwise = 6")
-        .replace("material = \"ti-6al-4v\"", ti)
-        .replace("= 5.06e10", "= 5.06e13")
-        .replace("= 6.32e9 ", "= 6.32e12 ")
-        .replace("= 4.74e9 ", "= 4.74e12 ");
-    hsv_core::config::parse_config(&text, "stiff.toml").expect("stiff config")
+    let text = common::coarse_text().replace("material = \"ti-6al-4v\"", ti);
+    common::parse(&common::stiffer_beam(&text, 3))
 }
 
 #[test]

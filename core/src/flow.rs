@@ -40,9 +40,45 @@ impl Freestream {
         }
         let air = us_standard_atmosphere_1976(altitude_m)?;
         let speed_of_sound_m_s = gas.speed_of_sound(air.temperature_k);
-        let velocity_m_s = mach * speed_of_sound_m_s;
+        Ok(Self::from_air(
+            mach,
+            mach * speed_of_sound_m_s,
+            altitude_m,
+            &air,
+            gas,
+        ))
+    }
+
+    /// Freestream at airspeed `velocity_m_s` and geometric `altitude_m` in the US Standard
+    /// Atmosphere 1976: M = V / a(T), one atmosphere lookup (the time loop's path).
+    pub fn at_airspeed(
+        velocity_m_s: f64,
+        altitude_m: f64,
+        gas: PerfectGas,
+    ) -> Result<Self, ModelError> {
+        if !velocity_m_s.is_finite() || velocity_m_s <= 0.0 {
+            return Err(ModelError::out_of_range(
+                "freestream",
+                "airspeed (m/s)",
+                velocity_m_s,
+                "finite and > 0",
+            ));
+        }
+        let air = us_standard_atmosphere_1976(altitude_m)?;
+        let mach = velocity_m_s / gas.speed_of_sound(air.temperature_k);
+        Ok(Self::from_air(mach, velocity_m_s, altitude_m, &air, gas))
+    }
+
+    fn from_air(
+        mach: f64,
+        velocity_m_s: f64,
+        altitude_m: f64,
+        air: &crate::atmosphere::AtmosphereState,
+        gas: PerfectGas,
+    ) -> Self {
+        let speed_of_sound_m_s = gas.speed_of_sound(air.temperature_k);
         let density_kg_m3 = air.pressure_pa / (gas.gas_constant_j_kg_k * air.temperature_k);
-        Ok(Self {
+        Self {
             mach,
             altitude_m,
             pressure_pa: air.pressure_pa,
@@ -53,7 +89,7 @@ impl Freestream {
             dynamic_viscosity_pa_s: air.dynamic_viscosity_pa_s,
             dynamic_pressure_pa: 0.5 * density_kg_m3 * velocity_m_s * velocity_m_s,
             gas,
-        })
+        }
     }
 
     /// Stagnation (total) temperature T0 = T (1 + (γ-1)/2 M²), K.

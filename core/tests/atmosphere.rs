@@ -323,3 +323,27 @@ proptest! {
         prop_assert!((below.pressure_pa / above.pressure_pa - 1.0).abs() < 1e-9);
     }
 }
+
+#[test]
+fn freestream_at_airspeed_uses_table_iii_speed_of_sound() {
+    // The time loop's path: M = V / a with a from USSA-1976 Table III (340.29 m/s at sea level,
+    // 301.71 m/s at 30 km), and q = ρ V² / 2 with Table I's ρ(0) = 1.2250 kg/m³. Tolerances are
+    // the tables' last printed digit carried through the quotient.
+    use hsv_core::flow::Freestream;
+    use hsv_core::gas::PerfectGas;
+    let sea = Freestream::at_airspeed(2.0 * 340.29, 0.0, PerfectGas::AIR).unwrap();
+    assert_close("Mach", 0.0, sea.mach, 2.0, 2.0 * 0.005 / 340.29);
+    assert_close(
+        "q (Pa)",
+        0.0,
+        sea.dynamic_pressure_pa,
+        0.5 * 1.2250 * (2.0 * 340.29f64).powi(2),
+        five_figures(283_700.0),
+    );
+    let high = Freestream::at_airspeed(6.0 * 301.71, 30_000.0, PerfectGas::AIR).unwrap();
+    assert_close("Mach", 30_000.0, high.mach, 6.0, 6.0 * 0.005 / 301.71);
+    for bad in [0.0, -1.0, f64::NAN] {
+        let err = Freestream::at_airspeed(bad, 0.0, PerfectGas::AIR).unwrap_err();
+        assert!(err.to_string().contains("airspeed"), "{err}");
+    }
+}

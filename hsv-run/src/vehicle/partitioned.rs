@@ -855,7 +855,7 @@ impl PartitionedVehicle {
                     .map_err(model_error(&s.name))?;
             }
         }
-        self.advance_heating(state, time_s)?;
+        self.advance_heating(&flight, time_s)?;
         self.time_s = time_s;
         Ok(())
     }
@@ -871,12 +871,8 @@ impl PartitionedVehicle {
         let rigid = &state.rigid;
         let (airspeed, alpha, beta) = rigid.air_data(&Vector3::zeros());
         let altitude = rigid.altitude_m();
-        let to_error = model_error("main_body");
-        let sound = Freestream::standard(1.0, altitude, self.gas)
-            .map_err(&to_error)?
-            .speed_of_sound_m_s;
-        let freestream =
-            Freestream::standard(airspeed / sound, altitude, self.gas).map_err(&to_error)?;
+        let freestream = Freestream::at_airspeed(airspeed, altitude, self.gas)
+            .map_err(model_error("main_body"))?;
         let mut flight = FlightCondition::steady(freestream, alpha, beta);
         flight.angular_velocity_rad_s = rigid.angular_velocity_body_rad_s;
         flight.rotation_center_m = self.mass.center_of_mass_m;
@@ -1031,8 +1027,11 @@ impl PartitionedVehicle {
     /// Advances every heated surface to `time_s`: heat flux from the surface's latest aero
     /// solution every heat-flux interval, conduction steps, and the structure's stiffness (and
     /// the modal equations) from the temperature field every stiffness interval.
-    fn advance_heating(&mut self, state: &VehicleState, time_s: f64) -> Result<(), VehicleError> {
-        let flight = self.flight(state)?;
+    fn advance_heating(
+        &mut self,
+        flight: &FlightCondition,
+        time_s: f64,
+    ) -> Result<(), VehicleError> {
         let rates = self.heating;
         for (i, s) in self.surfaces.iter_mut().enumerate() {
             let Some(t) = &mut s.thermal else {
@@ -1046,7 +1045,7 @@ impl PartitionedVehicle {
                     t.heat_flux
                         .heat_flux(
                             &s.deflected,
-                            &flight,
+                            flight,
                             &s.solution,
                             &t.wall_k,
                             &mut t.flux_w_m2,
@@ -1476,16 +1475,16 @@ impl PartitionedVehicle {
         alpha_rad: f64,
         controls: &FlightControls,
     ) -> Result<(VehicleState, VehicleDerivative), VehicleError> {
-        let sound = Freestream::standard(1.0, altitude_m, self.gas)
+        let airspeed_m_s = Freestream::standard(mach, altitude_m, self.gas)
             .map_err(model_error("main_body"))?
-            .speed_of_sound_m_s;
+            .velocity_m_s;
         // Start from the last equilibrium: trim evaluates nearby controls one after another.
         let mut state = self
             .warm_start
             .take()
             .unwrap_or_else(|| self.dynamics.zero_state());
         state.rigid =
-            crate::dynamics::RigidBodyState::level_flight(altitude_m, mach * sound, alpha_rad);
+            crate::dynamics::RigidBodyState::level_flight(altitude_m, airspeed_m_s, alpha_rad);
         let mut out = self.dynamics.zero_derivative();
         self.settle(&mut state, controls, 1e-6, 200, &mut out)?;
         self.warm_start = Some(state.clone());

@@ -4,9 +4,9 @@
 //! §10.3: discrete frequencies of a uniform chain), the damped oscillator's state matrix
 //! (λ = −ζω ± iω√(1−ζ²)), and residual checks of a random matrix.
 
-use std::alloc::{GlobalAlloc, Layout, System};
-use std::cell::Cell;
 use std::f64::consts::PI;
+
+use hsv_core::testing::{CountingAllocator, allocations};
 
 use hsv_core::linalg::{
     BandedMatrix, EigenError, NotPositiveDefinite, SymmetricEigenSolver, general_eigen,
@@ -14,33 +14,8 @@ use hsv_core::linalg::{
 };
 use nalgebra::{Complex, DMatrix, DVector};
 
-/// Counts this thread's heap allocations, to check the allocation-free paths.
-struct CountingAllocator;
-
-thread_local! {
-    static ALLOCATIONS: Cell<usize> = const { Cell::new(0) };
-}
-
-unsafe impl GlobalAlloc for CountingAllocator {
-    unsafe fn alloc(&self, layout: Layout) -> *mut u8 {
-        ALLOCATIONS.with(|c| c.set(c.get() + 1));
-        unsafe { System.alloc(layout) }
-    }
-    unsafe fn dealloc(&self, ptr: *mut u8, layout: Layout) {
-        unsafe { System.dealloc(ptr, layout) }
-    }
-    unsafe fn realloc(&self, ptr: *mut u8, layout: Layout, new_size: usize) -> *mut u8 {
-        ALLOCATIONS.with(|c| c.set(c.get() + 1));
-        unsafe { System.realloc(ptr, layout, new_size) }
-    }
-}
-
 #[global_allocator]
 static GLOBAL: CountingAllocator = CountingAllocator;
-
-fn allocations() -> usize {
-    ALLOCATIONS.with(Cell::get)
-}
 
 /// Eigenvalue k (1-based) of the n × n 1-D Laplacian tridiag(−1, 2, −1).
 fn laplacian_eigenvalue(k: usize, n: usize) -> f64 {

@@ -7,9 +7,9 @@
 //! Etkin & Reid against its published state matrix and the classical short-period and phugoid
 //! approximations.
 
-use std::alloc::{GlobalAlloc, Layout, System};
-use std::cell::Cell;
 use std::f64::consts::PI;
+
+use hsv_core::testing::{CountingAllocator, allocations};
 
 use hsv_core::aero::Loads;
 use hsv_core::atmosphere::{EARTH_RADIUS_M, STANDARD_GRAVITY_M_S2};
@@ -24,33 +24,8 @@ use hsv_run::dynamics::{
 };
 use nalgebra::{DMatrix, DVector, Matrix2, Matrix3, Point3, Vector3};
 
-/// Counts this thread's heap allocations, to check the allocation-free paths.
-struct CountingAllocator;
-
-thread_local! {
-    static ALLOCATIONS: Cell<usize> = const { Cell::new(0) };
-}
-
-unsafe impl GlobalAlloc for CountingAllocator {
-    unsafe fn alloc(&self, layout: Layout) -> *mut u8 {
-        ALLOCATIONS.with(|c| c.set(c.get() + 1));
-        unsafe { System.alloc(layout) }
-    }
-    unsafe fn dealloc(&self, ptr: *mut u8, layout: Layout) {
-        unsafe { System.dealloc(ptr, layout) }
-    }
-    unsafe fn realloc(&self, ptr: *mut u8, layout: Layout, new_size: usize) -> *mut u8 {
-        ALLOCATIONS.with(|c| c.set(c.get() + 1));
-        unsafe { System.realloc(ptr, layout, new_size) }
-    }
-}
-
 #[global_allocator]
 static GLOBAL: CountingAllocator = CountingAllocator;
-
-fn allocations() -> usize {
-    ALLOCATIONS.with(Cell::get)
-}
 
 fn point_mass_body(mass_kg: f64, inertia: Matrix3<f64>, gravity: GravityModel) -> RigidBody {
     RigidBody::new(

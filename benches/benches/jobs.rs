@@ -17,7 +17,7 @@ use hsv_run::analysis::trim::{TrimRequest, trim};
 use hsv_run::dynamics::GravityModel;
 use hsv_run::vehicle::assemble;
 use hsv_run::vehicle::partitioned::{
-    CouplingSettings, ElevonCommandData, FlightControls, PartitionedVehicle, partitioned_needs,
+    CouplingSettings, ElevonCommand, FlightControls, PartitionedVehicle, partitioned_needs,
 };
 use hsv_run::vehicle::rigid::{RigidVehicle, rigid_needs};
 
@@ -42,7 +42,7 @@ fn jobs(c: &mut Criterion) {
     let mut vehicle = partitioned(&loaded, &registry);
     let t = trim(&mut vehicle, &request).expect("flexible trim").trim;
     let controls = FlightControls {
-        elevon: ElevonCommandData {
+        elevon: ElevonCommand {
             symmetric_rad: t.elevon_deg.to_radians(),
             differential_rad: 0.0,
         },

@@ -11,7 +11,7 @@ use crate::dynamics::{
     flight_modes,
 };
 use crate::vehicle::partitioned::{
-    ElevonCommandData, FlightControls, PartitionedVehicle, VehicleError,
+    ElevonCommand, FlightControls, PartitionedVehicle, VehicleError,
 };
 
 /// Input names, with units.
@@ -44,7 +44,7 @@ pub struct Linearization {
 
 fn controls(u: &DVector<f64>) -> FlightControls {
     FlightControls {
-        elevon: ElevonCommandData {
+        elevon: ElevonCommand {
             symmetric_rad: u[0],
             differential_rad: u[1],
         },

@@ -7,7 +7,7 @@ use nalgebra::DVector;
 
 use crate::dynamics::{AttitudeCoordinates, Rk4, VehicleState};
 use crate::vehicle::partitioned::{
-    ElevonCommandData, FlightControls, PartitionedVehicle, VehicleError,
+    ElevonCommand, FlightControls, PartitionedVehicle, VehicleError,
 };
 
 /// A control input as a table of (time s, value) pairs, linear between them and held beyond.
@@ -125,7 +125,7 @@ impl Inputs {
     /// The controls at `t` around the trim controls.
     pub fn controls(&self, trim: &FlightControls, t: f64) -> FlightControls {
         FlightControls {
-            elevon: ElevonCommandData {
+            elevon: ElevonCommand {
                 symmetric_rad: trim.elevon.symmetric_rad
                     + self.symmetric_elevon_deg.at(t).to_radians(),
                 differential_rad: trim.elevon.differential_rad

@@ -23,7 +23,7 @@ use crate::analysis::trim::{TrimRequest, trim};
 use crate::dynamics::GravityModel;
 use crate::vehicle::assemble;
 use crate::vehicle::partitioned::{
-    CouplingSettings, ElevonCommandData, FlightControls, PartitionedVehicle, partitioned_needs,
+    CouplingSettings, ElevonCommand, FlightControls, PartitionedVehicle, partitioned_needs,
 };
 use crate::vehicle::rigid::{RigidVehicle, rigid_needs};
 
@@ -418,7 +418,7 @@ fn simulate_case(
         PartitionedVehicle::new(sets, GravityModel::default(), CouplingSettings::default())?;
     let t = trim(&mut vehicle, &request(spec))?.trim;
     let controls = FlightControls {
-        elevon: ElevonCommandData {
+        elevon: ElevonCommand {
             symmetric_rad: t.elevon_deg.to_radians(),
             differential_rad: 0.0,
         },

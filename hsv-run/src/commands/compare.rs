@@ -14,7 +14,7 @@ use crate::analysis::simulate::{Inputs, RunSettings, Sample, simulate};
 use crate::analysis::trim::{TrimPoint, TrimRequest, trim};
 use crate::outln;
 use crate::output::{LinePlot, RunFolder, RunStatus, Series, write_csv, write_line_plots_png};
-use crate::vehicle::partitioned::{ElevonCommandData, FlightControls, SurfaceModel};
+use crate::vehicle::partitioned::{ElevonCommand, FlightControls, SurfaceModel};
 use crate::vehicle::rigid::{RigidVehicle, rigid_needs};
 use crate::vehicle::{assemble, flexible_vehicle};
 
@@ -71,7 +71,7 @@ fn fly(
     };
     let t = trim(&mut vehicle, &request)?.trim;
     let controls = FlightControls {
-        elevon: ElevonCommandData {
+        elevon: ElevonCommand {
             symmetric_rad: t.elevon_deg.to_radians(),
             differential_rad: 0.0,
         },

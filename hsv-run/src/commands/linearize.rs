@@ -16,7 +16,7 @@ use crate::outln;
 use crate::output::{RunFolder, RunStatus, write_file};
 use crate::vehicle::assemble;
 use crate::vehicle::partitioned::{
-    CouplingSettings, ElevonCommandData, FlightControls, PartitionedVehicle, partitioned_needs,
+    CouplingSettings, ElevonCommand, FlightControls, PartitionedVehicle, partitioned_needs,
 };
 
 /// Arguments of `hsv-run linearize`.
@@ -71,7 +71,7 @@ pub fn run(args: LinearizeArgs, registry: &Registry) -> Result<()> {
     let trimmed = trim(&mut vehicle, &request)?;
     let t = &trimmed.trim;
     let controls = FlightControls {
-        elevon: ElevonCommandData {
+        elevon: ElevonCommand {
             symmetric_rad: t.elevon_deg.to_radians(),
             differential_rad: 0.0,
         },

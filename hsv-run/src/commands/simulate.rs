@@ -20,7 +20,7 @@ use crate::output::{
 };
 use crate::progress::Progress;
 use crate::vehicle::flexible_vehicle_with;
-use crate::vehicle::partitioned::{ElevonCommandData, FlightControls, HeatingRates, SurfaceModel};
+use crate::vehicle::partitioned::{ElevonCommand, FlightControls, HeatingRates, SurfaceModel};
 
 /// Arguments of `hsv-run simulate`.
 #[derive(Args, Debug, Clone)]
@@ -233,7 +233,7 @@ pub fn run(args: SimulateArgs, registry: &Registry) -> Result<()> {
         None => {
             let t = trim(&mut vehicle, &request)?.trim;
             let controls = FlightControls {
-                elevon: ElevonCommandData {
+                elevon: ElevonCommand {
                     symmetric_rad: t.elevon_deg.to_radians(),
                     differential_rad: 0.0,
                 },

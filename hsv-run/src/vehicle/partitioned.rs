@@ -21,9 +21,10 @@
 
 use hsv_core::ModelError;
 use hsv_core::aero::{AeroModel, AeroSolution, Loads, PanelMotion, integrate_pressure};
+pub use hsv_core::coupling::ElevonCommand;
 use hsv_core::coupling::{
-    ElevonCommand, ModalProjection, deflect_lifting_surface, elevon_rotation_angle_rad,
-    generalized_forces, pivot_axis, rotation_about_axis,
+    ModalProjection, deflect_lifting_surface, elevon_rotation_angle_rad, generalized_forces,
+    pivot_axis, rotation_about_axis,
 };
 use hsv_core::flow::{FlightCondition, Freestream};
 use hsv_core::gas::PerfectGas;
@@ -225,16 +226,9 @@ struct FollowerSurface {
 /// The controls at one instant.
 #[derive(Debug, Clone, Copy, PartialEq, Default, serde::Serialize, serde::Deserialize)]
 pub struct FlightControls {
-    pub elevon: ElevonCommandData,
+    pub elevon: ElevonCommand,
     /// Fuel equivalence ratio φ.
     pub fuel_equivalence_ratio: f64,
-}
-
-/// Elevon command as plain data: symmetric and differential deflection, rad.
-#[derive(Debug, Clone, Copy, PartialEq, Default, serde::Serialize, serde::Deserialize)]
-pub struct ElevonCommandData {
-    pub symmetric_rad: f64,
-    pub differential_rad: f64,
 }
 
 /// Body-surface coupling settings.
@@ -889,10 +883,7 @@ impl PartitionedVehicle {
     ) -> Result<(), VehicleError> {
         let cg = self.mass.center_of_mass_m;
         let reference_point_m = self.reference_point_m;
-        let elevon = ElevonCommand {
-            symmetric_rad: controls.elevon.symmetric_rad,
-            differential_rad: controls.elevon.differential_rad,
-        };
+        let elevon = controls.elevon;
         let time_s = self.time_s;
         let body = &mut self.body;
         let engine = self.engine.as_mut();
@@ -943,10 +934,7 @@ impl PartitionedVehicle {
     ) -> Result<(), VehicleError> {
         let cg = self.mass.center_of_mass_m;
         let p_inf = flight.freestream.pressure_pa;
-        let elevon = ElevonCommand {
-            symmetric_rad: controls.elevon.symmetric_rad,
-            differential_rad: controls.elevon.differential_rad,
-        };
+        let elevon = controls.elevon;
         let surface = |r: RegionKind| r == RegionKind::LiftingSurface;
         for f in &mut self.followers {
             let err = model_error(&f.name);
@@ -1292,10 +1280,7 @@ impl PartitionedVehicle {
     ) -> Result<f64, VehicleError> {
         let cg = self.mass.center_of_mass_m;
         let p_inf = flight.freestream.pressure_pa;
-        let elevon = ElevonCommand {
-            symmetric_rad: controls.elevon.symmetric_rad,
-            differential_rad: controls.elevon.differential_rad,
-        };
+        let elevon = controls.elevon;
         let mut total = *body_without_roots;
         let mut aero = self.aero_loads;
         let mut change: f64 = 0.0;
@@ -1500,7 +1485,7 @@ impl crate::analysis::trim::SteadyFlight for PartitionedVehicle {
         c: &super::rigid::Controls,
     ) -> Result<(super::rigid::Accelerations, super::rigid::RigidLoads), ModelError> {
         let controls = FlightControls {
-            elevon: ElevonCommandData {
+            elevon: ElevonCommand {
                 symmetric_rad: c.elevon_rad,
                 differential_rad: 0.0,
             },

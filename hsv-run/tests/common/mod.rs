@@ -10,7 +10,7 @@ use hsv_run::analysis::trim::{TrimPoint, TrimRequest, trim};
 use hsv_run::dynamics::VehicleState;
 use hsv_run::vehicle::flexible_vehicle_with;
 use hsv_run::vehicle::partitioned::{
-    ElevonCommandData, FlightControls, PartitionedVehicle, SurfaceModel,
+    ElevonCommand, FlightControls, PartitionedVehicle, SurfaceModel,
 };
 
 /// The sample config text with the coarse lifting-surface structure.
@@ -37,7 +37,7 @@ pub fn parse(text: &str) -> LoadedConfig {
 /// The controls of a trim point.
 pub fn controls_of(t: &TrimPoint) -> FlightControls {
     FlightControls {
-        elevon: ElevonCommandData {
+        elevon: ElevonCommand {
             symmetric_rad: t.elevon_deg.to_radians(),
             differential_rad: 0.0,
         },

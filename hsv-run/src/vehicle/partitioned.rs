@@ -297,7 +297,14 @@ struct Body {
 struct Surface {
     thermal: Option<SurfaceThermal>,
     friction: Option<RegionFriction>,
-    friction_about_pivot: Loads,
+    /// Pressure and friction loads about the pivot in the surface's own (undeflected) frame, from
+    /// the last region evaluation: the applied load of force summation, fixed while the coupling
+    /// iterates on q̈.
+    applied_surface_frame: Loads,
+    /// The same loads in the body frame.
+    applied_about_pivot: Loads,
+    /// The elevon's rotation of the surface at the last region evaluation.
+    elevon_rotation: nalgebra::Rotation3<f64>,
     name: String,
     base: PanelMesh,
     deformed: PanelMesh,
@@ -569,8 +576,9 @@ fn surface_region_loads(
                 .map_err(|e| err(ModelError::inconsistent("coupling", e.to_string())))?;
         }
     }
-    // Skin friction on the deflected surface, about the pivot (root loads need it).
-    s.friction_about_pivot = match &mut s.friction {
+    // Pressure and skin friction on the deflected surface, about the pivot: the applied load of
+    // the root loads' force summation, which works in the surface's own frame.
+    let friction = match &mut s.friction {
         Some(f) => f
             .loads(
                 &s.deflected,
@@ -583,6 +591,19 @@ fn surface_region_loads(
             .map_err(&err)?,
         None => Loads::default(),
     };
+    let applied = integrate_pressure(
+        &s.deflected,
+        &s.solution.pressure_pa,
+        p_inf,
+        &s.pivot_m,
+        |r| r == RegionKind::LiftingSurface,
+    ) + friction;
+    s.applied_surface_frame = Loads {
+        force_n: rotation.inverse_transform_vector(&applied.force_n),
+        moment_nm: rotation.inverse_transform_vector(&applied.moment_nm),
+    };
+    s.applied_about_pivot = applied;
+    s.elevon_rotation = rotation;
     let thermal = s
         .structure
         .thermal_stiffness()
@@ -713,7 +734,9 @@ impl PartitionedVehicle {
                     surfaces.push(Surface {
                         thermal,
                         friction: set.friction.map(|m| RegionFriction::new(m, n_panels)),
-                        friction_about_pivot: Loads::default(),
+                        applied_surface_frame: Loads::default(),
+                        applied_about_pivot: Loads::default(),
+                        elevon_rotation: nalgebra::Rotation3::identity(),
                         name: name.clone(),
                         rigid: set.info.mesh.clone(),
                         history,
@@ -1274,41 +1297,26 @@ impl PartitionedVehicle {
     fn add_root_loads(
         &mut self,
         state: &VehicleState,
-        controls: &FlightControls,
-        flight: &FlightCondition,
         body_without_roots: &Loads,
     ) -> Result<f64, VehicleError> {
         let cg = self.mass.center_of_mass_m;
-        let p_inf = flight.freestream.pressure_pa;
-        let elevon = controls.elevon;
         let mut total = *body_without_roots;
         let mut aero = self.aero_loads;
         let mut change: f64 = 0.0;
         for (i, s) in self.surfaces.iter_mut().enumerate() {
             let err = model_error(&s.name);
-            let rotation = rotation_about_axis(
-                &pivot_axis(),
-                elevon_rotation_angle_rad(elevon.deflection_rad(s.side)),
-            )
-            .map_err(|e| err(ModelError::inconsistent("elevon", e.to_string())))?;
-            let applied = integrate_pressure(
-                &s.deflected,
-                &s.solution.pressure_pa,
-                p_inf,
-                &s.pivot_m,
-                |r| r == RegionKind::LiftingSurface,
-            ) + s.friction_about_pivot;
-            // Force summation works in the surface's own (undeflected) frame.
-            let applied_surface = Loads {
-                force_n: rotation.inverse_transform_vector(&applied.force_n),
-                moment_nm: rotation.inverse_transform_vector(&applied.moment_nm),
-            };
+            let (rotation, applied) = (s.elevon_rotation, s.applied_about_pivot);
             let modes = &state.surface_modes[i];
             let root = s
                 .structure
                 .root_loads()
                 .ok_or_else(|| err(ModelError::inconsistent("coupling", "no root loads")))?
-                .root_loads(&modes.q, &modes.q_dot, &self.q_ddot[i], &applied_surface)
+                .root_loads(
+                    &modes.q,
+                    &modes.q_dot,
+                    &self.q_ddot[i],
+                    &s.applied_surface_frame,
+                )
                 .map_err(&err)?;
             let force = rotation * root.force_n;
             let moment = rotation * root.moment_nm;
@@ -1346,7 +1354,7 @@ impl PartitionedVehicle {
         let mut residual = f64::INFINITY;
         let mut omega = 1.0;
         for iteration in 1..=self.settings.max_iterations.max(1) {
-            residual = self.add_root_loads(state, controls, &flight, &body_without_roots)?;
+            residual = self.add_root_loads(state, &body_without_roots)?;
             self.dynamics.derivative(state, &self.loads, out)?;
             if n_surfaces == 0 || (iteration > 1 && residual <= self.settings.tolerance) {
                 self.report = CouplingReport {

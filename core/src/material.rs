@@ -10,7 +10,8 @@
 //! `α_sec` is the **secant** (mean) coefficient of thermal expansion from
 //! [`SECANT_REFERENCE_TEMPERATURE_K`] to T, so the free thermal strain is
 //! ε_th(T) = α_sec(T) (T − 293 K) ([`Material::thermal_strain`]). Temperatures outside the
-//! table are errors naming the range, never extrapolations.
+//! table are errors naming the range, never extrapolations; the one continuation is the thermal
+//! strain below the floor, with the floor's α (see [`Material::thermal_strain`]).
 //!
 //! A config gives a material by name (`material = "ti-6al-4v"`) or as a full table
 //! ([`MaterialSetting`]); see [`Material::by_name`] for the built-in names.
@@ -541,8 +542,19 @@ impl Material {
     }
 
     /// Free thermal strain ε_th = α_sec(T) (T − 293 K) (secant definition), dimensionless.
+    ///
+    /// Below the mechanical table's floor the strain continues with the floor's secant α: a face
+    /// temperature reconstructed linearly through the thickness can dip under the initial (floor)
+    /// temperature when only one side heats, and the strain there is physical; the table simply
+    /// starts at its floor. Above the ceiling (and for non-finite T) it is the range error.
     pub fn thermal_strain(&self, temperature_k: f64) -> Result<f64, MaterialError> {
-        self.at(temperature_k)
+        let (floor, _) = self.mechanical_temperature_range_k();
+        let table_temperature_k = if temperature_k.is_finite() && temperature_k < floor {
+            floor
+        } else {
+            temperature_k
+        };
+        self.at(table_temperature_k)
             .map(|p| p.thermal_expansion_per_k * (temperature_k - SECANT_REFERENCE_TEMPERATURE_K))
     }
 
@@ -720,6 +732,17 @@ mod tests {
         );
         assert!(ti.at(f64::NAN).is_err());
         assert!(ti.at(200.0).is_err());
+        // The secant strain continues below the floor with the 20-100 °C mean α = 8.6e-6 /K
+        // (the source row the 293 K entry repeats); non-finite T and T above the ceiling stay
+        // range errors.
+        assert_relative_eq!(
+            ti.thermal_strain(283.0).unwrap(),
+            -10.0 * 8.6e-6,
+            max_relative = 1e-12
+        );
+        assert!(ti.thermal_strain(f64::NAN).is_err());
+        assert!(ti.thermal_strain(f64::NEG_INFINITY).is_err());
+        assert!(ti.thermal_strain(1400.0).is_err());
         let model = ti
             .at(1400.0)
             .unwrap_err()

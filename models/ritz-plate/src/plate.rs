@@ -384,7 +384,8 @@ impl PlateModel {
             let thermal_strain_difference = if dt == 0.0 {
                 0.0
             } else {
-                self.face_thermal_strain(t + 0.5 * dt)? - self.face_thermal_strain(t - 0.5 * dt)?
+                self.material.thermal_strain(t + 0.5 * dt)?
+                    - self.material.thermal_strain(t - 0.5 * dt)?
             };
             out[e] = ElementState {
                 stiffness_scale: p.youngs_modulus_pa / self.reference_modulus_pa,
@@ -393,19 +394,6 @@ impl PlateModel {
             };
         }
         Ok(())
-    }
-
-    /// Thermal strain at a face temperature: the table's secant strain, extended below the
-    /// table's floor with the floor's secant α. A face reconstructed linearly from the mean and
-    /// the difference can fall below the initial (floor) temperature when only one side heats;
-    /// the strain there is physical, the table simply starts at 293 K.
-    fn face_thermal_strain(&self, temperature_k: f64) -> Result<f64, PlateError> {
-        let (floor, _) = self.material.mechanical_temperature_range_k();
-        if temperature_k < floor && temperature_k.is_finite() {
-            let alpha = self.material.at(floor)?.thermal_expansion_per_k;
-            return Ok(alpha * (temperature_k - SECANT_REFERENCE_TEMPERATURE_K));
-        }
-        Ok(self.material.thermal_strain(temperature_k)?)
     }
 
     /// Thermal-moment load over the free bending equations, f_T = Σ_e s_e Δε_e f_e

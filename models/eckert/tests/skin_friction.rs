@@ -10,10 +10,12 @@
 //!   Driest II the best of the compressible turbulent theories against flat-plate data up to
 //!   Mach 7.4, within about ±10 %.
 
-use hsv_core::aero::{AeroSolution, EdgeState, PanelMotion, integrate_shear};
+mod common;
+use common::*;
+
+use hsv_core::aero::{AeroSolution, PanelMotion, integrate_shear};
 use hsv_core::atmosphere::sutherland_viscosity;
-use hsv_core::flow::{FlightCondition, Freestream};
-use hsv_core::gas::PerfectGas;
+use hsv_core::flow::FlightCondition;
 use hsv_core::mesh::{PanelMesh, PanelSpec, RegionKind, Strip, Surface};
 use hsv_core::registry::{ModelContext, Registry};
 use hsv_core::thermal::HeatFluxModel;
@@ -21,20 +23,6 @@ use hsv_model_eckert::{Eckert, Reference, Regime, Settings, recovery_temperature
 use nalgebra::{Point3, Vector3};
 
 const PR: f64 = 0.71;
-
-fn freestream(mach: f64, altitude_m: f64) -> Freestream {
-    Freestream::standard(mach, altitude_m, PerfectGas::AIR).expect("standard atmosphere")
-}
-
-fn edge_of(f: &Freestream) -> EdgeState {
-    EdgeState {
-        mach: f.mach,
-        pressure_pa: f.pressure_pa,
-        temperature_k: f.temperature_k,
-        density_kg_m3: f.density_kg_m3,
-        velocity_m_s: f.velocity_m_s,
-    }
-}
 
 fn model(reference: Reference, regime: Regime, default_running_length_m: f64) -> Eckert {
     Eckert::new(Settings {
@@ -86,13 +74,6 @@ fn lone_panel() -> PanelMesh {
     .unwrap()
 }
 
-fn uniform(mesh: &PanelMesh, edge: EdgeState) -> AeroSolution {
-    let mut aero = AeroSolution::default();
-    aero.reset(mesh.panels.len());
-    aero.edge.fill(edge);
-    aero
-}
-
 /// Wall shear of every panel through the `SkinFriction` capability of the trait object.
 fn wall_shear(
     model: &mut dyn HeatFluxModel,
@@ -124,7 +105,7 @@ fn laminar_skin_friction_tends_to_blasius_at_low_mach() {
         &mut eckert,
         &mesh,
         &flight,
-        &uniform(&mesh, edge_of(&f)),
+        &uniform_solution(&mesh, edge_of(&f)),
         f.temperature_k,
     );
     let q = 0.5 * f.density_kg_m3 * f.velocity_m_s.powi(2);
@@ -140,38 +121,6 @@ fn laminar_skin_friction_tends_to_blasius_at_low_mach() {
         100.0 * worst
     );
     assert!(worst < 0.02, "off Blasius by {:.2} %", 100.0 * worst);
-}
-
-/// Van Driest II local skin friction at edge Reynolds number `re_x` (module docs; NASA Langley
-/// Turbulence Modeling Resource form): C_f = C_f,inc(Re_θ μ_e/μ_w)/F_c, C_f,inc(Re) =
-/// 1/(17.08 log²Re + 25.11 log Re + 6.012), F_c = (T_aw/T_e − 1)/(asin A + asin B)², with
-/// a = √(r (γ−1)/2 M² T_e/T_w), b = T_aw/T_w − 1, A = (2a² − b)/√(b² + 4a²), B = b/√(b² + 4a²);
-/// Re_x from dRe_x/dRe_θ = 2/C_f (momentum integral, zero pressure gradient).
-fn van_driest_ii_skin_friction(te: f64, tw: f64, mach: f64, r: f64, re_x: f64) -> f64 {
-    let taw = recovery_temperature_k(te, mach, 1.4, r);
-    let a = (r * 0.2 * mach * mach * te / tw).sqrt();
-    let b = taw / tw - 1.0;
-    let q = (b * b + 4.0 * a * a).sqrt();
-    let fc = (taw / te - 1.0) / (((2.0 * a * a - b) / q).asin() + (b / q).asin()).powi(2);
-    let mu_ratio = sutherland_viscosity(te) / sutherland_viscosity(tw);
-    let cf = |re_theta: f64| {
-        let l = (re_theta * mu_ratio).log10();
-        1.0 / (17.08 * l * l + 25.11 * l + 6.012) / fc
-    };
-    // Trapezoidal Re_x(Re_θ) on a log grid from Re_θ = 100 (its Re_x is negligible at 1e7).
-    let mut re_theta: f64 = 100.0;
-    let mut x = 2.0 * re_theta / cf(re_theta);
-    let ratio: f64 = 1.001;
-    loop {
-        let next = re_theta * ratio;
-        let dx = (next - re_theta) * (1.0 / cf(re_theta) + 1.0 / cf(next));
-        if x + dx >= re_x {
-            let t = (re_x - x) / dx;
-            return cf(re_theta + t * (next - re_theta));
-        }
-        x += dx;
-        re_theta = next;
-    }
 }
 
 /// Turbulent, Mach 6 at 10 km (T_e = 223.25 K), edge Re_x = 1e7, walls at 300 K (T_w/T_e =
@@ -190,7 +139,7 @@ fn turbulent_skin_friction_matches_van_driest_ii_at_mach_6() {
     let x = re_x * sutherland_viscosity(te) / (f.density_kg_m3 * f.velocity_m_s);
     let mesh = lone_panel();
     let flight = FlightCondition::steady(f, 0.0, 0.0);
-    let aero = uniform(&mesh, edge_of(&f));
+    let aero = uniform_solution(&mesh, edge_of(&f));
     let q = 0.5 * f.density_kg_m3 * f.velocity_m_s.powi(2);
     let r = PR.cbrt();
     let taw = recovery_temperature_k(te, mach, 1.4, r);
@@ -235,7 +184,7 @@ fn plate_friction_drag_matches_blasius_plate_drag() {
         &mut eckert,
         &mesh,
         &flight,
-        &uniform(&mesh, edge_of(&f)),
+        &uniform_solution(&mesh, edge_of(&f)),
         f.temperature_k,
     );
     let loads = integrate_shear(
@@ -269,7 +218,7 @@ fn no_boundary_layer_gives_no_shear_and_bad_walls_are_errors() {
     let f = freestream(6.0, 26_000.0);
     let mesh = plate(3, 1.0);
     let flight = FlightCondition::steady(f, 0.0, 0.0);
-    let mut aero = uniform(&mesh, edge_of(&f));
+    let mut aero = uniform_solution(&mesh, edge_of(&f));
     aero.edge[0].pressure_pa = 0.0;
     aero.edge[0].density_kg_m3 = 0.0;
     aero.edge[1].velocity_m_s = 0.0;
@@ -319,7 +268,7 @@ fn registered_model_offers_skin_friction() {
         built.as_mut(),
         &mesh,
         &flight,
-        &uniform(&mesh, edge_of(&f)),
+        &uniform_solution(&mesh, edge_of(&f)),
         300.0,
     );
     let loads = integrate_shear(

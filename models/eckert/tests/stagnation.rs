@@ -3,10 +3,11 @@
 //! Graves correlation (NASA TR R-376, 1971), and the swept-cylinder blend of Tauber, Menees &
 //! Adelman (J. Aircraft 24(9), 1987).
 
+mod common;
+use common::*;
+
 use approx::assert_relative_eq;
-use hsv_core::aero::{AeroSolution, EdgeState};
-use hsv_core::flow::{FlightCondition, Freestream};
-use hsv_core::gas::PerfectGas;
+use hsv_core::flow::FlightCondition;
 use hsv_core::mesh::{PanelMesh, PanelSpec, RegionKind, Strip, Surface};
 use hsv_core::thermal::HeatFluxModel;
 use hsv_model_eckert::{
@@ -15,27 +16,6 @@ use hsv_model_eckert::{
 use nalgebra::Point3;
 
 const PR: f64 = 0.71;
-
-fn freestream(mach: f64, altitude_m: f64) -> Freestream {
-    Freestream::standard(mach, altitude_m, PerfectGas::AIR).expect("standard atmosphere")
-}
-
-fn edge_of(f: &Freestream) -> EdgeState {
-    EdgeState {
-        mach: f.mach,
-        pressure_pa: f.pressure_pa,
-        temperature_k: f.temperature_k,
-        density_kg_m3: f.density_kg_m3,
-        velocity_m_s: f.velocity_m_s,
-    }
-}
-
-fn uniform_solution(mesh: &PanelMesh, edge: EdgeState) -> AeroSolution {
-    let mut aero = AeroSolution::default();
-    aero.reset(mesh.panels.len());
-    aero.edge.fill(edge);
-    aero
-}
 
 /// Fay-Riddell stagnation heating of a sphere (this model's perfect-gas form) against the
 /// Sutton & Graves correlation for air, q = K √(ρ_∞/R_n) V_∞³ with K = 1.7415e-4 kg^0.5/m

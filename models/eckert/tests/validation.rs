@@ -13,11 +13,14 @@
 //!
 //! Flat plate at zero incidence: the edge state is the freestream (USSA-1976).
 
+mod common;
+use common::*;
+
 use approx::assert_relative_eq;
-use hsv_core::aero::{AeroSolution, EdgeState};
+use hsv_core::aero::EdgeState;
 use hsv_core::atmosphere::sutherland_viscosity;
 use hsv_core::error::ModelError;
-use hsv_core::flow::{FlightCondition, Freestream};
+use hsv_core::flow::FlightCondition;
 use hsv_core::gas::PerfectGas;
 use hsv_core::mesh::{PanelMesh, PanelSpec, RegionKind, Strip, Surface};
 use hsv_core::registry::{ModelContext, Registry};
@@ -28,20 +31,6 @@ use hsv_model_eckert::{
 use nalgebra::Point3;
 
 const PR: f64 = 0.71;
-
-fn freestream(mach: f64, altitude_m: f64) -> Freestream {
-    Freestream::standard(mach, altitude_m, PerfectGas::AIR).expect("standard atmosphere")
-}
-
-fn edge_of(f: &Freestream) -> EdgeState {
-    EdgeState {
-        mach: f.mach,
-        pressure_pa: f.pressure_pa,
-        temperature_k: f.temperature_k,
-        density_kg_m3: f.density_kg_m3,
-        velocity_m_s: f.velocity_m_s,
-    }
-}
 
 fn model(reference: Reference, regime: Regime) -> Eckert {
     Eckert::new(Settings {
@@ -260,38 +249,6 @@ fn reynolds_analogy_factor_matches_exact_laminar_solution() {
     }
 }
 
-/// Van Driest II local skin friction at edge Reynolds number `re_x` (NASA Langley Turbulence
-/// Modeling Resource, ZPG flat plate theory): C_f = C_f,inc(Re_θ μ_e/μ_w)/F_c, C_f,inc(Re) =
-/// 1/(17.08 log²Re + 25.11 log Re + 6.012), F_c = (T_aw/T_e − 1)/(asin A + asin B)², with
-/// a = √(r (γ−1)/2 M² T_e/T_w), b = T_aw/T_w − 1, A = (2a² − b)/√(b² + 4a²), B = b/√(b² + 4a²);
-/// Re_x from dRe_x/dRe_θ = 2/C_f (momentum integral, zero pressure gradient).
-fn van_driest_ii_skin_friction(te: f64, tw: f64, mach: f64, r: f64, re_x: f64) -> f64 {
-    let taw = recovery_temperature_k(te, mach, 1.4, r);
-    let a = (r * 0.2 * mach * mach * te / tw).sqrt();
-    let b = taw / tw - 1.0;
-    let q = (b * b + 4.0 * a * a).sqrt();
-    let fc = (taw / te - 1.0) / (((2.0 * a * a - b) / q).asin() + (b / q).asin()).powi(2);
-    let mu_ratio = sutherland_viscosity(te) / sutherland_viscosity(tw);
-    let cf = |re_theta: f64| {
-        let l = (re_theta * mu_ratio).log10();
-        1.0 / (17.08 * l * l + 25.11 * l + 6.012) / fc
-    };
-    // Integrate Re_x(Re_θ) on a log grid from Re_θ = 100 (its Re_x is negligible at 1e7).
-    let mut re_theta: f64 = 100.0;
-    let mut x = 2.0 * re_theta / cf(re_theta);
-    let ratio: f64 = 1.001;
-    loop {
-        let next = re_theta * ratio;
-        let dx = (next - re_theta) * (1.0 / cf(re_theta) + 1.0 / cf(next));
-        if x + dx >= re_x {
-            let t = (re_x - x) / dx;
-            return cf(re_theta + t * (next - re_theta));
-        }
-        x += dx;
-        re_theta = next;
-    }
-}
-
 /// Turbulent heat flux at Mach 6 and 10, 10 km, edge Re_x = 1e7, T_w = 300 K and 1000 K, against
 /// van Driest II with the same Reynolds analogy and recovery factor Pr^(1/3) (so the comparison
 /// is of the skin friction the reference temperature gives). Tolerance 15 %: van Driest II is
@@ -420,13 +377,6 @@ fn plate_mesh(n: usize) -> PanelMesh {
         vec![Surface::new("plate", RegionKind::LiftingSurface)],
     )
     .unwrap()
-}
-
-fn uniform_solution(mesh: &PanelMesh, edge: EdgeState) -> AeroSolution {
-    let mut aero = AeroSolution::default();
-    aero.reset(mesh.panels.len());
-    aero.edge.fill(edge);
-    aero
 }
 
 /// Running length along a strip: Σ upstream lengths + half the own length (0.125, 0.375, ...

@@ -22,7 +22,7 @@ use nalgebra::{Complex, DMatrix, DVector};
 use super::FlutterError;
 
 /// One root of A: an oscillatory pair's upper member, or a real root.
-#[derive(Debug, Clone, PartialEq)]
+#[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct FlutterRoot {
     /// σ, 1/s.
     pub real_per_s: f64,

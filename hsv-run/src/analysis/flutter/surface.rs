@@ -36,7 +36,7 @@ use crate::dynamics::Rk4;
 use crate::dynamics::linearize::{central_difference_jacobians, forward_difference_derivative};
 
 /// How the state derivative of the identification is obtained.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
 #[serde(rename_all = "kebab-case")]
 pub enum DerivativeMethod {
     /// f(x) evaluated from the equations of motion.

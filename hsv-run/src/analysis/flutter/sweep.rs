@@ -29,7 +29,7 @@ use hsv_core::registry::{ModelContext, Registry, RoleModel};
 use hsv_core::structure::StructureModel;
 use nalgebra::{Complex, DVector};
 use rayon::prelude::*;
-use serde::Serialize;
+use serde::{Deserialize, Serialize};
 
 use super::stability::{FlutterRoot, brent_root, stability, track};
 use super::surface::{DerivativeMethod, SurfaceDynamics, SurfaceOptions};
@@ -38,7 +38,7 @@ use crate::analysis::heating::{HeatingModels, HeatingSteps, SurfaceHeating};
 use crate::progress::Progress;
 
 /// The models of a flutter analysis, by registered name.
-#[derive(Debug, Clone, PartialEq, Serialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct FlutterModels {
     pub aero: String,
     pub heat_flux: String,
@@ -63,7 +63,7 @@ pub struct FlutterSetup {
 }
 
 /// What became of one (Mach, time) point.
-#[derive(Debug, Clone, PartialEq, Serialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(tag = "state", rename_all = "kebab-case")]
 pub enum PointStatus {
     Stable,
@@ -91,7 +91,7 @@ impl PointStatus {
 }
 
 /// How far the two derivative methods' state matrices differ at a point.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 pub struct MethodDifference {
     /// ‖A_fd − A_direct‖_F / ‖A_direct‖_F.
     pub relative_matrix_difference: f64,
@@ -99,8 +99,8 @@ pub struct MethodDifference {
     pub critical_root_difference: f64,
 }
 
-/// One analysed point.
-#[derive(Debug, Clone, Serialize)]
+/// One analysed point (deserialized without its roots, which shard outputs keep apart).
+#[derive(Debug, Clone, Serialize, Deserialize)]
 pub struct FlutterPoint {
     pub mach: f64,
     pub time_s: f64,
@@ -510,6 +510,34 @@ pub fn flutter_map(
             r
         })
         .collect::<Result<_, _>>()?;
+    let map = map_from_marches(setup, registry, machs, times_s, by_mach, &tick, start);
+    if let Ok(mut p) = progress.lock() {
+        p.finish();
+    }
+    map
+}
+
+/// The map of grid columns already marched (`by_mach[m]`: [`march`] at `machs[m]` over
+/// `times_s`): the flutter boundary at each time (its root finding runs new marches) and the
+/// tracked modes; `tick` once per time. [`flutter_map`] ends with it, and `hsv-run merge`
+/// joins the columns of flutter shards with it, so both give the same map.
+pub fn map_from_marches(
+    setup: &FlutterSetup,
+    registry: &Registry,
+    machs: &[f64],
+    times_s: &[f64],
+    by_mach: Vec<Vec<FlutterPoint>>,
+    tick: &(dyn Fn() + Sync),
+    start: Instant,
+) -> Result<FlutterMap, FlutterError> {
+    if by_mach.len() != machs.len() || by_mach.iter().any(|c| c.len() != times_s.len()) {
+        return Err(FlutterError::Inconsistent(format!(
+            "{} marched Mach columns for a grid of {} Mach numbers and {} times",
+            by_mach.len(),
+            machs.len(),
+            times_s.len()
+        )));
+    }
     let points: Vec<Vec<FlutterPoint>> = (0..times_s.len())
         .map(|t| by_mach.iter().map(|row| row[t].clone()).collect())
         .collect();
@@ -521,9 +549,6 @@ pub fn flutter_map(
             b
         })
         .collect();
-    if let Ok(mut p) = progress.lock() {
-        p.finish();
-    }
     let tracked = track_modes(&points);
     Ok(FlutterMap {
         machs: machs.to_vec(),

@@ -130,7 +130,7 @@ impl OneDEngine {
         out.add_surface_pressure(&geometry.nozzle_m, &nozzle_p, p_inf, &reference);
         out.nozzle_pressure_pa = nozzle_p;
         let (first, last) = (out.stations[0], out.stations[3]);
-        add_flow_path_force(out, geometry, conditions, &first, &last);
+        add_flow_path_force(NAME, out, geometry, conditions, &first, &last)?;
         check_finite(NAME, out, geometry.y_m)
     }
 }

@@ -95,6 +95,7 @@ pub use quasi_one_d::{Burner, QuasiOneDEngine, mixing_efficiency};
 pub use section::{
     COMBUSTOR_ENTRY, COMBUSTOR_EXIT, Capture, Fuel, INLET, NOZZLE_EXIT, SectionConditions,
     SectionSolution, Station, capture, plume_pressures, shear_layer_angle_rad,
+    stream_thrust_average,
 };
 pub use settings::{
     Checker, HYDROGEN_HEATING_VALUE_J_KG, HYDROGEN_STOICHIOMETRIC_FUEL_AIR_RATIO, OneDSettings,

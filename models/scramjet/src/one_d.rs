@@ -54,8 +54,10 @@ impl OneDEngine {
             Err(_) => return unstarted(out, geometry, conditions, None),
         };
         out.ramp_shock_wave_angle_rad = ramp.shock_wave_angle_rad;
-        let inlet = ramp.inlet;
-        let cap = capture(geometry, conditions, &inlet);
+        let Some(cap) = capture(geometry, conditions, &ramp.inlet) else {
+            return unstarted(out, geometry, conditions, Some(ramp.inlet));
+        };
+        let inlet = cap.state;
         let air = cap.mass_flow_kg_s_per_m;
 
         // Diffuser (isolator): isentropic area change from the captured stream tube to the
@@ -63,9 +65,9 @@ impl OneDEngine {
         let face_height = (geometry.cowl_lip() - geometry.ramp_end()).norm();
         let combustor_area = self.diffuser_area_ratio * face_height;
         let Some(entry) =
-            supersonic_area_change(&inlet, cap.stream_tube_area_m2_per_m, combustor_area, gas)?
+            supersonic_area_change(&inlet, cap.face_area_m2_per_m, combustor_area, gas)?
         else {
-            return unstarted(out, geometry, conditions, Some(inlet));
+            return unstarted(out, geometry, conditions, Some(ramp.inlet));
         };
 
         // Combustor: heat and fuel mass from φ.
@@ -86,7 +88,7 @@ impl OneDEngine {
         let Some(nozzle_exit) =
             supersonic_area_change(&burned.state, combustor_area, nozzle_area, gas)?
         else {
-            return unstarted(out, geometry, conditions, Some(inlet));
+            return unstarted(out, geometry, conditions, Some(ramp.inlet));
         };
 
         out.status = if !burned.within_limit {
@@ -106,7 +108,7 @@ impl OneDEngine {
             mass_flow_kg_s_per_m: mass,
         };
         out.stations.extend([
-            station(INLET, inlet, cap.stream_tube_area_m2_per_m, air),
+            station(INLET, inlet, cap.face_area_m2_per_m, air),
             station(COMBUSTOR_ENTRY, entry, combustor_area, air),
             station(COMBUSTOR_EXIT, burned.state, combustor_area, exit_air_fuel),
             station(NOZZLE_EXIT, nozzle_exit, nozzle_area, exit_air_fuel),
@@ -129,8 +131,15 @@ impl OneDEngine {
         let nozzle_p = std::mem::take(&mut out.nozzle_pressure_pa);
         out.add_surface_pressure(&geometry.nozzle_m, &nozzle_p, p_inf, &reference);
         out.nozzle_pressure_pa = nozzle_p;
-        let (first, last) = (out.stations[0], out.stations[3]);
-        add_flow_path_force(NAME, out, geometry, conditions, &first, &last)?;
+        let last = out.stations[3];
+        add_flow_path_force(
+            NAME,
+            out,
+            geometry,
+            conditions,
+            cap.face_stream_thrust_n_per_m,
+            &last,
+        )?;
         check_finite(NAME, out, geometry.y_m)
     }
 }

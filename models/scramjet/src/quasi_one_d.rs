@@ -251,12 +251,14 @@ impl QuasiOneDEngine {
             Err(_) => return unstarted(out, geometry, conditions, None),
         };
         out.ramp_shock_wave_angle_rad = ramp.shock_wave_angle_rad;
-        let inlet = ramp.inlet;
-        let cap = capture(geometry, conditions, &inlet);
+        let Some(cap) = capture(geometry, conditions, &ramp.inlet) else {
+            return unstarted(out, geometry, conditions, Some(ramp.inlet));
+        };
+        let inlet = cap.state;
         let air = cap.mass_flow_kg_s_per_m;
 
         let Some(processed) = self.inlet_waves(geometry, &inlet, gas)? else {
-            return unstarted(out, geometry, conditions, Some(inlet));
+            return unstarted(out, geometry, conditions, Some(ramp.inlet));
         };
         // The processed stream tube fills the isolator: isentropic area change (the shoulder
         // expansion) to the combustor entry area.
@@ -264,7 +266,7 @@ impl QuasiOneDEngine {
         let face_height = (geometry.cowl_lip() - geometry.ramp_end()).norm();
         let entry_area = self.diffuser_area_ratio * face_height;
         let Some(entry) = supersonic_area_change(&processed, tube, entry_area, gas)? else {
-            return unstarted(out, geometry, conditions, Some(inlet));
+            return unstarted(out, geometry, conditions, Some(ramp.inlet));
         };
 
         let phi = conditions.fuel_equivalence_ratio;
@@ -283,13 +285,13 @@ impl QuasiOneDEngine {
             steps: self.combustor_steps,
         };
         let Some((burned, within_limit)) = burner.solve() else {
-            return unstarted(out, geometry, conditions, Some(inlet));
+            return unstarted(out, geometry, conditions, Some(ramp.inlet));
         };
         let exit_area = entry_area * self.combustor_area_ratio;
         let nozzle_area = exit_area * self.internal_nozzle_area_ratio;
         let Some(nozzle_exit) = supersonic_area_change(&burned, exit_area, nozzle_area, gas)?
         else {
-            return unstarted(out, geometry, conditions, Some(inlet));
+            return unstarted(out, geometry, conditions, Some(ramp.inlet));
         };
         let exit_mass = air * (1.0 + fuel_air);
 
@@ -310,7 +312,7 @@ impl QuasiOneDEngine {
             mass_flow_kg_s_per_m: mass,
         };
         out.stations.extend([
-            station(INLET, inlet, cap.stream_tube_area_m2_per_m, air),
+            station(INLET, inlet, cap.face_area_m2_per_m, air),
             station(COMBUSTOR_ENTRY, entry, entry_area, air),
             station(COMBUSTOR_EXIT, burned, exit_area, exit_mass),
             station(NOZZLE_EXIT, nozzle_exit, nozzle_area, exit_mass),
@@ -333,8 +335,15 @@ impl QuasiOneDEngine {
         let nozzle_p = std::mem::take(&mut out.nozzle_pressure_pa);
         out.add_surface_pressure(&geometry.nozzle_m, &nozzle_p, p_inf, &reference);
         out.nozzle_pressure_pa = nozzle_p;
-        let (first, last) = (out.stations[0], out.stations[3]);
-        add_flow_path_force(NAME, out, geometry, conditions, &first, &last)?;
+        let last = out.stations[3];
+        add_flow_path_force(
+            NAME,
+            out,
+            geometry,
+            conditions,
+            cap.face_stream_thrust_n_per_m,
+            &last,
+        )?;
         check_finite(NAME, out, geometry.y_m)
     }
 }

@@ -108,38 +108,48 @@ fn shock_on_lip_mach(section: &SectionGeometry) -> f64 {
     m2.sqrt()
 }
 
-/// At shock-on-lip the captured stream tube runs in undisturbed freestream up to the lip, so
-/// momentum conservation over the forebody (freestream plane, ramp, inlet face) gives
-/// ramp force + inlet-face stream thrust = ṁ V∞ (aft), exactly. The engines' force on the
-/// vehicle must therefore be Heiser & Pratt's uninstalled thrust, the stream-thrust difference
-/// S_e - ṁ V∞ (exit flow aft, level exit face), plus the aftbody's gauge-pressure force, here
-/// summed by hand: in x and z, to 1e-9 of ṁ V∞, for φ = 0 (no fuel) and 0.3. (Before issue
-/// 10 item 8 the engines took the inlet-face pressure along the flow instead of normal to the
-/// face: 1.7e-3 of ṁ V∞ off in z at Mach 6.)
+/// From shock-on-lip up, nothing spills: the captured stream tube runs in undisturbed
+/// freestream up to the lip, so momentum conservation over the forebody (freestream plane,
+/// ramp, inlet face) gives ramp force + inlet-face stream thrust = ṁ V∞ (aft), exactly. The
+/// engines' force on the vehicle must therefore be Heiser & Pratt's uninstalled thrust, the
+/// stream-thrust difference S_e - ṁ V∞ (exit flow aft through the level exit face), plus the
+/// aftbody's gauge-pressure force, here summed by hand: in x and z, to 1e-9 of ṁ V∞, for
+/// φ = 0 (no fuel) and 0.3, at the on-lip Mach number (10.47) and at 1.1 and 1.3 times it
+/// (bow shock inside the cowl). Before issue 10 item 8 the engines took the inlet-face
+/// pressure along the flow instead of normal to the face (off by 8 % of the z force at
+/// shock-on-lip) and, with the shock inside the cowl, all the captured flow at the
+/// shock-layer state (at 1.1 times the on-lip Mach 275 N/m too much thrust).
 #[test]
 fn engine_force_is_the_stream_thrust_difference_plus_the_aftbody() {
     let (section, solvers) = setup(None);
-    let mach = shock_on_lip_mach(&section);
-    let f = Freestream::standard(mach, 30_000.0, PerfectGas::AIR).expect("atmosphere");
+    for factor in [1.0, 1.1, 1.3] {
+        let mach = factor * shock_on_lip_mach(&section);
+        let f = Freestream::standard(mach, 30_000.0, PerfectGas::AIR).expect("atmosphere");
+        check_forebody_momentum(&section, &solvers, &f);
+    }
+}
+
+/// Asserts the forebody momentum closure at `f` for both engines, φ = 0 and 0.3.
+fn check_forebody_momentum(section: &SectionGeometry, solvers: &[(&str, Solver)], f: &Freestream) {
     let gas = f.gas;
-    for (name, solve) in &solvers {
+    for (name, solve) in solvers {
         for phi in [0.0, 0.3] {
-            let out = solve(&section, &conditions(&f, phi));
+            let out = solve(section, &conditions(f, phi));
             assert_relative_eq!(out.captured_fraction, 1.0, epsilon = 1e-9);
             let air = out.air_mass_flow_kg_s_per_m;
             let exit = out.station(NOZZLE_EXIT).expect("started");
             let s_e = stream_thrust(exit, &gas, f.pressure_pa);
             let aftbody = surface_force(&section.nozzle_m, &out.nozzle_pressure_pa, f.pressure_pa);
-            let uninstalled = Vector2::new(s_e - air * f.velocity_m_s, 0.0);
-            let expected = uninstalled + aftbody;
-            let scale = air * f.velocity_m_s;
+            let expected = Vector2::new(s_e - air * f.velocity_m_s, 0.0) + aftbody;
             eprintln!(
-                "{name} M {mach:.3} phi {phi}: F = {:?} N/m, expected {expected:?}",
-                out.force_n_per_m
+                "{name} M {:.3} phi {phi}: F = {:?} N/m, expected {expected:?}",
+                f.mach, out.force_n_per_m
             );
             assert!(
-                (out.force_n_per_m - expected).norm() < 1e-9 * scale,
-                "{name} phi {phi}: force {:?} N/m, stream-thrust difference + aftbody {expected:?}",
+                (out.force_n_per_m - expected).norm() < 1e-9 * air * f.velocity_m_s,
+                "{name} M {} phi {phi}: force {:?} N/m, stream-thrust difference + aftbody \
+                 {expected:?}",
+                f.mach,
                 out.force_n_per_m
             );
         }
@@ -257,4 +267,29 @@ fn thrust_stays_below_the_fully_expanded_cycle() {
             assert!(thrust < ideal, "{name} phi {phi}: {thrust} >= {ideal}");
         }
     }
+}
+
+/// Stream-thrust averaging keeps mass, stream thrust and total enthalpy, whose two uniform
+/// solutions are the two sides of a normal shock (Rankine-Hugoniot). Fed the uniform flow
+/// behind a Mach 3 normal shock (NACA 1135 normal-shock table, γ = 1.4: M2 = 0.47519,
+/// p2/p1 = 10.333, T2/T1 = 2.6790), it must return the supersonic side: M = 3 and the
+/// upstream p and T, to 2e-4 (five-digit table).
+#[test]
+fn stream_thrust_average_returns_the_supersonic_side_of_a_normal_shock() {
+    let gas = PerfectGas::AIR;
+    let (p1, t1) = (1.0e4, 300.0);
+    let behind = hsv_model_scramjet::FlowState {
+        mach: 0.47519,
+        pressure_pa: 10.333 * p1,
+        temperature_k: 2.6790 * t1,
+    };
+    let area = 0.7;
+    let mass = behind.mass_flux_kg_m2_s(&gas) * area;
+    let impulse = mass * behind.velocity_m_s(&gas) + behind.pressure_pa * area;
+    let enthalpy = gas.cp() * behind.total_temperature_k(&gas);
+    let ahead = hsv_model_scramjet::stream_thrust_average(mass, impulse, area, enthalpy, &gas)
+        .expect("supersonic root");
+    assert_relative_eq!(ahead.mach, 3.0, max_relative = 2e-4);
+    assert_relative_eq!(ahead.pressure_pa, p1, max_relative = 2e-4);
+    assert_relative_eq!(ahead.temperature_k, t1, max_relative = 2e-4);
 }

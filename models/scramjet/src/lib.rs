@@ -71,6 +71,7 @@
 
 mod flow;
 mod geometry;
+mod inlet;
 mod model;
 mod one_d;
 mod quasi_one_d;
@@ -89,13 +90,13 @@ pub use flow::{
     constant_area_combustor, supersonic_area_change, turn,
 };
 pub use geometry::{EngineSurfaces, SectionGeometry, direction, slope_rad};
+pub use inlet::{Capture, capture, stream_thrust_average};
 pub use model::{Scramjet, SectionEngine};
 pub use one_d::{OneDEngine, aftbody_mean_pressure_pa, aftbody_pressure_pa};
 pub use quasi_one_d::{Burner, QuasiOneDEngine, mixing_efficiency};
 pub use section::{
-    COMBUSTOR_ENTRY, COMBUSTOR_EXIT, Capture, Fuel, INLET, NOZZLE_EXIT, SectionConditions,
-    SectionSolution, Station, capture, plume_pressures, shear_layer_angle_rad,
-    stream_thrust_average,
+    COMBUSTOR_ENTRY, COMBUSTOR_EXIT, Fuel, INLET, NOZZLE_EXIT, SectionConditions, SectionSolution,
+    Station, plume_pressures, shear_layer_angle_rad,
 };
 pub use settings::{
     Checker, HYDROGEN_HEATING_VALUE_J_KG, HYDROGEN_STOICHIOMETRIC_FUEL_AIR_RATIO, OneDSettings,

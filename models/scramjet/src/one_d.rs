@@ -11,9 +11,10 @@ use crate::flow::{
     supersonic_area_change,
 };
 use crate::geometry::SectionGeometry;
+use crate::inlet::capture;
 use crate::section::{
     COMBUSTOR_ENTRY, COMBUSTOR_EXIT, Fuel, INLET, NOZZLE_EXIT, SectionConditions, SectionSolution,
-    Station, add_flow_path_force, capture, check_finite, plume_pressures, ramp_flow, unstarted,
+    Station, add_flow_path_force, check_finite, plume_pressures, ramp_flow, unstarted,
 };
 
 /// Registered name.

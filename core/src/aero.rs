@@ -157,6 +157,13 @@ pub trait AeroModel: Send {
     fn modal_history(&mut self) -> Option<&mut dyn ModalHistoryAero> {
         None
     }
+
+    /// Identification from a source model and the check against it, if the model is a reduced
+    /// model of another (a convolution ROM); `None` by default. Commands ask for it with
+    /// [`crate::reduced_order::require`].
+    fn reduced_order(&mut self) -> Option<&mut dyn crate::reduced_order::ReducedOrderAero> {
+        None
+    }
 }
 
 /// The modal-input history an aero model with memory convolves: simulation state owned by the

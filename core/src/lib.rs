@@ -23,6 +23,7 @@ pub mod data;
 pub mod error;
 pub mod flow;
 pub mod propulsion;
+pub mod reduced_order;
 pub mod registry;
 pub mod structure;
 pub mod thermal;

@@ -9,7 +9,7 @@ use clap::{Parser, Subcommand};
 use hsv_run::commands::{
     self, ConfigArg, JsonFlag, aero::AeroArgs, compare::CompareArgs, engine::EngineArgs,
     flutter::FlutterArgs, heat::HeatArgs, linearize::LinearizeArgs, merge::MergeArgs,
-    modes::ModesArgs, simulate::SimulateArgs, trade::TradeArgs, trim::TrimArgs,
+    modes::ModesArgs, rom::RomArgs, simulate::SimulateArgs, trade::TradeArgs, trim::TrimArgs,
     vehicle::VehicleArgs,
 };
 use hsv_run::output;
@@ -83,6 +83,9 @@ enum Command {
     Trade(TradeArgs),
     /// Join `hsv-run trade --shard` output folders into the study's table.
     Merge(MergeArgs),
+    /// A region's reduced-order aero model (convolution ROM): identify it from a source model
+    /// and cache it, or check it against its source (error, speed-up, histories).
+    Rom(RomArgs),
 }
 
 /// Exit status when standard output was closed early: 128 + SIGPIPE, as a Unix tool killed by
@@ -170,5 +173,6 @@ fn run(cli: Cli) -> Result<()> {
         Command::Vehicle(args) => commands::vehicle::run(args, &registry),
         Command::Trade(args) => commands::trade::run(args, &registry),
         Command::Merge(args) => commands::merge::run(args, &registry),
+        Command::Rom(args) => commands::rom::run(args, &registry),
     }
 }

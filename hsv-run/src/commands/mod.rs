@@ -10,6 +10,7 @@ pub mod heat;
 pub mod linearize;
 pub mod merge;
 pub mod modes;
+pub mod rom;
 pub mod simulate;
 pub mod trade;
 pub mod trim;

@@ -7,96 +7,11 @@ use std::time::Instant;
 use hsv_core::aero::{AeroSolution, ModalHistoryAero};
 use hsv_core::error::ModelError;
 use hsv_core::flow::FlightCondition;
+pub use hsv_core::reduced_order::{CheckOptions, CheckReport, MotionReport};
 use nalgebra::DVector;
 
 use crate::identify::SourceProbe;
 use crate::{ConvolutionRom, NAME};
-
-/// How the check moves the modes.
-#[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
-#[serde(deny_unknown_fields, default)]
-pub struct CheckOptions {
-    /// Periods of each sinusoid (of the lowest frequency for the random motion).
-    pub periods: f64,
-    /// Time steps per period of the highest frequency in a motion.
-    pub steps_per_period: usize,
-    /// Amplitude of each mode over the correction table's largest (`max_displacement_m`).
-    pub amplitude_fraction: f64,
-    /// Seed of the random multi-mode motion.
-    pub seed: u64,
-    /// Time the ROM with its panel pressures (as the partitioned vehicle needs them for loads
-    /// and heating); false: generalized forces only.
-    pub pressures: bool,
-}
-
-impl Default for CheckOptions {
-    fn default() -> Self {
-        Self {
-            periods: 2.0,
-            steps_per_period: 40,
-            // Our choice: inside the table, between its last two amplitudes.
-            amplitude_fraction: 0.9,
-            seed: 14,
-            pressures: true,
-        }
-    }
-}
-
-/// One prescribed motion: the errors, costs and both histories.
-#[derive(Debug, Clone, PartialEq, serde::Serialize)]
-pub struct MotionReport {
-    /// `mode 2 at 14.3 Hz` or `random multi-mode`.
-    pub name: String,
-    /// ‖Q_ROM − Q_source‖ / ‖Q_source − Q_source(q = 0)‖ over every step and mode (2-norms):
-    /// the error relative to the aeroelastic part of the forces.
-    pub relative_rms_error: f64,
-    /// max |Q_ROM − Q_source| / max |Q_source − Q_source(q = 0)| over steps and modes.
-    pub relative_max_error: f64,
-    pub steps: usize,
-    pub dt_s: f64,
-    /// Wall-clock time per step of the source (deform, panel velocities, evaluate, project), s.
-    pub source_seconds_per_step: f64,
-    /// Wall-clock time per step of the ROM (forces, pressures if asked, commit), s.
-    pub rom_seconds_per_step: f64,
-    /// Source time over ROM time.
-    pub speedup: f64,
-    pub time_s: Vec<f64>,
-    /// Generalized forces `[step][mode]`, N m per unit modal coordinate.
-    pub source_generalized_forces: Vec<Vec<f64>>,
-    pub rom_generalized_forces: Vec<Vec<f64>>,
-}
-
-/// Every motion of a check.
-#[derive(Debug, Clone, PartialEq, serde::Serialize)]
-pub struct CheckReport {
-    pub mach: f64,
-    pub altitude_m: f64,
-    pub alpha_deg: f64,
-    /// Whether the correction factor was applied.
-    pub correction: bool,
-    /// Wall-clock time of the ROM's steady value (one source evaluation per flight condition and
-    /// rigid position, not counted in the per-step times), s.
-    pub steady_value_seconds: f64,
-    pub motions: Vec<MotionReport>,
-}
-
-impl CheckReport {
-    /// The largest relative RMS error of the motions.
-    pub fn worst_relative_rms_error(&self) -> f64 {
-        self.motions
-            .iter()
-            .map(|m| m.relative_rms_error)
-            .fold(0.0, f64::max)
-    }
-
-    /// Total source time over total ROM time.
-    pub fn overall_speedup(&self) -> f64 {
-        let total = |f: fn(&MotionReport) -> f64| -> f64 {
-            self.motions.iter().map(|m| f(m) * m.steps as f64).sum()
-        };
-        total(|m| m.source_seconds_per_step) / total(|m| m.rom_seconds_per_step)
-    }
-}
 
 /// Sum of sinusoids per mode: q_j(t) = Σ A sin(ω t + φ).
 struct Motion {
@@ -132,13 +47,30 @@ impl Xorshift {
     }
 }
 
-fn motions(rom: &ConvolutionRom, options: &CheckOptions) -> Result<Vec<Motion>, ModelError> {
-    let amplitudes: Vec<f64> = rom
-        .max_amplitudes()
-        .iter()
-        .map(|a| a * options.amplitude_fraction)
-        .collect();
+/// The check's motions at speed of sound `sound_m_s`. Each mode alone moves at
+/// `amplitude_fraction` of the correction table's largest amplitude, lowered where its peak
+/// vertex velocity would pass `max_velocity_ratio` a∞. In the random motion every mode takes
+/// 30-100 % of that, scaled down together so that the sums of the modes' peak displacements and
+/// peak velocities stay within the single-mode limits: no point of the surface moves further
+/// or faster than in the single-mode motions.
+fn motions(
+    rom: &ConvolutionRom,
+    options: &CheckOptions,
+    sound_m_s: f64,
+) -> Result<Vec<Motion>, ModelError> {
     let frequencies = rom.natural_frequencies_hz();
+    let two_pi = std::f64::consts::TAU;
+    let peak = &rom.peak_displacement_m;
+    let max_displacement_m = options.amplitude_fraction * rom.settings.max_displacement_m;
+    let max_velocity_m_s = options
+        .max_velocity_ratio
+        .map_or(f64::INFINITY, |r| r * sound_m_s);
+    let amplitudes: Vec<f64> = (0..peak.len())
+        .map(|j| {
+            let by_velocity = max_velocity_m_s / (two_pi * frequencies[j] * peak[j]);
+            (max_displacement_m / peak[j]).min(by_velocity)
+        })
+        .collect();
     if let Some(&f) = frequencies.iter().find(|f| !(f.is_finite() && **f > 0.0)) {
         return Err(ModelError::out_of_range(
             NAME,
@@ -148,7 +80,6 @@ fn motions(rom: &ConvolutionRom, options: &CheckOptions) -> Result<Vec<Motion>, 
         ));
     }
     let n = amplitudes.len();
-    let two_pi = std::f64::consts::TAU;
     let steps_for = |f_min: f64, f_max: f64| {
         let dt = 1.0 / (options.steps_per_period as f64 * f_max);
         (dt, (options.periods / f_min / dt).ceil() as usize)
@@ -178,6 +109,19 @@ fn motions(rom: &ConvolutionRom, options: &CheckOptions) -> Result<Vec<Motion>, 
         f_min = f_min.min(f);
         f_max = f_max.max(f);
     }
+    let sum = |rate: bool| -> f64 {
+        terms
+            .iter()
+            .zip(peak)
+            .map(|(t, p)| t[0].0 * p * if rate { t[0].1 } else { 1.0 })
+            .sum()
+    };
+    let scale = (max_displacement_m / sum(false))
+        .min(max_velocity_m_s / sum(true))
+        .min(1.0);
+    for t in &mut terms {
+        t[0].0 *= scale;
+    }
     let (dt_s, steps) = steps_for(f_min, f_max);
     out.push(Motion {
         name: "random multi-mode".to_owned(),
@@ -201,13 +145,19 @@ pub fn check_against_source(
     if !(options.periods.is_finite() && options.periods > 0.0)
         || options.steps_per_period < 2
         || !(options.amplitude_fraction.is_finite() && options.amplitude_fraction >= 0.0)
+        || options
+            .max_velocity_ratio
+            .is_some_and(|r| !(r.is_finite() && r > 0.0))
     {
         return Err(ModelError::inconsistent(
             NAME,
             format!(
                 "check options: periods {} (> 0), steps_per_period {} (>= 2), \
-                 amplitude_fraction {} (>= 0)",
-                options.periods, options.steps_per_period, options.amplitude_fraction
+                 amplitude_fraction {} (>= 0), max_velocity_ratio {:?} (> 0 or none)",
+                options.periods,
+                options.steps_per_period,
+                options.amplitude_fraction,
+                options.max_velocity_ratio
             ),
         ));
     }
@@ -235,7 +185,7 @@ pub fn check_against_source(
     let mut reports = Vec::new();
     let mut rom_forces = vec![0.0; n];
     let mut rom_pressures = AeroSolution::default();
-    for motion in motions(rom, options)? {
+    for motion in motions(rom, options, flight.freestream.speed_of_sound_m_s)? {
         motion.state(0.0, &mut q, &mut q_dot);
         let mut history = rom.initial_history(0.0, &q)?;
         let (mut source_time, mut rom_time) = (0.0, 0.0);

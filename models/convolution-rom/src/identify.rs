@@ -14,7 +14,7 @@ use nalgebra::{DVector, Vector3};
 use crate::{NAME, Settings};
 
 /// Version of the cache format.
-pub const FORMAT: u32 = 1;
+pub const FORMAT: u32 = 2;
 
 /// Header columns of a step-response CSV before the `force_1..force_n` columns.
 pub const CSV_COLUMNS: [&str; 4] = ["input", "mode", "step", "time_s"];
@@ -75,6 +75,9 @@ pub struct ResponseBlock {
     pub steps: Vec<f64>,
     /// Correction factors `[mach][mode][amplitude][output]`; empty without correction.
     pub correction: Vec<f64>,
+    /// Mach correction of the rate responses `[mach][mode][output]` ([`tabulate_rate_correction`]);
+    /// empty without correction.
+    pub rate_correction: Vec<f64>,
 }
 
 impl ResponseBlock {
@@ -85,6 +88,7 @@ impl ResponseBlock {
             samples,
             steps: vec![0.0; samples * n_inputs * n_outputs],
             correction: Vec::new(),
+            rate_correction: Vec::new(),
         }
     }
 
@@ -121,7 +125,8 @@ pub struct Identification {
     /// Mach numbers of the correction table; empty without correction.
     pub correction_mach: Vec<f64>,
     /// Amplitudes of the correction table, `[mode][amplitude]`, ascending, modal-coordinate
-    /// units (± `amplitude_points` values up to `max_displacement_m` of peak displacement).
+    /// units (± `amplitude_points` values up to `max_displacement_m` of peak displacement, and
+    /// zero).
     pub amplitudes: Vec<Vec<f64>>,
     /// Generalized forces over p∞.
     pub forces: ResponseBlock,
@@ -306,6 +311,7 @@ pub(crate) fn identify(
     if let Some((path, text)) = csv {
         let mut block = read_step_csv(path, text, n, &identification.reference)?;
         block.correction = std::mem::take(&mut identification.forces.correction);
+        block.rate_correction = std::mem::take(&mut identification.forces.rate_correction);
         identification.forces = block;
         identification.force_origin = path.to_owned();
     }
@@ -325,13 +331,17 @@ fn check_finite_block(block: &ResponseBlock, quantity: &str) -> Result<(), Model
 
 /// c = (F(a e_j) − F(0)) / (S_j a) per output: the source's nonlinear steady response to a
 /// static deflection a of mode j over its own linear prediction, at every Mach number of the
-/// table (Skujins & Cesnik's nonlinear correction factor). Outputs whose linear prediction is
-/// below 1e-6 of their largest one get 1 (the ratio is then round-off over round-off).
+/// table (Skujins & Cesnik's nonlinear correction factor). At a = 0 the factor is its limit,
+/// F'(0) / S_j: the source's linear response at that Mach (central differences with the
+/// identification step) over the identification's, 1 at the identification Mach, so the ROM
+/// linearized about the undeformed surface is the source's linearization at every Mach of the
+/// table. Outputs whose linear prediction is below 1e-6 of their largest one get 1 (the ratio
+/// is then round-off over round-off).
 fn tabulate_correction(
     settings: &Settings,
     identification: &mut Identification,
     peaks: &[f64],
-    subject: Subject<'_>,
+    mut subject: Subject<'_>,
     probe: &mut SourceProbe,
 ) -> Result<(), ModelError> {
     let n = identification.n_modes;
@@ -344,11 +354,12 @@ fn tabulate_correction(
             let mut a: Vec<f64> = (1..=points)
                 .map(|i| -top * (points + 1 - i) as f64 / points as f64)
                 .collect();
+            a.push(0.0);
             a.extend((1..=points).map(|i| top * i as f64 / points as f64));
             a
         })
         .collect();
-    let n_amplitudes = 2 * points;
+    let n_amplitudes = 2 * points + 1;
     let n_out = n + identification.n_panels;
     // Linear predictions S_j a, [mode][amplitude][output], and each output's largest.
     let linear = |j: usize, a: f64, k: usize| {
@@ -370,7 +381,7 @@ fn tabulate_correction(
     let n_mach = settings.correction_mach.len();
     let mut force_factors = vec![1.0; n_mach * n * n_amplitudes * n];
     let mut pressure_factors = vec![1.0; n_mach * n * n_amplitudes * identification.n_panels];
-    let (mut base, mut deflected) = (Vec::new(), Vec::new());
+    let (mut base, mut deflected, mut minus) = (Vec::new(), Vec::new(), Vec::new());
     let zero = DVector::zeros(n);
     for (m, &mach) in settings.correction_mach.iter().enumerate() {
         let flight = flight_at(&identification.reference, mach, subject.gas)?;
@@ -386,25 +397,38 @@ fn tabulate_correction(
             &mut base,
         )?;
         for j in 0..n {
+            let top = identification.amplitudes[j][n_amplitudes - 1];
             for (ia, &a) in identification.amplitudes[j].iter().enumerate() {
+                // At zero amplitude: the central difference ±ε of the identification.
+                let (a_eval, a_lin) = if a == 0.0 {
+                    (settings.step_displacement_m / peaks[j], None)
+                } else {
+                    (a, Some(a))
+                };
                 let mut q = zero.clone();
-                q[j] = a;
-                probe.outputs(
-                    source,
-                    subject.mesh,
-                    subject.shapes,
-                    subject.projection,
-                    &flight,
-                    &q,
-                    &zero,
-                    &mut deflected,
-                )?;
+                q[j] = a_eval;
+                let mut evaluate = |q: &DVector<f64>, out: &mut Vec<f64>| {
+                    probe.outputs(
+                        &mut *source,
+                        subject.mesh,
+                        subject.shapes,
+                        subject.projection,
+                        &flight,
+                        q,
+                        &zero,
+                        out,
+                    )
+                };
+                evaluate(&q, &mut deflected)?;
+                if a_lin.is_none() {
+                    q[j] = -a_eval;
+                    evaluate(&q, &mut minus)?;
+                }
                 for k in 0..n_out {
-                    let lin = linear(j, a, k);
-                    let factor = if lin.abs() > 1e-6 * scale[k] {
-                        (deflected[k] - base[k]) / lin
-                    } else {
-                        1.0
+                    let factor = match a_lin {
+                        _ if linear(j, top, k).abs() <= 1e-6 * scale[k] => 1.0,
+                        Some(a) => (deflected[k] - base[k]) / linear(j, a, k),
+                        None => (deflected[k] - minus[k]) / (2.0 * linear(j, a_eval, k)),
                     };
                     if !factor.is_finite() {
                         return Err(ModelError::NonFinite {
@@ -426,6 +450,84 @@ fn tabulate_correction(
     identification.correction_mach = settings.correction_mach.clone();
     identification.forces.correction = force_factors;
     identification.pressures.correction = pressure_factors;
+    tabulate_rate_correction(settings, identification, peaks, &mut subject, probe)
+}
+
+/// c_rate = F'_q̇(M) / S_q̇ per output and mode: the source's linear response to the modal
+/// velocity at each Mach number of the table (central differences ±ε̇ on the undeformed
+/// surface) over the identification's, 1 at the identification Mach. Piston theory's rate
+/// term γ [1 + (γ+1)/2 μ₀ + …] (μ₀ = M θ₀ the steady piston Mach number of a sloped panel,
+/// Lighthill 1953) changes with M on a wedge, so without it the ROM's aerodynamic damping
+/// would keep the identification Mach's. Outputs with a negligible rate response get 1.
+fn tabulate_rate_correction(
+    settings: &Settings,
+    identification: &mut Identification,
+    peaks: &[f64],
+    subject: &mut Subject<'_>,
+    probe: &mut SourceProbe,
+) -> Result<(), ModelError> {
+    let n = identification.n_modes;
+    let n_inputs = identification.n_inputs();
+    let n_panels = identification.n_panels;
+    let n_out = n + n_panels;
+    let linear = |j: usize, k: usize| {
+        if k < n {
+            identification.forces.step(0, n + j, n_inputs)[k]
+        } else {
+            identification.pressures.step(0, n + j, n_inputs)[k - n]
+        }
+    };
+    let scale: Vec<f64> = (0..n_out)
+        .map(|k| (0..n).map(|j| linear(j, k).abs()).fold(0.0, f64::max))
+        .collect();
+    let n_mach = settings.correction_mach.len();
+    let mut force_factors = vec![1.0; n_mach * n * n];
+    let mut pressure_factors = vec![1.0; n_mach * n * n_panels];
+    let (mut plus, mut minus) = (Vec::new(), Vec::new());
+    let zero = DVector::zeros(n);
+    for (m, &mach) in settings.correction_mach.iter().enumerate() {
+        let flight = flight_at(&identification.reference, mach, subject.gas)?;
+        let sound = flight.freestream.speed_of_sound_m_s;
+        for j in 0..n {
+            let step = settings.step_velocity_m_s / peaks[j];
+            let mut q_dot = zero.clone();
+            for (sign, out) in [(1.0, &mut plus), (-1.0, &mut minus)] {
+                q_dot[j] = sign * step;
+                probe.outputs(
+                    &mut *subject.source,
+                    subject.mesh,
+                    subject.shapes,
+                    subject.projection,
+                    &flight,
+                    &zero,
+                    &q_dot,
+                    out,
+                )?;
+            }
+            for k in 0..n_out {
+                let lin = linear(j, k);
+                let factor = if lin.abs() > 1e-6 * scale[k] {
+                    (plus[k] - minus[k]) / (2.0 * step / sound * lin)
+                } else {
+                    1.0
+                };
+                if !factor.is_finite() {
+                    return Err(ModelError::NonFinite {
+                        model: NAME.to_owned(),
+                        quantity: "rate correction factor".to_owned(),
+                        location: format!(" (Mach {mach}, mode {})", j + 1),
+                    });
+                }
+                if k < n {
+                    force_factors[(m * n + j) * n + k] = factor;
+                } else {
+                    pressure_factors[(m * n + j) * n_panels + k - n] = factor;
+                }
+            }
+        }
+    }
+    identification.forces.rate_correction = force_factors;
+    identification.pressures.rate_correction = pressure_factors;
     Ok(())
 }
 
@@ -647,7 +749,9 @@ pub(crate) fn load(path: &Path, fingerprint: &str) -> Option<Identification> {
         .then_some(identification)
 }
 
-/// Writes `identification` to `path` (creating its directory).
+/// Writes `identification` to `path` (creating its directory) through a temporary file and a
+/// rename, so regions or flutter points identifying at the same time never leave a torn file
+/// (a reader sees the old cache or the new one).
 pub(crate) fn save(path: &Path, identification: &Identification) -> Result<(), ModelError> {
     let io = |e: std::io::Error| {
         ModelError::inconsistent(
@@ -660,5 +764,14 @@ pub(crate) fn save(path: &Path, identification: &Identification) -> Result<(), M
     }
     let text = serde_json::to_string(identification)
         .map_err(|e| ModelError::inconsistent(NAME, format!("cache: {e}")))?;
-    std::fs::write(path, text).map_err(io)
+    static WRITES: std::sync::atomic::AtomicUsize = std::sync::atomic::AtomicUsize::new(0);
+    let unique = WRITES.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
+    let mut temporary = path.as_os_str().to_owned();
+    temporary.push(format!(".{}-{unique}.tmp", std::process::id()));
+    let temporary = std::path::PathBuf::from(temporary);
+    std::fs::write(&temporary, text).map_err(io)?;
+    std::fs::rename(&temporary, path).map_err(|e| {
+        let _ = std::fs::remove_file(&temporary);
+        io(e)
+    })
 }

@@ -33,8 +33,11 @@
 //! output k for mode j: the ratio of the source's nonlinear steady response to a static
 //! deflection q_j of mode j, F(q_j e_j) − F(0), to the linear prediction S_j(∞) q_j, tabulated
 //! over ± amplitudes of each mode and over Mach numbers at the identification altitude and
-//! angle of attack, interpolated bilinearly (the edge value held beyond the amplitude table; a
-//! Mach number outside the table is an error). Rate inputs are not corrected. Panel pressures
+//! angle of attack (at zero amplitude its limit F'(0)/S_j: the source's linear response at that
+//! Mach over the identification's, so the ROM linearized about the undeformed surface is the
+//! source's linearization at every Mach of the table), interpolated bilinearly (the edge value held beyond the amplitude table; a
+//! Mach number outside the table is an error). Rate inputs are corrected over Mach only, by
+//! the source's linear rate response at each tabulated Mach over the identification's. Panel pressures
 //! follow the same formula per panel; their edge states are the steady ones scaled
 //! isentropically to the new pressure (T ∝ p^((γ−1)/γ), ρ ∝ p^(1/γ), NACA 1135 eqs. 43-44).
 //!

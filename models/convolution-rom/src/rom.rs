@@ -1,15 +1,18 @@
 //! The online model: the truncated convolution of the step responses with the region's modal
 //! history, the interpolated correction factor and the cached steady value of the source.
 
-use std::path::Path;
+use std::path::{Path, PathBuf};
+use std::time::Instant;
 
 use hsv_core::aero::{
     AeroModel, AeroSolution, EdgeState, ModalHistory, ModalHistoryAero, PanelMotion,
 };
 use hsv_core::coupling::ModalProjection;
 use hsv_core::error::ModelError;
-use hsv_core::flow::FlightCondition;
+use hsv_core::flow::{FlightCondition, Freestream};
+use hsv_core::gas::PerfectGas;
 use hsv_core::mesh::{ModeShapes, PanelMesh, RegionKind};
+use hsv_core::reduced_order::{CheckOptions, CheckReport, ReducedOrderAero, RomSummary};
 use hsv_core::registry::ModelContext;
 use hsv_core::structure::StructureModel;
 use nalgebra::{DMatrix, DVector, Point3};
@@ -51,7 +54,14 @@ pub struct ConvolutionRom {
     /// Peak vertex displacement per unit modal coordinate of each mode, m.
     pub(crate) peak_displacement_m: Vec<f64>,
     pub(crate) settings: Settings,
+    /// What the identification is built from ([`identify::fingerprint`]) and where it is
+    /// cached: what [`ReducedOrderAero::reidentify`] needs to rebuild it.
+    fingerprint: String,
+    cache: Option<PathBuf>,
+    csv: Option<String>,
+    gas: PerfectGas,
     from_cache: bool,
+    identification_seconds: f64,
     correction: bool,
     baseline: Baseline,
     scratch: Scratch,
@@ -117,6 +127,7 @@ impl ConvolutionRom {
             .as_deref()
             .and_then(|path| identify::load(path, &fingerprint));
         let from_cache = cached.is_some();
+        let start = Instant::now();
         let identification = match cached {
             Some(identification) => identification,
             None => {
@@ -127,16 +138,13 @@ impl ConvolutionRom {
                     projection: &projection,
                     gas: ctx.region.gas,
                 };
-                let csv_input = csv
-                    .as_deref()
-                    .map(|text| (settings.step_csv.as_str(), text));
-                let mut identification = identify::identify(&settings, subject, csv_input)?;
-                identification.fingerprint = fingerprint;
-                if let Some(path) = cache.as_deref() {
-                    identify::save(path, &identification)?;
-                }
-                identification
+                identify_and_save(&settings, subject, csv.as_deref(), &fingerprint, &cache)?
             }
+        };
+        let identification_seconds = if from_cache {
+            0.0
+        } else {
+            start.elapsed().as_secs_f64()
         };
         let peak_displacement_m = identify::peak_displacements(&shapes)?;
         Ok(Self {
@@ -149,7 +157,12 @@ impl ConvolutionRom {
             natural_frequencies_hz,
             peak_displacement_m,
             settings,
+            fingerprint,
+            cache,
+            csv,
+            gas: ctx.region.gas,
             from_cache,
+            identification_seconds,
             baseline: Baseline::default(),
             scratch: Scratch::default(),
         })
@@ -311,6 +324,24 @@ impl ConvolutionRom {
     }
 }
 
+/// Identifies from the source (or the user's CSV), stamps the identification with
+/// `fingerprint` and writes it to `cache`.
+fn identify_and_save(
+    settings: &Settings,
+    subject: Subject<'_>,
+    csv: Option<&str>,
+    fingerprint: &str,
+    cache: &Option<PathBuf>,
+) -> Result<Identification, ModelError> {
+    let csv_input = csv.map(|text| (settings.step_csv.as_str(), text));
+    let mut identification = identify::identify(settings, subject, csv_input)?;
+    identification.fingerprint = fingerprint.to_owned();
+    if let Some(path) = cache.as_deref() {
+        identify::save(path, &identification)?;
+    }
+    Ok(identification)
+}
+
 /// The first `modes` modes of `structure` on `mesh` (0: all) and their natural frequencies.
 fn region_modes(
     structure: &dyn StructureModel,
@@ -376,8 +407,9 @@ impl Bracket {
     }
 }
 
-/// Bilinearly interpolated correction factors `[mode][output]` of `block` at Mach bracket
-/// `mach` and the modal coordinates `q` (amplitudes clamped to the table).
+/// Bilinearly interpolated correction factors `[input][output]` of `block` at Mach bracket
+/// `mach` and the modal coordinates `q` (amplitudes clamped to the table): the displacement
+/// inputs' over Mach and amplitude, then the rate inputs' over Mach.
 fn interpolate_factors(
     block: &ResponseBlock,
     amplitudes: &[Vec<f64>],
@@ -389,7 +421,7 @@ fn interpolate_factors(
     let n_out = block.n_outputs;
     let n_amp = amplitudes.first().map_or(0, Vec::len);
     out.clear();
-    out.resize(n * n_out, 1.0);
+    out.resize(2 * n * n_out, 1.0);
     let at = |m: usize, j: usize, a: usize| {
         let start = ((m * n + j) * n_amp + a) * n_out;
         &block.correction[start..start + n_out]
@@ -413,11 +445,21 @@ fn interpolate_factors(
             }
         }
     }
+    if block.rate_correction.is_empty() {
+        return;
+    }
+    let rate = |m: usize, j: usize| &block.rate_correction[(m * n + j) * n_out..][..n_out];
+    for j in 0..n {
+        let row = &mut out[(n + j) * n_out..(n + j + 1) * n_out];
+        for ((f, lo), hi) in row.iter_mut().zip(rate(mach.lo, j)).zip(rate(mach.hi, j)) {
+            *f = (1.0 - mach.w) * lo + mach.w * hi;
+        }
+    }
 }
 
 /// y = Σ_c f_c [S_c(∞) u_c + (S_c(0) − S_c(∞)) (u_c − u_last,c) + Σ_m (S_c(τ_m) − S_c(∞)) Δu_c,m]
-/// into `out` (over p∞), f_c the correction factor of displacement input c (1 for rates or
-/// without `factors`), τ_m = (t − t_m) `lag_scale` the lags of the history's increments.
+/// into `out` (over p∞), f_c the correction factor of input c (1 without `factors`),
+/// τ_m = (t − t_m) `lag_scale` the lags of the history's increments.
 fn convolve(
     block: &ResponseBlock,
     factors: Option<&[f64]>,
@@ -428,15 +470,11 @@ fn convolve(
     out: &mut Vec<f64>,
 ) {
     let n_inputs = input.len();
-    let n_modes = n_inputs / 2;
     let n_out = block.n_outputs;
     let settled = block.samples - 1;
     out.clear();
     out.resize(n_out, 0.0);
-    let factor = |c: usize, k: usize| match factors {
-        Some(f) if c < n_modes => f[c * n_out + k],
-        _ => 1.0,
-    };
+    let factor = |c: usize, k: usize| factors.map_or(1.0, |f| f[c * n_out + k]);
     for (c, (&u, &last)) in input.iter().zip(&history.input).enumerate() {
         let s_inf = block.step(settled, c, n_inputs);
         let s_0 = block.step(0, c, n_inputs);
@@ -516,6 +554,82 @@ impl AeroModel for ConvolutionRom {
 
     fn modal_history(&mut self) -> Option<&mut dyn ModalHistoryAero> {
         Some(self)
+    }
+
+    fn reduced_order(&mut self) -> Option<&mut dyn ReducedOrderAero> {
+        Some(self)
+    }
+}
+
+impl ReducedOrderAero for ConvolutionRom {
+    fn summary(&self) -> RomSummary {
+        let id = &self.identification;
+        RomSummary {
+            model: NAME.to_owned(),
+            source: id.source.clone(),
+            force_origin: id.force_origin.clone(),
+            n_modes: id.n_modes,
+            n_panels: id.n_panels,
+            mach: id.reference.mach,
+            altitude_m: id.reference.altitude_m,
+            alpha_deg: id.reference.alpha_deg,
+            correction_mach: id.correction_mach.clone(),
+            correction_amplitudes: id.amplitudes.first().map_or(0, Vec::len),
+            response_samples: id.forces.samples,
+            response_dt_s: id.forces.dt_s,
+            natural_frequencies_hz: self.natural_frequencies_hz.clone(),
+            cache_file: self.cache.as_ref().map(|p| p.display().to_string()),
+            from_cache: self.from_cache,
+            identification_seconds: self.identification_seconds,
+        }
+    }
+
+    fn reidentify(&mut self) -> Result<(), ModelError> {
+        let start = Instant::now();
+        let subject = Subject {
+            source: self.source.as_mut(),
+            mesh: &self.reference_mesh,
+            shapes: &self.shapes,
+            projection: &self.projection,
+            gas: self.gas,
+        };
+        self.identification = identify_and_save(
+            &self.settings,
+            subject,
+            self.csv.as_deref(),
+            &self.fingerprint,
+            &self.cache,
+        )?;
+        self.identification_seconds = start.elapsed().as_secs_f64();
+        self.from_cache = false;
+        self.set_correction(self.settings.correction);
+        Ok(())
+    }
+
+    fn reference_flight(&self) -> Result<FlightCondition, ModelError> {
+        let r = &self.identification.reference;
+        let freestream = Freestream::standard(r.mach, r.altitude_m, self.gas)?;
+        Ok(FlightCondition::steady(
+            freestream,
+            r.alpha_deg.to_radians(),
+            0.0,
+        ))
+    }
+
+    fn linear_coefficients(&self, flight: &FlightCondition) -> (DMatrix<f64>, DMatrix<f64>) {
+        ConvolutionRom::linear_coefficients(self, flight)
+    }
+
+    fn set_correction(&mut self, on: bool) {
+        ConvolutionRom::set_correction(self, on);
+    }
+
+    fn check(
+        &mut self,
+        flight: &FlightCondition,
+        options: &CheckOptions,
+    ) -> Result<CheckReport, ModelError> {
+        crate::check::check_against_source(self, flight, options)
     }
 }
 

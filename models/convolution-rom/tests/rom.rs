@@ -272,19 +272,23 @@ const NONLINEAR: &str = "source = \"shock-expansion-piston\"\nstructure = \"stan
 
 /// `shock-expansion-piston` (nonlinear in the surface slopes) on motions of up to 0.18 m peak
 /// displacement (pitch: 5° of incidence change on the 5 % double wedge at Mach 6, hypersonic
-/// similarity parameter M θ ≈ 0.5): with the correction factor the ROM stays within 3 % (RMS,
-/// relative to the aeroelastic part of the forces) of the source at the identification Mach
-/// and off it (Mach 6.5); the linear convolution alone is at least 3 times worse.
+/// similarity parameter M θ ≈ 0.5; no velocity cap, so every mode moves at that amplitude):
+/// with the correction factor the ROM stays within 3 % (RMS, relative to the aeroelastic part
+/// of the forces) of the source at the identification Mach and off it (Mach 6.5); the linear
+/// convolution alone is at least 3 times worse.
 #[test]
 fn a_nonlinear_source_needs_the_correction_factor() {
     let registry = registry();
     let mut rom = build(&registry, region(), NONLINEAR).unwrap();
+    let options = CheckOptions {
+        max_velocity_ratio: None,
+        ..CheckOptions::default()
+    };
     for condition in [flight(6.0, 26_000.0, 2.0), flight(6.5, 26_000.0, 2.0)] {
         rom.set_correction(true);
-        let corrected =
-            check_against_source(&mut rom, &condition, &CheckOptions::default()).unwrap();
+        let corrected = check_against_source(&mut rom, &condition, &options).unwrap();
         rom.set_correction(false);
-        let linear = check_against_source(&mut rom, &condition, &CheckOptions::default()).unwrap();
+        let linear = check_against_source(&mut rom, &condition, &options).unwrap();
         for (c, l) in corrected.motions.iter().zip(&linear.motions) {
             println!(
                 "Mach {}: {}: corrected RMS {:.4} (max {:.4}), linear RMS {:.4} (max {:.4}), \
@@ -304,7 +308,7 @@ fn a_nonlinear_source_needs_the_correction_factor() {
         );
         let forces_only = CheckOptions {
             pressures: false,
-            ..CheckOptions::default()
+            ..options.clone()
         };
         rom.set_correction(true);
         let fast = check_against_source(&mut rom, &condition, &forces_only).unwrap();

@@ -8,7 +8,10 @@
 //! [`SurfaceOptions::aero_damping`], the quasi-static aero of classical panel flutter). The
 //! pressure is projected on the mode shapes of the reference geometry,
 //! Q = −P (p − p∞) ([`ModalProjection`]: the small-displacement assumption of the linear modal
-//! structure; the follower rotation of the panels is of order q and is left out).
+//! structure; the follower rotation of the panels is of order q and is left out). An aero
+//! model with memory of the modal motion (a convolution ROM, [`ModalHistoryAero`]) gives Q_aero
+//! itself from a modal history owned here: the surface at rest at q for all earlier time, then
+//! moving at q̇ (the state has no aerodynamic lag states; exact for ROMs of memoryless sources).
 //!
 //! **Equilibrium.** x_e = [q0; 0] with K q0 = Q_aero(q0, 0) + Q_T, by Newton's method on
 //! r(q) = Q_aero(q, 0) + Q_T − K q with the aero stiffness ∂Q/∂q by central differences.
@@ -24,7 +27,7 @@
 //! formula's error ~ (ω Δt)⁶ and the integrator's ~ (ω Δt)⁴ are both far below the
 //! perturbation's own linearization error).
 
-use hsv_core::aero::{AeroModel, AeroSolution, PanelMotion};
+use hsv_core::aero::{AeroModel, AeroSolution, ModalHistory, ModalHistoryAero, PanelMotion};
 use hsv_core::coupling::ModalProjection;
 use hsv_core::flow::FlightCondition;
 use hsv_core::mesh::{ModeShapes, PanelMesh};
@@ -119,6 +122,8 @@ pub struct SurfaceDynamics {
     forces: Vec<f64>,
     solution: AeroSolution,
     evaluations: usize,
+    /// The modal history of an aero model with memory (module docs); `None` for the others.
+    history: Option<ModalHistory>,
 }
 
 /// Largest |φ| of each mode over the vertices, m.
@@ -128,6 +133,48 @@ fn mode_scales(shapes: &ModeShapes) -> Vec<f64> {
         .column_iter()
         .map(|c| c.iter().fold(0.0_f64, |m, v| m.max(v.abs())))
         .collect()
+}
+
+/// A history at rest for an aero model with memory of `n` modes; `None` for the others.
+fn rom_history(aero: &mut dyn AeroModel, n: usize) -> Result<Option<ModalHistory>, FlutterError> {
+    let name = aero.name().to_owned();
+    let Some(rom) = aero.modal_history() else {
+        return Ok(None);
+    };
+    if rom.n_modes() != n {
+        return Err(FlutterError::Inconsistent(format!(
+            "`{name}` takes {} modes, the structure has {n} (its `structure` and `modes` settings \
+             must name the surface's structure and all its modes)",
+            rom.n_modes()
+        )));
+    }
+    rom.initial_history(0.0, &DVector::zeros(n))
+        .map(Some)
+        .map_err(|e| FlutterError::model(&name, e))
+}
+
+/// Q_aero of a model with memory at (q, q̇) after rest at q (module docs), on the undeformed
+/// mesh; q̇ = 0 without aerodynamic damping.
+#[allow(clippy::too_many_arguments)]
+fn rom_forces(
+    rom: &mut dyn ModalHistoryAero,
+    history: &mut ModalHistory,
+    mesh: &PanelMesh,
+    flight: &FlightCondition,
+    q: &DVector<f64>,
+    qd: &DVector<f64>,
+    aero_damping: bool,
+    forces: &mut [f64],
+) -> Result<(), hsv_core::ModelError> {
+    *history = rom.initial_history(0.0, q)?;
+    let still;
+    let velocities = if aero_damping {
+        qd
+    } else {
+        still = DVector::zeros(qd.len());
+        &still
+    };
+    rom.evaluate_modal(mesh, flight, history, 0.0, q, velocities, forces, None)
 }
 
 impl SurfaceDynamics {
@@ -175,7 +222,10 @@ impl SurfaceDynamics {
             .unwrap_or_else(|| DVector::zeros(n));
         let (lo, hi) = mesh.bounding_box();
         let n_panels = mesh.panels.len();
+        let mut aero = aero;
+        let history = rom_history(aero.as_mut(), n)?;
         Ok(Self {
+            history,
             aero_name: aero.name().to_owned(),
             aero,
             flight,
@@ -233,6 +283,20 @@ impl SurfaceDynamics {
 
     /// Q_aero(q, q̇) into `self.forces` (q, q̇ from `self.q`, `self.qd`).
     fn aero_forces(&mut self) -> Result<(), FlutterError> {
+        if let (Some(rom), Some(history)) = (self.aero.modal_history(), self.history.as_mut()) {
+            return rom_forces(
+                rom,
+                history,
+                &self.mesh,
+                &self.flight,
+                &self.q,
+                &self.qd,
+                self.options.aero_damping,
+                &mut self.forces,
+            )
+            .map(|()| self.evaluations += 1)
+            .map_err(|e| FlutterError::model(&self.aero_name, e));
+        }
         self.shapes.deform(&self.mesh, &self.q, &mut self.deformed);
         let motion = if self.options.aero_damping {
             self.shapes

@@ -3,6 +3,7 @@
 //! tables are checked; restarts are bit-identical and a glide conserves energy with its loads.
 
 use hsv_run::analysis::simulate::{InputTable, Inputs, RunSettings, Sample, simulate};
+use hsv_run::vehicle::body_rate::BodyLoadRate;
 use hsv_run::vehicle::partitioned::{FlightControls, PartitionedVehicle};
 
 mod common;
@@ -25,7 +26,12 @@ fn fly(duration_s: f64, inputs: &Inputs) -> Vec<Sample> {
 }
 
 fn fly_with(duration_s: f64, dt_s: f64, inputs: &Inputs) -> Vec<Sample> {
+    fly_at_rate(duration_s, dt_s, BodyLoadRate::default(), inputs)
+}
+
+fn fly_at_rate(duration_s: f64, dt_s: f64, rate: BodyLoadRate, inputs: &Inputs) -> Vec<Sample> {
     let (mut vehicle, mut state, controls) = trimmed();
+    vehicle.set_body_load_rate(rate);
     let mut samples = Vec::new();
     let settings = RunSettings {
         dt_s,
@@ -139,6 +145,29 @@ fn halving_the_aeroelastic_step_leaves_the_doublet_response_unchanged() {
 }
 
 #[test]
+fn the_body_region_at_a_coarser_rate_than_the_stages_leaves_the_doublet_response_unchanged() {
+    // The body's loads published every 4 ms (two 2 ms steps, eight Runge-Kutta stages) and
+    // extrapolated linearly in between (second order, Farhat & Lesoinne 2000) against the body
+    // evaluated at every stage: the same bound as the step-halving test above (a hundredth of
+    // the response's 1e-2 scale), fixed before running it.
+    let doublet = Inputs::paper_doublet();
+    let every_stage = fly_at_rate(0.9, 0.002, BodyLoadRate::EveryStage, &doublet);
+    let published = fly_at_rate(0.9, 0.002, BodyLoadRate::Interval(0.004), &doublet);
+    let (a, b) = (
+        every_stage.last().expect("every stage"),
+        published.last().expect("published"),
+    );
+    assert!((a.time_s - b.time_s).abs() < 1e-12);
+    assert!((a.pitch_deg - b.pitch_deg).abs() < 1e-4, "{a:?} vs {b:?}");
+    assert!((a.q_deg_s - b.q_deg_s).abs() < 1e-4, "{a:?} vs {b:?}");
+    assert!((a.altitude_m - b.altitude_m).abs() < 1e-4, "{a:?} vs {b:?}");
+    assert!(
+        a.pitch_deg - every_stage[0].pitch_deg > 1e-3,
+        "the doublet moved nothing: {a:?}"
+    );
+}
+
+#[test]
 fn a_duration_that_is_not_a_whole_number_of_steps_ends_exactly_at_it() {
     // 0.205 s at 2 ms: 102 full steps and a last one of 1 ms, never a silent 0.206 s.
     let still = Inputs {
@@ -154,8 +183,10 @@ fn a_duration_that_is_not_a_whole_number_of_steps_ends_exactly_at_it() {
 fn a_run_resumed_from_its_restart_file_continues_bit_for_bit() {
     use hsv_run::vehicle::partitioned::{HeatingRates, SurfaceModel, VehicleRestart};
     // The heated partitioned vehicle (coarse surfaces), trimmed and flown for 0.2 s in one go,
-    // and again stopped at 0.1 s, written to JSON, read back into a freshly built vehicle and
-    // resumed: the final states must be identical to the last bit.
+    // and again stopped at 0.102 s, written to JSON, read back into a freshly built vehicle and
+    // resumed: the final states must be identical to the last bit. The body region runs every
+    // other step, so the restart falls between two of its evaluations and the resumed run must
+    // extrapolate from the saved ones.
     let loaded = common::parse(
         &common::coarse_text().replace("conduction = \"pod\"", "conduction = \"full-order\""),
     );
@@ -169,6 +200,7 @@ fn a_run_resumed_from_its_restart_file_continues_bit_for_bit() {
         let (mut vehicle, state, controls) =
             common::trimmed(&loaded, SurfaceModel::Partitioned, true);
         vehicle.start_heating(&rates).expect("heating");
+        vehicle.set_body_load_rate(hsv_run::vehicle::body_rate::BodyLoadRate::Interval(0.004));
         (vehicle, state, controls)
     };
     let inputs = Inputs {
@@ -204,7 +236,7 @@ fn a_run_resumed_from_its_restart_file_continues_bit_for_bit() {
         &inputs,
         &settings(0),
         |s, state, v| {
-            if (s.time_s - 0.1).abs() < 1e-12 {
+            if (s.time_s - 0.102).abs() < 1e-12 {
                 let vehicle = serde_json::to_string(&v.restart()).expect("vehicle json");
                 let state = serde_json::to_string(state).expect("state json");
                 restart = Some((vehicle, state));
@@ -214,7 +246,7 @@ fn a_run_resumed_from_its_restart_file_continues_bit_for_bit() {
         },
     )
     .expect("first half");
-    let (vehicle_json, state_json) = restart.expect("stopped at 0.1 s");
+    let (vehicle_json, state_json) = restart.expect("stopped at 0.102 s");
     let (mut resumed, _, _) = start();
     let saved: VehicleRestart = serde_json::from_str(&vehicle_json).expect("vehicle back");
     resumed.restore(&saved).expect("restores");
@@ -225,7 +257,7 @@ fn a_run_resumed_from_its_restart_file_continues_bit_for_bit() {
         &mut resumed_state,
         &controls,
         &inputs,
-        &settings(50),
+        &settings(51),
         |_, _, _| true,
     )
     .expect("second half");

@@ -1,6 +1,8 @@
 //! Time simulation of the partitioned vehicle from trim (paper §IV.C): control inputs from time
 //! tables, the coupled state derivative marched by fourth-order Runge-Kutta at the aeroelastic
-//! step (paper Table 3: 1 ms), and a sample of every recorded quantity handed to an observer.
+//! step (paper Table 3: 1 ms) with the main body region evaluated at the vehicle's
+//! [`BodyLoadRate`](crate::vehicle::body_rate::BodyLoadRate), and a sample of every recorded
+//! quantity handed to an observer.
 //! The loop allocates nothing per step.
 
 use nalgebra::DVector;
@@ -263,9 +265,16 @@ pub fn simulate(
     if !observe(&first, state, vehicle) {
         return Ok(0);
     }
+    if settings.start_step == 0 {
+        vehicle.forget_body_loads();
+    }
     for k in settings.start_step.min(steps)..steps {
         let t = plan.start_s(k);
         let dt = plan.dt_of(k);
+        // The body region at the accepted state, read by the step's stages (its rate).
+        vehicle
+            .begin_step(state, &inputs.controls(trim, t), t)
+            .map_err(wrap(t))?;
         let mut f = |time: f64, x: &DVector<f64>, dx: &mut DVector<f64>| {
             layout.unpack(x, &mut scratch)?;
             let controls = inputs.controls(trim, time);

@@ -19,6 +19,7 @@ use crate::output::{
     write_vtk_mesh,
 };
 use crate::progress::Progress;
+use crate::vehicle::body_rate::BodyLoadRate;
 use crate::vehicle::flexible_vehicle_with;
 use crate::vehicle::partitioned::{ElevonCommand, FlightControls, HeatingRates, SurfaceModel};
 
@@ -142,6 +143,7 @@ fn heating_rates(loaded: &hsv_core::config::LoadedConfig) -> Result<HeatingRates
         "aerothermal_dt_s",
         "stiffness_interval_s",
         "initial_temperature_k",
+        "body_loads_dt_s",
     ];
     if let Some(key) = loaded
         .config
@@ -156,6 +158,25 @@ fn heating_rates(loaded: &hsv_core::config::LoadedConfig) -> Result<HeatingRates
         );
     }
     Ok(rates)
+}
+
+/// How often the main body region is evaluated: `[simulation] body_loads_dt_s` (s; default
+/// the paper's 1 ms aeroelastic rate; 0 evaluates it at every Runge-Kutta stage).
+pub(crate) fn body_load_rate(loaded: &hsv_core::config::LoadedConfig) -> Result<BodyLoadRate> {
+    let Some(value) = loaded.config.simulation.get("body_loads_dt_s") else {
+        return Ok(BodyLoadRate::default());
+    };
+    value
+        .as_float()
+        .or_else(|| value.as_integer().map(|i| i as f64))
+        .and_then(BodyLoadRate::from_interval_s)
+        .with_context(|| {
+            format!(
+                "{}: key `simulation.body_loads_dt_s` is {value}; expected a number of seconds \
+                 >= 0 (0: at every Runge-Kutta stage)",
+                loaded.file
+            )
+        })
 }
 
 /// The inputs: `[simulation.inputs]` of the config over the paper's doublet (also what a
@@ -210,6 +231,7 @@ pub fn run(args: SimulateArgs, registry: &Registry) -> Result<()> {
     let mach = loaded.config.flight.mach;
     let altitude_m = loaded.config.flight.altitude_m;
     let rates = heating_rates(&loaded)?;
+    let body_rate = body_load_rate(&loaded)?;
     let model = if args.monolithic {
         SurfaceModel::Monolithic {
             lumped_mass: args.lumped_surface_mass,
@@ -220,6 +242,7 @@ pub fn run(args: SimulateArgs, registry: &Registry) -> Result<()> {
     let heated = !args.no_heating && model == SurfaceModel::Partitioned;
     let mut vehicle =
         flexible_vehicle_with(&loaded, &registry, model, heated, "the time simulation")?;
+    vehicle.set_body_load_rate(body_rate);
     if !args.quiet {
         eprintln!("simulate: trimming the flexible vehicle at Mach {mach}, {altitude_m} m");
     }

@@ -5,6 +5,7 @@
 //! A [`Region`] owns its models and state and talks to other regions only through topics it
 //! declares at assembly ([`wire`] fails when a subscribed topic has no publisher).
 
+pub mod body_rate;
 pub mod friction;
 pub mod partitioned;
 pub mod rigid;

@@ -36,6 +36,7 @@ use hsv_core::vehicle::{LiftingSurfaceConfig, Side};
 use nalgebra::{DVector, Point3, Vector3};
 use rayon::prelude::*;
 
+use super::body_rate::{BodyLoadHistory, BodyLoadRate};
 use super::friction::RegionFriction;
 use super::{AnalysisNeeds, AssemblyError, RegionModelSet, RegionNeeds};
 use crate::dynamics::{
@@ -180,6 +181,10 @@ pub struct VehicleRestart {
     pub heating_heat_flux_s: f64,
     pub heating_stiffness_s: f64,
     pub heating_initial_k: f64,
+    /// The body region's last publications (absent in restart files of runs that evaluated the
+    /// body at every stage).
+    #[serde(default)]
+    pub body_loads: BodyLoadHistory,
 }
 
 /// Temperatures of one heated surface, K.
@@ -356,6 +361,12 @@ pub struct PartitionedVehicle {
     body_mode_names: Vec<String>,
     /// Body modal amplitudes of the last steady evaluation.
     trim_modes: Vec<f64>,
+    /// How often the body region is evaluated within a step, its publications, and whether a
+    /// step is open (between [`PartitionedVehicle::begin_step`] and `commit_step`): only then
+    /// do derivatives read the published body loads.
+    body_rate: BodyLoadRate,
+    body_history: BodyLoadHistory,
+    in_step: bool,
 }
 
 fn model_error(region: &str) -> impl Fn(ModelError) -> VehicleError + '_ {
@@ -614,6 +625,24 @@ fn surface_region_loads(
     Ok(())
 }
 
+/// Every lifting surface's region loads, side by side (rayon).
+fn surfaces_loads(
+    surfaces: &mut [Surface],
+    forces: &mut [DVector<f64>],
+    state: &VehicleState,
+    elevon: &ElevonCommand,
+    flight: &FlightCondition,
+    time_s: f64,
+) -> Result<(), VehicleError> {
+    surfaces
+        .par_iter_mut()
+        .zip(forces.par_iter_mut())
+        .zip(state.surface_modes.par_iter())
+        .try_for_each(|((s, out), modes)| {
+            surface_region_loads(s, modes, elevon, flight, time_s, out)
+        })
+}
+
 impl PartitionedVehicle {
     /// The partitioned vehicle from assembled regions (checked with [`partitioned_needs`]).
     pub fn new(
@@ -843,6 +872,9 @@ impl PartitionedVehicle {
             aero_with_surfaces: Loads::default(),
             body_mode_names: body_modal_names,
             trim_modes: Vec::new(),
+            body_rate: BodyLoadRate::default(),
+            body_history: BodyLoadHistory::default(),
+            in_step: false,
         })
     }
 
@@ -874,6 +906,53 @@ impl PartitionedVehicle {
         }
         self.advance_heating(&flight, time_s)?;
         self.time_s = time_s;
+        self.in_step = false;
+        Ok(())
+    }
+
+    /// How often the body region is evaluated within a time step ([`BodyLoadRate`]).
+    pub fn set_body_load_rate(&mut self, rate: BodyLoadRate) {
+        self.body_rate = rate;
+        self.body_history.clear();
+    }
+
+    pub fn body_load_rate(&self) -> BodyLoadRate {
+        self.body_rate
+    }
+
+    /// Forgets the body region's publications (a run starting afresh).
+    pub fn forget_body_loads(&mut self) {
+        self.body_history.clear();
+    }
+
+    /// Opens the step starting at `time_s` from the accepted `state`: unless the body region
+    /// runs at every stage, it is evaluated and published here when its rate says so, and the
+    /// step's derivatives read its publications (extrapolated) until [`Self::commit_step`].
+    pub fn begin_step(
+        &mut self,
+        state: &VehicleState,
+        controls: &FlightControls,
+        time_s: f64,
+    ) -> Result<(), VehicleError> {
+        self.in_step = false;
+        if self.body_rate == BodyLoadRate::EveryStage {
+            return Ok(());
+        }
+        if self
+            .body_rate
+            .is_due(time_s, self.body_history.latest_time_s())
+        {
+            let flight = self.flight(state)?;
+            self.time_s = time_s;
+            self.body_loads_now(state, controls, &flight)?;
+            self.body_history.publish(
+                time_s,
+                &self.loads.body,
+                &self.aero_loads,
+                &self.loads.body_generalized_force,
+            );
+        }
+        self.in_step = true;
         Ok(())
     }
 
@@ -897,13 +976,31 @@ impl PartitionedVehicle {
     }
 
     /// Loads of every region except the root loads' inertia term (which waits for q̈): the
-    /// main body with its engine, and each lifting surface, run side by side (rayon).
+    /// main body with its engine, and each lifting surface, run side by side (rayon). Inside a
+    /// step (unless the body runs at every stage) the body's loads are its published ones.
     fn region_loads(
         &mut self,
         state: &VehicleState,
         controls: &FlightControls,
         flight: &FlightCondition,
     ) -> Result<(), VehicleError> {
+        if self.in_step
+            && self.body_history.read(
+                self.time_s,
+                &mut self.loads.body,
+                &mut self.aero_loads,
+                &mut self.loads.body_generalized_force,
+            )
+        {
+            return surfaces_loads(
+                &mut self.surfaces,
+                &mut self.loads.surface_generalized_forces,
+                state,
+                &controls.elevon,
+                flight,
+                self.time_s,
+            );
+        }
         let cg = self.mass.center_of_mass_m;
         let reference_point_m = self.reference_point_m;
         let elevon = controls.elevon;
@@ -926,25 +1023,42 @@ impl PartitionedVehicle {
                     &reference_point_m,
                 )
             },
-            || {
-                surfaces
-                    .par_iter_mut()
-                    .zip(surface_forces.par_iter_mut())
-                    .zip(state.surface_modes.par_iter())
-                    .try_for_each(|((s, out), modes)| {
-                        surface_region_loads(s, modes, &elevon, flight, time_s, out)
-                    })
-            },
+            || surfaces_loads(surfaces, surface_forces, state, &elevon, flight, time_s),
         );
-        let (body_aero, engine_loads) = body_loads?;
         surfaces_done?;
+        self.set_body_loads(body_loads?);
+        self.follower_loads(state, controls, flight)
+    }
+
+    /// The body region alone (body, engine, the monolithic model's surfaces) into the loads.
+    fn body_loads_now(
+        &mut self,
+        state: &VehicleState,
+        controls: &FlightControls,
+        flight: &FlightCondition,
+    ) -> Result<(), VehicleError> {
+        let loads = body_region_loads(
+            &mut self.body,
+            self.engine.as_mut(),
+            &mut self.engine_solution,
+            state,
+            controls,
+            flight,
+            &self.mass.center_of_mass_m,
+            &self.reference_point_m,
+        )?;
+        self.set_body_loads(loads);
+        self.follower_loads(state, controls, flight)
+    }
+
+    /// The body's aero and engine loads and generalized forces into the vehicle loads.
+    fn set_body_loads(&mut self, (body_aero, engine_loads): (Loads, Loads)) {
         self.loads.body = body_aero + engine_loads;
         self.aero_loads = body_aero;
         let b = &self.body;
         for (k, q) in self.loads.body_generalized_force.iter_mut().enumerate() {
             *q = b.generalized[k] + b.engine_generalized[k];
         }
-        self.follower_loads(state, controls, flight)
     }
 
     /// The monolithic model's surfaces: OML following the body's modes, rotated by the elevon;
@@ -1185,6 +1299,7 @@ impl PartitionedVehicle {
             heating_heat_flux_s: self.heating.heat_flux_s,
             heating_stiffness_s: self.heating.stiffness_s,
             heating_initial_k: self.heating.initial_k,
+            body_loads: self.body_history.clone(),
         }
     }
 
@@ -1206,6 +1321,8 @@ impl PartitionedVehicle {
             }
         }
         self.time_s = r.time_s;
+        self.body_history.clone_from(&r.body_loads);
+        self.in_step = false;
         self.q_ddot.clone_from(&r.q_ddot);
         self.previous_step.clone_from(&r.previous_step);
         self.heating = HeatingRates {

@@ -200,6 +200,7 @@ fn library_shards_merge_into_the_unsharded_comparison() {
         mach: loaded.config.flight.mach,
         altitude_m: loaded.config.flight.altitude_m,
         flight: None,
+        flutter: None,
         config_file: loaded.file.clone(),
         config_fingerprint: fingerprint("sample"),
     };

@@ -3,6 +3,7 @@
 pub mod flutter;
 pub mod heating;
 pub mod linearize;
+pub mod shards;
 pub mod simulate;
 pub mod trade;
 pub mod trim;

@@ -1,6 +1,8 @@
 //! Fidelity trade studies: every combination of named region models run through one job (rigid
-//! trim or a flight from trim), compared with the highest-fidelity combination, with the cost of
-//! each; split into deterministic shards that merge into the same table.
+//! trim, a flight from trim, or the lifting surface's flutter map), compared with the
+//! highest-fidelity combination, with the cost of each; split into deterministic shards
+//! ([`super::shards`]) that merge into the same table. One file: the study, its three jobs and
+//! their comparison share the case and row types.
 //!
 //! A study is a list of [`Variation`]s (`main_body.aero=newtonian-scalar,shock-expansion`), each
 //! a `[regions.<region>] <role>` key and the model names it takes. Its cases are the Cartesian
@@ -18,6 +20,12 @@ use hsv_core::config::{LoadedConfig, parse_config};
 use hsv_core::registry::Registry;
 use serde::{Deserialize, Serialize};
 
+use super::flutter::DerivativeMethod;
+use super::flutter::SurfaceOptions;
+use super::flutter::sweep::{FlutterBoundary, FlutterModels, FlutterSetup, flutter_map};
+use super::heating::HeatingSteps;
+pub use super::shards::{Shard, fingerprint};
+use super::shards::{ShardOutput, ShardedCase, ShardedStudy, merge_shards};
 use crate::analysis::simulate::{Inputs, RunSettings, simulate};
 use crate::analysis::trim::{TrimRequest, trim};
 use crate::dynamics::GravityModel;
@@ -136,6 +144,9 @@ pub enum TradeJob {
     /// The partitioned flexible vehicle flown from its trim under the config's inputs: time
     /// histories.
     Simulate,
+    /// One lifting surface heated in the flow and analysed over a Mach grid (as `hsv-run
+    /// flutter`): the flutter Mach number at each time in the flow.
+    Flutter,
 }
 
 impl TradeJob {
@@ -143,6 +154,7 @@ impl TradeJob {
         match self {
             TradeJob::Trim => "trim",
             TradeJob::Simulate => "simulate",
+            TradeJob::Flutter => "flutter",
         }
     }
 }
@@ -155,6 +167,81 @@ pub struct FlightSpec {
     pub record_every: usize,
 }
 
+/// The grid and heating of a `flutter` study: the options of `hsv-run flutter` (direct state
+/// derivative, no method comparison; conduction `full-order` unless a variation names it).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct FlutterGrid {
+    /// The analysed lifting surface ([`flutter_region`]).
+    pub region: String,
+    /// The grid's range and step as given (shards rebuild the same grid from them).
+    pub mach_range: (f64, f64),
+    pub mach_step: f64,
+    pub machs: Vec<f64>,
+    /// Times in the flow, ascending, s.
+    pub times_s: Vec<f64>,
+    /// Conduction step of the heating, s.
+    pub dt_s: f64,
+    pub alpha_deg: f64,
+}
+
+/// The lifting surface a flutter study analyses: the side its variations name, else the right
+/// one (as `hsv-run flutter`; the left is its mirror image).
+pub fn flutter_region(variations: &[Variation]) -> Result<String> {
+    let named = |side: &str| variations.iter().any(|v| v.parts().0 == side);
+    match (named("left_surface"), named("right_surface")) {
+        (true, true) => bail!(
+            "a flutter study analyses one lifting surface, but the variations name both              left_surface and right_surface; vary lifting_surfaces or one side"
+        ),
+        (true, false) => Ok("left_surface".to_owned()),
+        _ => Ok("right_surface".to_owned()),
+    }
+}
+
+/// Key of the flutter Mach number at `time_s` in a case's values.
+pub fn flutter_mach_key(time_s: f64) -> String {
+    format!("flutter_mach_at_{time_s}_s")
+}
+
+/// The flutter boundary of a case at one time in the flow.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct FlutterAtTime {
+    pub time_s: f64,
+    pub boundary: FlutterBoundary,
+}
+
+impl FlutterAtTime {
+    /// `t = 20 s: Mach 12.345` or what the boundary is instead.
+    pub fn describe(&self) -> String {
+        let what = match &self.boundary {
+            FlutterBoundary::Crossing {
+                mach, frequency_hz, ..
+            } => format!("flutter at Mach {mach:.4} ({frequency_hz:.2} Hz)"),
+            FlutterBoundary::NeverFlutters {
+                max_real_per_s,
+                at_mach,
+                least_damping_ratio,
+                limited_by,
+            } => format!(
+                "no flutter in the Mach range (largest real part {max_real_per_s:.4} /s at \
+                 Mach {at_mach}, least damping ratio {least_damping_ratio:.4}){}",
+                limited_by
+                    .as_ref()
+                    .map_or_else(String::new, |l| format!(", analysable only below {l}"))
+            ),
+            FlutterBoundary::FluttersEverywhere {
+                lowest_mach,
+                max_real_per_s,
+                ..
+            } => format!(
+                "already unstable at the lowest Mach {lowest_mach} (largest real part \
+                 {max_real_per_s:.4} /s)"
+            ),
+            FlutterBoundary::Unresolved { reason } => format!("unresolved: {reason}"),
+        };
+        format!("t = {} s: {what}", self.time_s)
+    }
+}
+
 /// Everything that defines a study: shards merge only when theirs are equal.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct StudySpec {
@@ -164,6 +251,9 @@ pub struct StudySpec {
     pub altitude_m: f64,
     /// Present for `simulate` studies.
     pub flight: Option<FlightSpec>,
+    /// Present for `flutter` studies.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub flutter: Option<FlutterGrid>,
     /// The config file the cases edit (for messages).
     pub config_file: String,
     /// FNV-1a 64 of the config's TOML, so shards of different configs never merge.
@@ -276,44 +366,11 @@ impl StudySpec {
     }
 }
 
-/// FNV-1a 64 of `text`, as 16 hex digits (stable across builds, unlike `DefaultHasher`).
-pub fn fingerprint(text: &str) -> String {
-    let hash = text.bytes().fold(0xcbf2_9ce4_8422_2325u64, |h, b| {
-        (h ^ u64::from(b)).wrapping_mul(0x0000_0100_0000_01b3)
-    });
-    format!("{hash:016x}")
-}
+impl ShardedStudy for StudySpec {
+    const KIND: &'static str = "trade study";
 
-/// A deterministic share of the cases: case `i` belongs to shard `i mod count`.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
-pub struct Shard {
-    /// 0-based (Slurm's `SLURM_ARRAY_TASK_ID`).
-    pub index: usize,
-    pub count: usize,
-}
-
-impl Shard {
-    /// The whole study.
-    pub const ALL: Shard = Shard { index: 0, count: 1 };
-
-    /// The cases of this shard among `cases`.
-    pub fn cases(self, cases: usize) -> Vec<usize> {
-        (self.index..cases).step_by(self.count).collect()
-    }
-}
-
-impl FromStr for Shard {
-    type Err = anyhow::Error;
-
-    /// `K/N`, 0 ≤ K < N.
-    fn from_str(text: &str) -> Result<Self> {
-        let parsed = text
-            .split_once('/')
-            .and_then(|(k, n)| Some((k.trim().parse().ok()?, n.trim().parse().ok()?)));
-        match parsed {
-            Some((index, count)) if count >= 1 && index < count => Ok(Self { index, count }),
-            _ => bail!("--shard `{text}`: expected K/N with 0 <= K < N, e.g. 0/4"),
-        }
+    fn case_count(&self) -> usize {
+        StudySpec::case_count(self)
     }
 }
 
@@ -330,9 +387,18 @@ pub struct CaseResult {
     /// Recorded time histories (`simulate`): `time_s` and [`HISTORY_CHANNELS`].
     #[serde(default, skip_serializing_if = "BTreeMap::is_empty")]
     pub history: BTreeMap<String, Vec<f64>>,
+    /// The flutter boundary at each time (`flutter`).
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub flutter: Vec<FlutterAtTime>,
     /// Why the case failed, if it did.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub failure: Option<String>,
+}
+
+impl ShardedCase for CaseResult {
+    fn index(&self) -> usize {
+        self.index
+    }
 }
 
 /// Runs case `index` of `spec` on `base` (configs and plugins as loaded).
@@ -350,6 +416,7 @@ pub fn run_case(
         wall_time_s: 0.0,
         values: BTreeMap::new(),
         history: BTreeMap::new(),
+        flutter: Vec::new(),
         failure: None,
     };
     let outcome = spec
@@ -357,6 +424,7 @@ pub fn run_case(
         .and_then(|loaded| match spec.job {
             TradeJob::Trim => trim_case(spec, &loaded, registry, &mut result),
             TradeJob::Simulate => simulate_case(spec, &loaded, registry, inputs, &mut result),
+            TradeJob::Flutter => flutter_case(spec, &loaded, registry, &mut result),
         });
     if let Err(error) = outcome {
         result.failure = Some(
@@ -474,72 +542,98 @@ fn simulate_case(
     Ok(())
 }
 
-/// The cases of one shard (or of the whole study), as written to `trade-cases.json`.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-pub struct TradeCases {
-    pub spec: StudySpec,
-    pub shard: Shard,
-    pub cases: Vec<CaseResult>,
+/// The flutter analysis of case `loaded`: the flutter command's, with its models from the
+/// case's region (conduction `full-order` unless a variation names it: `pod` would train).
+pub fn flutter_setup(spec: &StudySpec, loaded: &LoadedConfig) -> Result<FlutterSetup> {
+    let Some(grid) = &spec.flutter else {
+        bail!("a flutter study needs its Mach grid and times");
+    };
+    let region = grid.region.as_str();
+    let configured = loaded.config.regions.region(region).with_context(|| {
+        format!(
+            "{}: key `regions.{region}`: not a lifting surface",
+            loaded.file
+        )
+    })?;
+    let conduction_varied = spec.variations.iter().any(|v| {
+        let (table, role) = v.parts();
+        role == "conduction" && (table == region || table == "lifting_surfaces")
+    });
+    let structure = configured.structure.with_context(|| {
+        format!(
+            "{}: region `{region}` has no structure model (set `regions.lifting_surfaces.structure`)",
+            loaded.file
+        )
+    })?;
+    let or = |name: Option<String>, default: &str| name.unwrap_or_else(|| default.to_owned());
+    Ok(FlutterSetup {
+        region: loaded.region(region)?,
+        models: FlutterModels {
+            aero: or(configured.aero, "shock-expansion-piston"),
+            heat_flux: or(configured.heat_flux, "eckert"),
+            conduction: if conduction_varied {
+                or(configured.conduction, "full-order")
+            } else {
+                "full-order".to_owned()
+            },
+            structure,
+        },
+        altitude_m: spec.altitude_m,
+        alpha_rad: grid.alpha_deg.to_radians(),
+        heating: HeatingSteps {
+            dt_s: grid.dt_s,
+            flux_every: 1,
+            initial_k: 293.0,
+        },
+        method: DerivativeMethod::Direct,
+        compare_methods: false,
+        options: SurfaceOptions::default(),
+    })
 }
 
-/// Joins shard outputs: same study, same shard count, every case exactly once.
-pub fn merge_cases(parts: Vec<(String, TradeCases)>) -> Result<(StudySpec, Vec<CaseResult>)> {
-    let Some((first_name, first)) = parts.first() else {
-        bail!("nothing to merge: give the shard output folders");
+/// The surface's flutter map: the flutter Mach number at each time, or the largest real part
+/// and least damping where it does not flutter in the range.
+fn flutter_case(
+    spec: &StudySpec,
+    loaded: &LoadedConfig,
+    registry: &Registry,
+    out: &mut CaseResult,
+) -> Result<()> {
+    let setup = flutter_setup(spec, loaded)?;
+    let Some(grid) = &spec.flutter else {
+        bail!("a flutter study needs its Mach grid and times");
     };
-    let spec = first.spec.clone();
-    let count = first.shard.count;
-    let mut seen_shards = vec![None::<String>; count];
-    let mut cases: Vec<Option<CaseResult>> = vec![None; spec.case_count()];
-    for (name, part) in parts.iter() {
-        if part.spec != spec {
-            bail!(
-                "{name} is a different trade study from {first_name} (job, variations, flight \
-                 or config differ); shards merge only within one study"
-            );
-        }
-        if part.shard.count != count {
-            bail!(
-                "{name} is shard {}/{} but {first_name} is one of {count} shards",
-                part.shard.index,
-                part.shard.count
-            );
-        }
-        if let Some(other) = &seen_shards[part.shard.index] {
-            bail!(
-                "shard {}/{count} is given twice: {other} and {name}",
-                part.shard.index
-            );
-        }
-        seen_shards[part.shard.index] = Some(name.clone());
-        for case in &part.cases {
-            let slot = cases.get_mut(case.index).with_context(|| {
-                format!(
-                    "{name}: case {} is outside the study's {} cases",
-                    case.index,
-                    spec.case_count()
-                )
-            })?;
-            if slot.is_some() {
-                bail!("{name}: case {} appears twice", case.index);
+    let map = flutter_map(&setup, registry, &grid.machs, &grid.times_s)?;
+    for (&time_s, boundary) in grid.times_s.iter().zip(map.boundaries) {
+        match &boundary {
+            FlutterBoundary::Crossing { mach, .. } => {
+                out.values.insert(flutter_mach_key(time_s), *mach);
             }
-            *slot = Some(case.clone());
+            FlutterBoundary::NeverFlutters {
+                max_real_per_s,
+                least_damping_ratio,
+                ..
+            } => {
+                out.values
+                    .insert(format!("max_real_per_s_at_{time_s}_s"), *max_real_per_s);
+                out.values.insert(
+                    format!("least_damping_ratio_at_{time_s}_s"),
+                    *least_damping_ratio,
+                );
+            }
+            _ => {}
         }
+        out.flutter.push(FlutterAtTime { time_s, boundary });
     }
-    let missing: Vec<String> = seen_shards
-        .iter()
-        .enumerate()
-        .filter(|(_, s)| s.is_none())
-        .map(|(k, _)| format!("{k}/{count}"))
-        .collect();
-    if !missing.is_empty() {
-        bail!("shards missing from the merge: {}", missing.join(", "));
-    }
-    let mut complete = Vec::with_capacity(cases.len());
-    for (index, case) in cases.into_iter().enumerate() {
-        complete.push(case.with_context(|| format!("case {index} is in no shard output"))?);
-    }
-    Ok((spec, complete))
+    Ok(())
+}
+
+/// The cases of one shard (or of the whole study), as written to `trade-cases.json`.
+pub type TradeCases = ShardOutput<StudySpec, CaseResult>;
+
+/// Joins trade shard outputs ([`merge_shards`]).
+pub fn merge_cases(parts: Vec<(String, TradeCases)>) -> Result<(StudySpec, Vec<CaseResult>)> {
+    merge_shards(parts)
 }
 
 /// Per-model cost, s, from a `model,seconds` CSV (header line; extra columns ignored).
@@ -584,7 +678,8 @@ pub struct TradeRow {
     pub deviations: BTreeMap<String, f64>,
     /// Trim: the largest relative deviation of α, δe, φ; simulate: the largest channel RMS
     /// deviation over the reference channel's scale, max(RMS, peak-to-peak, floor)
-    /// ([`HISTORY_FLOORS`]). `None` when either failed.
+    /// ([`HISTORY_FLOORS`]); flutter: the largest relative deviation of the flutter Mach number
+    /// over the times ([`flutter_deviation`]). `None` when either failed.
     pub error: Option<f64>,
     pub reference: bool,
     /// On the Pareto front of (cost, error): no other case is both cheaper and more accurate.
@@ -695,6 +790,36 @@ fn deviation(
                 error = error.max(rms / history_scale(&r[..n], floor));
             }
         }
+        TradeJob::Flutter => return flutter_deviation(case, reference),
+    }
+    (deviations, error.is_finite().then_some(error))
+}
+
+/// Flutter error: max over times of |M_f − M_f,ref| / M_f,ref. A time at which neither
+/// flutters in the range (or both already flutter at its lowest Mach) agrees and adds
+/// nothing; one at which only one of them flutters, or either is unresolved, leaves the error
+/// undefined (`None`): the range holds no number to compare.
+fn flutter_deviation(
+    case: &CaseResult,
+    reference: &CaseResult,
+) -> (BTreeMap<String, f64>, Option<f64>) {
+    use FlutterBoundary::{Crossing, FluttersEverywhere, NeverFlutters};
+    let mut deviations = BTreeMap::new();
+    if case.flutter.len() != reference.flutter.len() {
+        return (deviations, None);
+    }
+    let mut error: f64 = 0.0;
+    for (c, r) in case.flutter.iter().zip(&reference.flutter) {
+        match (&c.boundary, &r.boundary) {
+            (Crossing { mach, .. }, Crossing { mach: m_ref, .. }) => {
+                let d = (mach - m_ref).abs();
+                deviations.insert(flutter_mach_key(c.time_s), d);
+                error = error.max(d / m_ref);
+            }
+            (NeverFlutters { .. }, NeverFlutters { .. })
+            | (FluttersEverywhere { .. }, FluttersEverywhere { .. }) => {}
+            _ => return (deviations, None),
+        }
     }
     (deviations, error.is_finite().then_some(error))
 }
@@ -744,6 +869,7 @@ mod tests {
             mach: 6.0,
             altitude_m: 26_000.0,
             flight: None,
+            flutter: None,
             config_file: "test".into(),
             config_fingerprint: fingerprint("test"),
         }
@@ -764,21 +890,6 @@ mod tests {
         assert_eq!(ranked.fidelity(5), [3, 1]);
     }
 
-    #[test]
-    fn shards_partition_the_cases() {
-        let mut all: Vec<usize> = (0..3)
-            .flat_map(|k| Shard { index: k, count: 3 }.cases(7))
-            .collect();
-        all.sort_unstable();
-        assert_eq!(all, (0..7).collect::<Vec<_>>());
-        assert!("3/3".parse::<Shard>().is_err());
-        assert!("1/0".parse::<Shard>().is_err());
-        assert_eq!(
-            "1/4".parse::<Shard>().unwrap(),
-            Shard { index: 1, count: 4 }
-        );
-    }
-
     fn case(index: usize, values: &[(&str, f64)], history: &[(&str, Vec<f64>)]) -> CaseResult {
         CaseResult {
             index,
@@ -789,6 +900,7 @@ mod tests {
                 .iter()
                 .map(|(k, v)| ((*k).to_owned(), v.clone()))
                 .collect(),
+            flutter: Vec::new(),
             failure: None,
         }
     }
@@ -841,6 +953,96 @@ mod tests {
             (e.unwrap() - 0.2).abs() < 1e-12,
             "2e-4 deg/s over the 1e-3 floor"
         );
+    }
+
+    fn at(time_s: f64, boundary: FlutterBoundary) -> FlutterAtTime {
+        FlutterAtTime { time_s, boundary }
+    }
+
+    fn crossing(mach: f64) -> FlutterBoundary {
+        FlutterBoundary::Crossing {
+            mach,
+            bracket: (mach - 0.5, mach + 0.5),
+            evaluations: 5,
+            frequency_hz: 20.0,
+        }
+    }
+
+    fn stable() -> FlutterBoundary {
+        FlutterBoundary::NeverFlutters {
+            max_real_per_s: -0.5,
+            at_mach: 20.0,
+            least_damping_ratio: 0.01,
+            limited_by: None,
+        }
+    }
+
+    /// Hand-computed: flutter Mach 15 and 4 against the reference's 12.5 and 5 give relative
+    /// deviations 0.2 and 0.2, 2.5/12.5 and 1/5; a time at which neither flutters in the range
+    /// adds nothing; one at which only one flutters leaves the error undefined.
+    #[test]
+    fn flutter_error_follows_its_definition() {
+        let with = |index: usize, flutter: Vec<FlutterAtTime>| CaseResult {
+            flutter,
+            ..case(index, &[], &[])
+        };
+        let reference = with(
+            1,
+            vec![
+                at(0.0, crossing(12.5)),
+                at(10.0, crossing(5.0)),
+                at(20.0, stable()),
+            ],
+        );
+        let other = with(
+            0,
+            vec![
+                at(0.0, crossing(15.0)),
+                at(10.0, crossing(4.0)),
+                at(20.0, stable()),
+            ],
+        );
+        let (d, e) = deviation(TradeJob::Flutter, &other, &reference);
+        assert!((e.unwrap() - 0.2).abs() < 1e-12);
+        assert!((d[&flutter_mach_key(0.0)] - 2.5).abs() < 1e-12);
+        assert!((d[&flutter_mach_key(10.0)] - 1.0).abs() < 1e-12);
+        assert_eq!(d.len(), 2, "no deviation where neither flutters");
+        let (_, e) = deviation(TradeJob::Flutter, &reference, &reference);
+        assert_eq!(e, Some(0.0));
+        let only_one = with(
+            0,
+            vec![
+                at(0.0, crossing(15.0)),
+                at(10.0, stable()),
+                at(20.0, stable()),
+            ],
+        );
+        assert_eq!(deviation(TradeJob::Flutter, &only_one, &reference).1, None);
+        assert!(
+            at(20.0, stable())
+                .describe()
+                .contains("no flutter in the Mach range")
+        );
+        assert!(
+            at(20.0, stable())
+                .describe()
+                .contains("least damping ratio 0.0100")
+        );
+    }
+
+    #[test]
+    fn a_flutter_study_analyses_the_side_its_variations_name() {
+        let region = |keys: &[&str]| {
+            let v: Vec<Variation> = keys.iter().map(|k| k.parse().unwrap()).collect();
+            flutter_region(&v)
+        };
+        assert_eq!(region(&["left_surface.aero=a"]).unwrap(), "left_surface");
+        assert_eq!(
+            region(&["lifting_surfaces.aero=a"]).unwrap(),
+            "right_surface"
+        );
+        assert_eq!(region(&["main_body.aero=a"]).unwrap(), "right_surface");
+        assert!(region(&["left_surface.aero=a", "right_surface.heat_flux=b"]).is_err());
     }
 
     #[test]

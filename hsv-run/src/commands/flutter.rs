@@ -121,10 +121,13 @@ pub struct FlutterArgs {
     pub out: OutArgs,
     #[command(flatten)]
     pub json: JsonFlag,
+    /// `--shard K/N` (a share of the Mach columns) and `--emit-slurm N`.
+    #[command(flatten)]
+    pub shards: super::shard::ShardArgs,
 }
 
 /// `A:B` with 1 ≤ A < B, finite.
-fn parse_mach_range(text: &str) -> Result<(f64, f64)> {
+pub(super) fn parse_mach_range(text: &str) -> Result<(f64, f64)> {
     let Some((a, b)) = text.split_once(':') else {
         bail!("--mach-range must be A:B (e.g. 2:20), got `{text}`");
     };
@@ -141,7 +144,7 @@ fn parse_mach_range(text: &str) -> Result<(f64, f64)> {
 }
 
 /// The Mach grid A, A + step, ..., B.
-fn grid(range: (f64, f64), step: f64) -> Result<Vec<f64>> {
+pub(super) fn grid(range: (f64, f64), step: f64) -> Result<Vec<f64>> {
     if !(step.is_finite() && step > 0.0) {
         bail!("--mach-step must be a positive number, got {step}");
     }
@@ -163,6 +166,9 @@ pub fn run(args: FlutterArgs, registry: &Registry) -> Result<()> {
     }
     let range = parse_mach_range(&args.mach_range)?;
     let machs = grid(range, args.mach_step)?;
+    if args.panel && args.shards.is_sharded() {
+        bail!("--shard and --emit-slurm split the flutter map over Mach; --panel is one check");
+    }
     if args.panel {
         return run_panel(&args, &loaded, &registry, &machs);
     }
@@ -225,17 +231,31 @@ pub fn run(args: FlutterArgs, registry: &Registry) -> Result<()> {
         compare_methods: !args.no_compare,
         options: SurfaceOptions::default(),
     };
+    if args.shards.is_sharded() {
+        return super::shard::flutter(&args, &loaded, &registry, &setup, &machs, &times);
+    }
     let mut folder = RunFolder::create("flutter", args.out.out.as_deref(), args.out.force)?;
     let map = folder.run(
         |_| flutter_map(&setup, &registry, &machs, &times).map_err(anyhow::Error::from),
         || json!({"command": "flutter"}),
     )?;
-    write_outputs(&mut folder, &map)?;
-    let summary = folder.write_summary(summary(&setup, &map), &RunStatus::Completed)?;
-    if args.json.json {
+    write_run(&mut folder, &setup, &map, args.json.json)
+}
+
+/// The map's CSVs, PNGs and summary, and the table (or the summary with `json`); shared with
+/// `hsv-run merge` of flutter shards.
+pub(super) fn write_run(
+    folder: &mut RunFolder,
+    setup: &FlutterSetup,
+    map: &FlutterMap,
+    json: bool,
+) -> Result<()> {
+    write_outputs(folder, map)?;
+    let summary = folder.write_summary(summary(setup, map), &RunStatus::Completed)?;
+    if json {
         outln!("{}", serde_json::to_string_pretty(&summary)?)?;
     } else {
-        print_table(&setup, &map, &folder.path)?;
+        print_table(setup, map, &folder.path)?;
     }
     Ok(())
 }

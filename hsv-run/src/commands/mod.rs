@@ -11,6 +11,7 @@ pub mod linearize;
 pub mod merge;
 pub mod modes;
 pub mod rom;
+pub mod shard;
 pub mod simulate;
 pub mod trade;
 pub mod trim;

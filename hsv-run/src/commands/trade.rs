@@ -1,8 +1,9 @@
 //! `hsv-run trade`: a fidelity trade study — every combination of the varied region models run
-//! through one job on all cores, each compared with the highest-fidelity combination, with its
-//! cost; a shard of it (`--shard K/N`), or a Slurm job array that runs the shards
-//! (`--emit-slurm N`). Writes `trade.csv`, `trade.json`, `trade.png` (error against cost, the
-//! Pareto front) and `trade-cases.json` (what `hsv-run merge` joins).
+//! through one job (trim, simulate, flutter) on all cores, each compared with the
+//! highest-fidelity combination, with its cost; a shard of it (`--shard K/N`), or a Slurm job
+//! array that runs the shards (`--emit-slurm N`, [`super::shard`]). Writes `trade.csv`,
+//! `trade.json`, `trade.png` (error against cost, the Pareto front) and `trade-cases.json`
+//! (what `hsv-run merge` joins).
 
 use std::collections::BTreeMap;
 use std::fmt::Write as _;
@@ -14,11 +15,13 @@ use hsv_core::config::LoadedConfig;
 use hsv_core::registry::Registry;
 use rayon::prelude::*;
 
+use super::shard::{ShardArgs, SlurmJob, absolute, emit_slurm};
 use super::{ConfigArg, JsonFlag, OutArgs, load_config};
+use crate::analysis::shards::config_fingerprint;
 use crate::analysis::simulate::Inputs;
 use crate::analysis::trade::{
-    CaseResult, FlightSpec, Shard, StudySpec, TradeCases, TradeJob, TradeTable, Variation, compare,
-    fingerprint, read_costs, run_case,
+    CaseResult, FlightSpec, FlutterGrid, StudySpec, TradeCases, TradeJob, TradeTable, Variation,
+    compare, flutter_mach_key, flutter_region, read_costs, run_case,
 };
 use crate::outln;
 use crate::output::{
@@ -33,7 +36,8 @@ pub const CASES_FILE: &str = "trade-cases.json";
 #[derive(Args, Debug, Clone)]
 #[command(
     after_help = "CONFIG: a `[trade]` table gives the same: `job = \"trim\"`, \
-    `duration_s`, `dt_s`, `record_every`, `costs = \"costs.csv\"` and `[trade.vary]` with \
+    `duration_s`, `dt_s`, `record_every`, `mach_range`, `mach_step`, `times_s`, \
+    `costs = \"costs.csv\"` and `[trade.vary]` with \
     `\"main_body.aero\" = [\"newtonian-scalar\", \"shock-expansion\"]`; flags override it. \
     CLUSTER: `--emit-slurm N` writes trade-array.sbatch (a Slurm job array of N shards) and \
     submit.sh (submits it, then `hsv-run merge` as a dependent job) into the run folder."
@@ -52,46 +56,49 @@ pub struct TradeArgs {
     /// Freestream Mach number (default: the config's).
     #[arg(long, allow_negative_numbers = true)]
     pub mach: Option<f64>,
-    /// Geometric altitude, m (default: the config's).
+    /// Geometric altitude, m (default: the config's; a flutter study: 10 km, as `hsv-run
+    /// flutter`).
     #[arg(long = "altitude-m", allow_negative_numbers = true)]
     pub altitude_m: Option<f64>,
     /// Flight time of a simulate study, s (default 2).
     #[arg(long = "duration-s", allow_negative_numbers = true)]
     pub duration_s: Option<f64>,
-    /// Aeroelastic step of a simulate study, s (default 0.0005, as `hsv-run simulate`).
+    /// Aeroelastic step of a simulate study, s (default 0.0005, as `hsv-run simulate`); the
+    /// conduction step of a flutter study (default 0.1, as `hsv-run flutter`).
     #[arg(long = "dt-s", allow_negative_numbers = true)]
     pub dt_s: Option<f64>,
     /// Steps between recorded samples of a simulate study (default 5).
     #[arg(long = "record-every")]
     pub record_every: Option<usize>,
+    /// Mach range of a flutter study's grid, `A:B` (default 2:20).
+    #[arg(long = "mach-range", value_name = "A:B")]
+    pub mach_range: Option<String>,
+    /// Mach step of a flutter study's grid (default 3: a coarser grid than `hsv-run flutter`'s,
+    /// the crossing itself is found by root finding).
+    #[arg(long = "mach-step", allow_negative_numbers = true)]
+    pub mach_step: Option<f64>,
+    /// Times in the flow of a flutter study, s, comma separated (default 0,20).
+    #[arg(
+        long = "times-s",
+        value_name = "LIST",
+        value_delimiter = ',',
+        num_args = 1..,
+        allow_negative_numbers = true
+    )]
+    pub times_s: Vec<f64>,
+    /// Angle of attack of a flutter study, deg (default: the config's).
+    #[arg(long = "alpha-deg", allow_negative_numbers = true)]
+    pub alpha_deg: Option<f64>,
     /// Per-model cost CSV `model,seconds` (scripts/criterion_costs.py writes it from the
     /// benches): a case's cost is the sum over its varied models (default: its wall time,
     /// which varies from run to run).
     #[arg(long, value_name = "FILE")]
     pub costs: Option<PathBuf>,
-    /// Run only shard K of N (0-based; case i belongs to shard i mod N); join the shard folders
-    /// with `hsv-run merge`.
-    #[arg(long, value_name = "K/N")]
-    pub shard: Option<String>,
+    #[command(flatten)]
+    pub shards: ShardArgs,
     /// Worker threads (default: all cores); 1 gives uncontended wall times.
     #[arg(long, default_value_t = 0)]
     pub threads: usize,
-    /// Write a Slurm job-array script running N shards (and submit.sh, which also queues the
-    /// merge) instead of running.
-    #[arg(long = "emit-slurm", value_name = "N", conflicts_with = "shard")]
-    pub emit_slurm: Option<usize>,
-    /// `#SBATCH --cpus-per-task` of each shard.
-    #[arg(long = "slurm-cpus", default_value_t = 8)]
-    pub slurm_cpus: usize,
-    /// `#SBATCH --time` of each shard.
-    #[arg(long = "slurm-time", default_value = "02:00:00")]
-    pub slurm_time: String,
-    /// `#SBATCH --partition` (default: the cluster's).
-    #[arg(long = "slurm-partition")]
-    pub slurm_partition: Option<String>,
-    /// The hsv-run the cluster runs (default: this executable).
-    #[arg(long = "hsv-run", value_name = "PATH")]
-    pub hsv_run: Option<PathBuf>,
     #[command(flatten)]
     pub output: OutArgs,
     /// No per-case progress lines.
@@ -111,6 +118,9 @@ struct TradeSettings {
     duration_s: Option<f64>,
     dt_s: Option<f64>,
     record_every: Option<usize>,
+    mach_range: Option<String>,
+    mach_step: Option<f64>,
+    times_s: Option<Vec<f64>>,
     costs: Option<PathBuf>,
 }
 
@@ -155,14 +165,17 @@ fn study(
     }
     let job = args.job.or(settings.job).unwrap_or(TradeJob::Trim);
     let mach = args.mach.unwrap_or(loaded.config.flight.mach);
-    let altitude_m = args.altitude_m.unwrap_or(loaded.config.flight.altitude_m);
+    let altitude_m = args.altitude_m.unwrap_or(match job {
+        TradeJob::Flutter => FLUTTER_ALTITUDE_M,
+        _ => loaded.config.flight.altitude_m,
+    });
     for (flag, value) in [("--mach", mach), ("--altitude-m", altitude_m)] {
         if !value.is_finite() {
             bail!("{flag} must be a finite number, got {value}");
         }
     }
     let flight = match job {
-        TradeJob::Trim => None,
+        TradeJob::Trim | TradeJob::Flutter => None,
         TradeJob::Simulate => {
             let duration_s = args.duration_s.or(settings.duration_s).unwrap_or(2.0);
             let dt_s = args.dt_s.or(settings.dt_s).unwrap_or(0.0005);
@@ -180,15 +193,19 @@ fn study(
             })
         }
     };
-    let config_text = toml::to_string(&loaded.raw).unwrap_or_default();
+    let flutter = match job {
+        TradeJob::Flutter => Some(flutter_grid(args, &settings, loaded, &variations)?),
+        _ => None,
+    };
     let mut spec = StudySpec {
         job,
         variations,
         mach,
         altitude_m,
         flight,
+        flutter,
         config_file: loaded.file.clone(),
-        config_fingerprint: fingerprint(&config_text),
+        config_fingerprint: config_fingerprint(loaded),
     };
     spec.rank(registry)?;
     // Every combination's names and roles are checked before any case runs.
@@ -206,6 +223,55 @@ fn study(
     Ok((spec, costs))
 }
 
+/// The paper's flutter altitude (§IV.D), the default of `hsv-run flutter`.
+const FLUTTER_ALTITUDE_M: f64 = 10_000.0;
+
+/// The grid of a flutter study: flags, else the `[trade]` table, else 2:20 in steps of 3 at
+/// 0 and 20 s.
+fn flutter_grid(
+    args: &TradeArgs,
+    settings: &TradeSettings,
+    loaded: &LoadedConfig,
+    variations: &[Variation],
+) -> Result<FlutterGrid> {
+    let range_text = args
+        .mach_range
+        .clone()
+        .or_else(|| settings.mach_range.clone())
+        .unwrap_or_else(|| "2:20".to_owned());
+    let range = super::flutter::parse_mach_range(&range_text)?;
+    let mach_step = args.mach_step.or(settings.mach_step).unwrap_or(3.0);
+    let machs = super::flutter::grid(range, mach_step)?;
+    let times_s = if args.times_s.is_empty() {
+        settings.times_s.clone().unwrap_or_else(|| vec![0.0, 20.0])
+    } else {
+        args.times_s.clone()
+    };
+    if times_s.is_empty()
+        || times_s.iter().any(|t| !(t.is_finite() && *t >= 0.0))
+        || times_s.windows(2).any(|w| w[1] <= w[0])
+    {
+        bail!("--times-s (or `trade.times_s`) must be ascending, finite and >= 0, got {times_s:?}");
+    }
+    let dt_s = args.dt_s.or(settings.dt_s).unwrap_or(0.1);
+    if !(dt_s.is_finite() && dt_s > 0.0) {
+        bail!("--dt-s (or `trade.dt_s`) of a flutter study must be a positive number, got {dt_s}");
+    }
+    let alpha_deg = args.alpha_deg.unwrap_or(loaded.config.flight.alpha_deg);
+    if !alpha_deg.is_finite() {
+        bail!("--alpha-deg must be a finite number, got {alpha_deg}");
+    }
+    Ok(FlutterGrid {
+        region: flutter_region(variations)?,
+        mach_range: range,
+        mach_step,
+        machs,
+        times_s,
+        dt_s,
+        alpha_deg,
+    })
+}
+
 /// Runs the study (or its shard, or writes the Slurm scripts).
 pub fn run(args: TradeArgs, registry: &Registry) -> Result<()> {
     let (loaded, registry) = load_config(args.config.config.as_deref(), registry)?;
@@ -219,18 +285,26 @@ pub fn run(args: TradeArgs, registry: &Registry) -> Result<()> {
         })
         .transpose()?;
     let mut folder = RunFolder::create("trade", args.output.out.as_deref(), args.output.force)?;
-    if let Some(shards) = args.emit_slurm {
-        return emit_slurm(&args, &spec, costs_path.as_deref(), shards, &mut folder);
+    if let Some(shards) = args.shards.emit_slurm {
+        let path = costs_path.as_deref();
+        let job = SlurmJob {
+            command: "trade",
+            what: "trade-study",
+            arguments: shard_arguments(&args, &spec, path)?,
+            // The merge computes the table, so it needs the same cost file.
+            merge_arguments: match path {
+                Some(c) => vec!["--costs".to_owned(), absolute(c)?.display().to_string()],
+                None => Vec::new(),
+            },
+            cases: spec.case_count(),
+            merge_computes: false,
+        };
+        return emit_slurm(&args.shards, &job, shards, &mut folder, args.json.json);
     }
-    let shard = args
-        .shard
-        .as_deref()
-        .map(str::parse)
-        .transpose()?
-        .unwrap_or(Shard::ALL);
+    let shard = args.shards.shard()?;
     let inputs = match spec.job {
         TradeJob::Simulate => super::simulate::inputs(&loaded)?,
-        TradeJob::Trim => Inputs::paper_doublet(),
+        TradeJob::Trim | TradeJob::Flutter => Inputs::paper_doublet(),
     };
     let indices = shard.cases(spec.case_count());
     if !args.quiet {
@@ -379,9 +453,10 @@ pub fn table_csv(table: &TradeTable) -> String {
     let values = value_names(table);
     let deviations = deviation_names(table);
     let deviation_label = match table.spec.job {
-        TradeJob::Trim => "abs_deviation",
+        TradeJob::Trim | TradeJob::Flutter => "abs_deviation",
         TradeJob::Simulate => "rms_deviation",
     };
+    let flutter = table.spec.job == TradeJob::Flutter;
     let mut text = String::from(
         "case,combination,reference,pareto,fidelity_sum,wall_time_s,model_cost_s,error",
     );
@@ -390,6 +465,9 @@ pub fn table_csv(table: &TradeTable) -> String {
     }
     for d in &deviations {
         let _ = write!(text, ",{deviation_label}_{d}");
+    }
+    if flutter {
+        text.push_str(",flutter_boundaries");
     }
     text.push_str(",failure\n");
     for row in &table.rows {
@@ -411,10 +489,26 @@ pub fn table_csv(table: &TradeTable) -> String {
         for d in &deviations {
             let _ = write!(text, ",{}", number(row.deviations.get(d).copied()));
         }
+        if flutter {
+            let _ = write!(
+                text,
+                ",\"{}\"",
+                boundaries_text(&row.case).replace('"', "'")
+            );
+        }
         let failure = row.case.failure.as_deref().unwrap_or("").replace('"', "'");
         let _ = writeln!(text, ",\"{failure}\"");
     }
     text
+}
+
+/// A flutter case's boundary at each time, `; `-separated.
+fn boundaries_text(case: &CaseResult) -> String {
+    case.flutter
+        .iter()
+        .map(|b| b.describe())
+        .collect::<Vec<_>>()
+        .join("; ")
 }
 
 /// The table as JSON (histories left out: they are in `trade-cases.json`).
@@ -423,7 +517,7 @@ pub fn table_json(table: &TradeTable) -> serde_json::Value {
         .rows
         .iter()
         .map(|r| {
-            serde_json::json!({
+            let mut row = serde_json::json!({
                 "case": r.case.index,
                 "combination": r.label,
                 "models": r.case.models,
@@ -436,7 +530,11 @@ pub fn table_json(table: &TradeTable) -> serde_json::Value {
                 "values": r.case.values,
                 "deviations": r.deviations,
                 "failure": r.case.failure,
-            })
+            });
+            if !r.case.flutter.is_empty() {
+                row["flutter_boundaries"] = serde_json::json!(r.case.flutter);
+            }
+            row
         })
         .collect();
     serde_json::json!({
@@ -446,6 +544,7 @@ pub fn table_json(table: &TradeTable) -> serde_json::Value {
         "error_definition": match table.spec.job {
             TradeJob::Trim => "max over alpha, elevon, phi of |value - reference| / |reference|",
             TradeJob::Simulate => "max over altitude, airspeed, alpha, pitch, q of RMS(history - reference) / max(RMS(reference), peak-to-peak(reference), floor); floors 0.01 m, 0.01 m/s, 0.001 deg, 0.001 deg, 0.001 deg/s",
+            TradeJob::Flutter => FLUTTER_ERROR,
         },
         "rows": rows,
     })
@@ -508,29 +607,53 @@ fn write_pareto_png(path: &Path, table: &TradeTable) -> Result<()> {
     write_styled_plots_png(path, &[plot], 1, (900, 600))
 }
 
-/// The table on standard output.
-fn print_table(table: &TradeTable) -> Result<()> {
-    let spec = &table.spec;
-    outln!(
-        "Fidelity trade study: {} at Mach {}, {} m; {} cases, reference (highest fidelity) case {}",
-        spec.job.as_str(),
-        spec.mach,
-        spec.altitude_m,
-        table.rows.len(),
-        table.reference_case
-    )?;
-    let shown: Vec<(&str, &str)> = match spec.job {
-        TradeJob::Trim => vec![
+/// What a flutter study's error is.
+const FLUTTER_ERROR: &str = "max over times of |flutter Mach - reference| / reference; a time at which neither flutters in the Mach range adds nothing, one at which only one of them flutters leaves the error undefined";
+
+/// The value columns printed for `job`: (key, title).
+fn shown_values(spec: &StudySpec) -> Vec<(String, String)> {
+    let pairs = |list: &[(&str, &str)]| {
+        list.iter()
+            .map(|(k, t)| ((*k).to_owned(), (*t).to_owned()))
+            .collect()
+    };
+    match spec.job {
+        TradeJob::Trim => pairs(&[
             ("alpha_deg", "alpha (deg)"),
             ("elevon_deg", "elevon (deg)"),
             ("fuel_equivalence_ratio", "phi"),
-        ],
-        TradeJob::Simulate => vec![
+        ]),
+        TradeJob::Simulate => pairs(&[
             ("trim_alpha_deg", "trim alpha"),
             ("final_altitude_m", "final alt (m)"),
             ("final_alpha_deg", "final alpha"),
-        ],
+        ]),
+        TradeJob::Flutter => spec
+            .flutter
+            .iter()
+            .flat_map(|g| &g.times_s)
+            .map(|&t| (flutter_mach_key(t), format!("M_f @ {t} s")))
+            .collect(),
+    }
+}
+
+/// The table on standard output.
+fn print_table(table: &TradeTable) -> Result<()> {
+    let spec = &table.spec;
+    let condition = match &spec.flutter {
+        Some(g) => format!(
+            "{} over Mach {:?}, {} m",
+            g.region, g.machs, spec.altitude_m
+        ),
+        None => format!("Mach {}, {} m", spec.mach, spec.altitude_m),
     };
+    outln!(
+        "Fidelity trade study: {} at {condition}; {} cases, reference (highest fidelity) case {}",
+        spec.job.as_str(),
+        table.rows.len(),
+        table.reference_case
+    )?;
+    let shown = shown_values(spec);
     let mut header = format!(
         "{:>4} {:>3} {:>8} {:>11} {:>11}",
         "case", "fid", "mark", "wall (s)", "cost (s)"
@@ -560,7 +683,7 @@ fn print_table(table: &TradeTable) -> Result<()> {
         );
         let _ = write!(line, " {}", cell(row.error, 11));
         for (key, _) in &shown {
-            let v = row.case.values.get(*key).copied();
+            let v = row.case.values.get(key).copied();
             let _ = write!(
                 line,
                 " {}",
@@ -572,6 +695,14 @@ fn print_table(table: &TradeTable) -> Result<()> {
             let _ = write!(line, "  FAILED: {f}");
         }
         outln!("{line}")?;
+        for b in row
+            .case
+            .flutter
+            .iter()
+            .filter(|b| b.boundary.mach().is_none())
+        {
+            outln!("{:>10}{}", "", b.describe())?;
+        }
     }
     outln!(
         "error: {}; pf = on the Pareto front of (cost, error)",
@@ -579,27 +710,10 @@ fn print_table(table: &TradeTable) -> Result<()> {
             TradeJob::Trim => "largest relative deviation of alpha, elevon, phi from the reference",
             TradeJob::Simulate =>
                 "largest RMS deviation of altitude, airspeed, alpha, pitch, q relative to the reference's size (max of its RMS and peak-to-peak)",
+            TradeJob::Flutter => FLUTTER_ERROR,
         }
     )?;
     Ok(())
-}
-
-/// `'text'` for a POSIX shell.
-fn shell_quote(text: &str) -> String {
-    let plain = !text.is_empty()
-        && text
-            .chars()
-            .all(|c| c.is_ascii_alphanumeric() || "-_./=,:+".contains(c));
-    if plain {
-        text.to_owned()
-    } else {
-        format!("'{}'", text.replace('\'', "'\\''"))
-    }
-}
-
-/// An absolute form of `path` for a script that runs elsewhere.
-fn absolute(path: &Path) -> Result<PathBuf> {
-    std::path::absolute(path).with_context(|| format!("cannot resolve the path {}", path.display()))
 }
 
 /// The `hsv-run trade` arguments every shard runs (the study as resolved here, so the shards
@@ -639,154 +753,22 @@ fn shard_arguments(
             f.record_every.to_string(),
         ]);
     }
+    if let Some(g) = &spec.flutter {
+        let times = g.times_s.iter().map(f64::to_string).collect::<Vec<_>>();
+        line.extend([
+            "--mach-range".to_owned(),
+            format!("{}:{}", g.mach_range.0, g.mach_range.1),
+            "--mach-step".to_owned(),
+            g.mach_step.to_string(),
+            format!("--times-s={}", times.join(",")),
+            "--dt-s".to_owned(),
+            g.dt_s.to_string(),
+            "--alpha-deg".to_owned(),
+            g.alpha_deg.to_string(),
+        ]);
+    }
     if let Some(costs) = costs {
         line.extend(["--costs".to_owned(), absolute(costs)?.display().to_string()]);
     }
     Ok(line)
-}
-
-/// The Slurm job-array script of `shards` shards and the submit script that queues it and the
-/// dependent merge.
-pub fn slurm_scripts(
-    program: &str,
-    arguments: &[String],
-    merge_arguments: &[String],
-    shards: usize,
-    cpus: usize,
-    time: &str,
-    partition: Option<&str>,
-) -> (String, String) {
-    let command = std::iter::once(program.to_owned())
-        .chain(arguments.iter().cloned())
-        .map(|a| shell_quote(&a))
-        .collect::<Vec<_>>()
-        .join(" ");
-    let mut array = String::new();
-    let _ = writeln!(array, "#!/bin/bash");
-    let _ = writeln!(
-        array,
-        "# Generated by `hsv-run trade --emit-slurm {shards}`: one trade-study shard per array task."
-    );
-    let _ = writeln!(
-        array,
-        "# Submit with `bash submit.sh` (queues this array and the dependent merge)."
-    );
-    let _ = writeln!(array, "#SBATCH --job-name=hsv-trade");
-    let _ = writeln!(array, "#SBATCH --array=0-{}", shards - 1);
-    let _ = writeln!(array, "#SBATCH --ntasks=1");
-    let _ = writeln!(array, "#SBATCH --cpus-per-task={cpus}");
-    let _ = writeln!(array, "#SBATCH --time={time}");
-    if let Some(p) = partition {
-        let _ = writeln!(array, "#SBATCH --partition={p}");
-    }
-    let _ = writeln!(array, "#SBATCH --output=slurm-%A_%a.out");
-    let _ = writeln!(array, "set -euo pipefail");
-    let _ = writeln!(
-        array,
-        "{command} --threads \"${{SLURM_CPUS_PER_TASK:-{cpus}}}\" --quiet \\\n    --shard \"${{SLURM_ARRAY_TASK_ID}}/{shards}\" --out \"shard-${{SLURM_ARRAY_TASK_ID}}\" --force"
-    );
-    let shard_dirs = (0..shards)
-        .map(|k| format!("shard-{k}"))
-        .collect::<Vec<_>>()
-        .join(" ");
-    let merge = std::iter::once(shell_quote(program))
-        .chain([
-            "merge".to_owned(),
-            shard_dirs,
-            "--out merged --force".to_owned(),
-        ])
-        .chain(merge_arguments.iter().map(|a| shell_quote(a)))
-        .collect::<Vec<_>>()
-        .join(" ");
-    let mut submit = String::new();
-    let _ = writeln!(submit, "#!/bin/bash");
-    let _ = writeln!(
-        submit,
-        "# Generated by `hsv-run trade --emit-slurm {shards}`: queues the {shards}-shard array, then the merge once every shard succeeded."
-    );
-    let _ = writeln!(submit, "set -euo pipefail");
-    let _ = writeln!(submit, "cd \"$(dirname \"$0\")\"");
-    let _ = writeln!(submit, "array_job=$(sbatch --parsable trade-array.sbatch)");
-    let _ = writeln!(
-        submit,
-        "merge_job=$(sbatch --parsable --dependency=afterok:${{array_job}} --job-name=hsv-trade-merge \\\n    --ntasks=1 --cpus-per-task=1 --time=00:30:00{} --output=slurm-merge-%j.out \\\n    --wrap {})",
-        partition
-            .map(|p| format!(" --partition={p}"))
-            .unwrap_or_default(),
-        shell_quote(&merge)
-    );
-    let _ = writeln!(
-        submit,
-        "echo \"queued shards as job ${{array_job}}, merge as job ${{merge_job}}; results in $(pwd)/merged\""
-    );
-    (array, submit)
-}
-
-/// Writes `trade-array.sbatch` and `submit.sh` into the run folder.
-fn emit_slurm(
-    args: &TradeArgs,
-    spec: &StudySpec,
-    costs: Option<&Path>,
-    shards: usize,
-    folder: &mut RunFolder,
-) -> Result<()> {
-    if shards == 0 {
-        bail!("--emit-slurm must be at least 1 shard, got 0");
-    }
-    let cases = spec.case_count();
-    if shards > cases {
-        bail!(
-            "--emit-slurm {shards}: the study has only {cases} cases; use at most {cases} shards"
-        );
-    }
-    let program = match &args.hsv_run {
-        Some(p) => absolute(p)?,
-        None => std::env::current_exe().context("cannot find this executable's path")?,
-    };
-    let arguments = shard_arguments(args, spec, costs)?;
-    // The merge computes the table, so it needs the same cost file.
-    let merge_arguments = match costs {
-        Some(c) => vec!["--costs".to_owned(), absolute(c)?.display().to_string()],
-        None => Vec::new(),
-    };
-    let (array, submit) = slurm_scripts(
-        &program.display().to_string(),
-        &arguments,
-        &merge_arguments,
-        shards,
-        args.slurm_cpus.max(1),
-        &args.slurm_time,
-        args.slurm_partition.as_deref(),
-    );
-    let array_path = folder.join("trade-array.sbatch");
-    write_file(&array_path, &array)?;
-    folder.record(array_path.clone());
-    let submit_path = folder.join("submit.sh");
-    write_file(&submit_path, &submit)?;
-    folder.record(submit_path.clone());
-    #[cfg(unix)]
-    {
-        use std::os::unix::fs::PermissionsExt as _;
-        let _ = std::fs::set_permissions(&submit_path, std::fs::Permissions::from_mode(0o755));
-    }
-    let summary = serde_json::json!({
-        "job": spec.job.as_str(),
-        "cases": cases,
-        "shards": shards,
-        "array_script": array_path.display().to_string(),
-        "submit_script": submit_path.display().to_string(),
-    });
-    let written = folder.write_summary(summary, &RunStatus::Completed)?;
-    if args.json.json {
-        outln!("{}", serde_json::to_string_pretty(&written)?)?;
-    } else {
-        outln!("{array}")?;
-        outln!(
-            "wrote {} and {} ({cases} cases in {shards} shards); on the cluster run `bash {}`",
-            array_path.display(),
-            submit_path.display(),
-            submit_path.display()
-        )?;
-    }
-    Ok(())
 }

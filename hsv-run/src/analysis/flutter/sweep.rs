@@ -186,7 +186,14 @@ impl Thermal {
                 setup.models.structure
             )));
         };
-        let transfer = GridTransfer::new(source, target)?;
+        // A structure may keep the other side's grid (the left surface mirrors the right's,
+        // same node order): its nodes are taken at their mirror images on this side.
+        let mut target = target.clone();
+        if target.side != source.side {
+            target.positions_m.iter_mut().for_each(|p| p.y = -p.y);
+            target.side = source.side;
+        }
+        let transfer = GridTransfer::new(source, &target)?;
         let n_source = conduction.n_nodes();
         let n_target = transfer.n_target();
         Ok(Self {
@@ -413,7 +420,7 @@ pub fn flutter_point(
 }
 
 /// The flutter boundary at one time.
-#[derive(Debug, Clone, PartialEq, Serialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(tag = "kind", rename_all = "kebab-case")]
 pub enum FlutterBoundary {
     /// The largest real part crosses zero at `mach` (Brent), between a stable and an unstable

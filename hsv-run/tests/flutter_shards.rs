@@ -1,0 +1,297 @@
+//! Flutter past one machine and in trade studies: `hsv-run flutter --shard K/N` shards merged by
+//! `hsv-run merge` give the unsharded run's tables byte for byte; `--emit-slurm` writes the
+//! array and the merge; `hsv-run trade --job flutter` tabulates each combination's flutter
+//! Mach number against the highest-fidelity one; and the left surface, the right one's mirror
+//! image, has the right one's stability.
+
+use std::path::{Path, PathBuf};
+use std::process::Command;
+
+use hsv_core::config::LoadedConfig;
+use hsv_run::analysis::flutter::sweep::{FlutterModels, FlutterSetup, flutter_point};
+use hsv_run::analysis::flutter::{DerivativeMethod, SurfaceOptions};
+use hsv_run::analysis::heating::HeatingSteps;
+
+/// A coarse grid that brackets the cold surface's crossing (Mach 2 stable; at the time of
+/// writing the sample surface flutters at Mach 33.8 with `shock-expansion-piston`), with one
+/// heated time: cheap in a debug build (seconds).
+const GRID: [&str; 9] = [
+    "--mach-range",
+    "2:40",
+    "--mach-step",
+    "19",
+    "--times-s",
+    "0,1",
+    "--dt-s",
+    "0.5",
+    "--no-compare",
+];
+
+/// The tables a flutter run writes (wall times are only in summary.json).
+const TABLES: [&str; 3] = ["flutter_mach.csv", "root_loci.csv", "temperature_range.csv"];
+
+fn hsv_run(args: &[&str]) -> std::process::Output {
+    Command::new(env!("CARGO_BIN_EXE_hsv-run"))
+        .args(args)
+        .output()
+        .expect("hsv-run starts")
+}
+
+fn succeed(args: &[&str]) -> String {
+    let run = hsv_run(args);
+    assert!(
+        run.status.success(),
+        "hsv-run {}: {}",
+        args.join(" "),
+        String::from_utf8_lossy(&run.stderr)
+    );
+    String::from_utf8_lossy(&run.stdout).into_owned()
+}
+
+fn scratch(name: &str) -> PathBuf {
+    let dir =
+        std::env::temp_dir().join(format!("hsv-flutter-shards-{}-{name}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    dir
+}
+
+fn json(path: &Path) -> serde_json::Value {
+    serde_json::from_str(&std::fs::read_to_string(path).unwrap()).unwrap()
+}
+
+fn flutter(extra: &[&str], out: &Path) -> String {
+    let mut args = vec!["flutter"];
+    args.extend(GRID);
+    args.extend(extra);
+    args.extend(["--out", out.to_str().unwrap()]);
+    succeed(&args)
+}
+
+#[test]
+fn flutter_shards_merged_equal_one_unsharded_run() {
+    let whole = scratch("whole");
+    flutter(&[], &whole);
+    let shards: Vec<PathBuf> = (0..2)
+        .map(|k| {
+            let dir = scratch(&format!("shard-{k}"));
+            flutter(&["--shard", &format!("{k}/2")], &dir);
+            assert!(
+                !dir.join("flutter_mach.csv").exists(),
+                "a shard writes only its columns"
+            );
+            dir
+        })
+        .collect();
+    let merged = scratch("merged");
+    // Given in reverse: the order of the folders does not matter.
+    succeed(&[
+        "merge",
+        shards[1].to_str().unwrap(),
+        shards[0].to_str().unwrap(),
+        "--out",
+        merged.to_str().unwrap(),
+    ]);
+    for table in TABLES {
+        assert_eq!(
+            std::fs::read(merged.join(table)).unwrap(),
+            std::fs::read(whole.join(table)).unwrap(),
+            "{table} differs between the merged shards and the unsharded run"
+        );
+    }
+    let (m, w) = (
+        json(&merged.join("summary.json")),
+        json(&whole.join("summary.json")),
+    );
+    assert_eq!(m["boundaries"], w["boundaries"]);
+    assert_eq!(m["mach_grid"], w["mach_grid"]);
+    // The grid brackets a crossing, so the merge ran the root finding on the merged grid.
+    assert!(
+        w["boundaries"][0]["flutter_mach"].as_f64().is_some(),
+        "{}",
+        w["boundaries"]
+    );
+
+    // One shard alone is refused, naming the missing one; so is a shard of another grid.
+    let half = scratch("half");
+    let run = hsv_run(&[
+        "merge",
+        shards[0].to_str().unwrap(),
+        "--out",
+        half.to_str().unwrap(),
+    ]);
+    assert!(!run.status.success());
+    assert!(String::from_utf8_lossy(&run.stderr).contains("1/2"));
+    let other = scratch("other");
+    succeed(&[
+        "flutter",
+        "--mach-range",
+        "2:40",
+        "--mach-step",
+        "38",
+        "--times-s",
+        "0",
+        "--no-compare",
+        "--shard",
+        "1/2",
+        "--out",
+        other.to_str().unwrap(),
+    ]);
+    let run = hsv_run(&[
+        "merge",
+        shards[0].to_str().unwrap(),
+        other.to_str().unwrap(),
+        "--out",
+        half.to_str().unwrap(),
+        "--force",
+    ]);
+    assert!(!run.status.success());
+    assert!(String::from_utf8_lossy(&run.stderr).contains("different flutter map"));
+    for dir in shards.iter().chain([&whole, &merged, &half, &other]) {
+        let _ = std::fs::remove_dir_all(dir);
+    }
+}
+
+#[test]
+fn flutter_slurm_script_runs_the_shards_and_the_merge() {
+    let out = scratch("slurm");
+    let mut args = vec!["flutter"];
+    args.extend(GRID);
+    args.extend([
+        "--emit-slurm",
+        "3",
+        "--hsv-run",
+        "/opt/hsv/bin/hsv-run",
+        "--slurm-cpus",
+        "4",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    succeed(&args);
+    let array = std::fs::read_to_string(out.join("flutter-array.sbatch")).unwrap();
+    assert!(array.contains("#SBATCH --array=0-2\n"), "{array}");
+    assert!(array.contains("#SBATCH --cpus-per-task=4\n"), "{array}");
+    assert!(
+        array.contains(
+            "/opt/hsv/bin/hsv-run flutter --altitude-m 10000 --mach-range 2:40 --mach-step 19 \
+             --times-s=0,1"
+        ),
+        "{array}"
+    );
+    assert!(
+        array.contains("--shard \"${SLURM_ARRAY_TASK_ID}/3\""),
+        "{array}"
+    );
+    let submit = std::fs::read_to_string(out.join("submit.sh")).unwrap();
+    assert!(
+        submit.contains("array_job=$(sbatch --parsable flutter-array.sbatch)"),
+        "{submit}"
+    );
+    // The merge runs the root finding: a shard's CPUs, not one.
+    assert!(submit.contains("--cpus-per-task=4"), "{submit}");
+    assert!(
+        submit
+            .contains("'/opt/hsv/bin/hsv-run merge shard-0 shard-1 shard-2 --out merged --force'"),
+        "{submit}"
+    );
+    assert!(!out.join("flutter-cases.json").exists(), "nothing ran");
+    let _ = std::fs::remove_dir_all(&out);
+}
+
+/// Two aero models on the left surface: each row holds the flutter Mach number where the
+/// surface flutters in the range, else says so with its largest real part and least damping;
+/// the error of a row is |M_f − M_f,ref| / M_f,ref of its and the reference's values.
+#[test]
+fn flutter_trade_of_two_aero_models_produces_its_table() {
+    let out = scratch("trade");
+    let stdout = succeed(&[
+        "trade",
+        "--job",
+        "flutter",
+        "--vary",
+        "left_surface.aero=piston-theory,shock-expansion-piston",
+        "--mach-range",
+        "2:40",
+        "--mach-step",
+        "19",
+        "--times-s",
+        "0",
+        "--quiet",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert!(stdout.contains("flutter at left_surface"), "{stdout}");
+    let table = json(&out.join("trade.json"));
+    let rows = table["rows"].as_array().unwrap();
+    assert_eq!(rows.len(), 2);
+    // shock-expansion-piston has fidelity 4, piston-theory 2.
+    assert_eq!(table["reference_case"], 1);
+    assert_eq!(rows[1]["error"].as_f64(), Some(0.0));
+    let key = "flutter_mach_at_0_s";
+    let mach = |i: usize| rows[i]["values"][key].as_f64();
+    for (i, row) in rows.iter().enumerate() {
+        assert!(row["failure"].is_null(), "{row}");
+        let boundary = &row["flutter_boundaries"][0];
+        assert_eq!(boundary["time_s"], 0.0);
+        match mach(i) {
+            Some(m) => {
+                assert_eq!(boundary["boundary"]["kind"], "crossing", "{row}");
+                assert!((2.0..=40.0).contains(&m), "{m}");
+            }
+            None => {
+                assert!(row["values"]["least_damping_ratio_at_0_s"].is_number());
+                assert!(row["values"]["max_real_per_s_at_0_s"].is_number());
+            }
+        }
+    }
+    match (mach(0), mach(1)) {
+        (Some(m), Some(r)) => {
+            let e = rows[0]["error"].as_f64().unwrap();
+            assert!((e - (m - r).abs() / r).abs() < 1e-12, "{e} {m} {r}");
+            let d = rows[0]["deviations"][key].as_f64().unwrap();
+            assert!((d - (m - r).abs()).abs() < 1e-12);
+        }
+        (None, None) => assert_eq!(rows[0]["error"].as_f64(), Some(0.0)),
+        _ => assert!(rows[0]["error"].is_null()),
+    }
+    let csv = std::fs::read_to_string(out.join("trade.csv")).unwrap();
+    let header = csv.lines().next().unwrap();
+    assert!(header.contains(",flutter_boundaries,failure"), "{header}");
+    assert_eq!(csv.lines().count(), 3, "{csv}");
+    assert_eq!(&std::fs::read(out.join("trade.png")).unwrap()[1..4], b"PNG");
+    let _ = std::fs::remove_dir_all(&out);
+}
+
+/// The vehicle is symmetric in y, so the left surface heated in the flow has the right one's
+/// roots (mirror symmetry; to 1e-9 of the largest real part, round-off of the mirrored mesh).
+#[test]
+fn the_left_surface_is_the_right_ones_mirror_image() {
+    let loaded = LoadedConfig::sample().unwrap();
+    let registry = hsv_run::registry().unwrap();
+    let setup = |region: &str| FlutterSetup {
+        region: loaded.region(region).unwrap(),
+        models: FlutterModels {
+            aero: "shock-expansion-piston".into(),
+            heat_flux: "eckert".into(),
+            conduction: "full-order".into(),
+            structure: "ritz-plate".into(),
+        },
+        altitude_m: 10_000.0,
+        alpha_rad: 0.0,
+        heating: HeatingSteps {
+            dt_s: 0.5,
+            flux_every: 1,
+            initial_k: 293.0,
+        },
+        method: DerivativeMethod::Direct,
+        compare_methods: false,
+        options: SurfaceOptions::default(),
+    };
+    let point = |region: &str| flutter_point(&setup(region), &registry, 6.0, 1.0).unwrap();
+    let (left, right) = (point("left_surface"), point("right_surface"));
+    let (l, r) = (left.max_real_per_s.unwrap(), right.max_real_per_s.unwrap());
+    assert!((l - r).abs() <= 1e-9 * r.abs().max(1.0), "{l} vs {r}");
+    assert!(
+        (left.max_temperature_k - right.max_temperature_k).abs() < 1e-9 * right.max_temperature_k
+    );
+    assert!(left.max_temperature_k > 293.0, "the surface heated");
+}

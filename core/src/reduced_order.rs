@@ -4,7 +4,8 @@
 //!
 //! A model opts in by returning itself from [`crate::aero::AeroModel::reduced_order`] (`None`
 //! by default), as structure models expose their capabilities ([`crate::structure`]); commands
-//! ask for it with [`require`], so they name the model but never link its crate.
+//! ask for it with [`require`], so they name the model but never link its crate. A reduced
+//! model names its source model in the `source` key of its settings.
 
 use nalgebra::DMatrix;
 

@@ -137,19 +137,33 @@ fn build(target: &RomTarget, registry: &Registry) -> Result<Box<dyn AeroModel>> 
         .source
         .clone()
         .or_else(|| configured.filter(|aero| aero != &target.model));
-    let mut settings = region.model_settings(&target.model);
-    if let Some(source) = source {
-        registry.get(&source).with_context(|| "--source")?;
+    let plain = region.model_settings(&target.model);
+    let mut settings = plain.clone();
+    if let Some(source) = &source {
+        registry.get(source).with_context(|| "--source")?;
         settings
             .table
-            .insert("source".to_owned(), toml::Value::String(source));
+            .insert("source".to_owned(), toml::Value::String(source.clone()));
     }
-    registry
-        .create::<dyn AeroModel>(
+    let create = |settings| {
+        registry.create::<dyn AeroModel>(
             &target.model,
-            &ModelContext::new(&region, &registry, &settings),
+            &ModelContext::new(&region, &registry, settings),
         )
-        .with_context(|| format!("building `{}` for {}", target.model, target.region))
+    };
+    match create(&settings) {
+        Ok(model) => Ok(model),
+        Err(error) => {
+            // Reduced models name their source in `source`; a model that refused the key and
+            // builds without it is no reduced model, which is the error to report.
+            if source.is_some()
+                && let Ok(mut model) = create(&plain)
+            {
+                reduced_order::require(model.as_mut(), "`hsv-run rom`")?;
+            }
+            Err(error).with_context(|| format!("building `{}` for {}", target.model, target.region))
+        }
+    }
 }
 
 fn identify(args: IdentifyArgs, registry: &Registry) -> Result<()> {

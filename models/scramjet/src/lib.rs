@@ -90,7 +90,7 @@ pub use flow::{
     constant_area_combustor, supersonic_area_change, turn,
 };
 pub use geometry::{EngineSurfaces, SectionGeometry, direction, slope_rad};
-pub use inlet::{Capture, capture, stream_thrust_average};
+pub use inlet::{Capture, capture, duct_entry, stream_thrust_average};
 pub use model::{Scramjet, SectionEngine};
 pub use one_d::{OneDEngine, aftbody_mean_pressure_pa, aftbody_pressure_pa};
 pub use quasi_one_d::{Burner, QuasiOneDEngine, mixing_efficiency};

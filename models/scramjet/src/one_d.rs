@@ -11,7 +11,7 @@ use crate::flow::{
     supersonic_area_change,
 };
 use crate::geometry::SectionGeometry;
-use crate::inlet::capture;
+use crate::inlet::{capture, duct_entry};
 use crate::section::{
     COMBUSTOR_ENTRY, COMBUSTOR_EXIT, Fuel, INLET, NOZZLE_EXIT, SectionConditions, SectionSolution,
     Station, add_flow_path_force, check_finite, plume_pressures, ramp_flow, unstarted,
@@ -61,13 +61,14 @@ impl OneDEngine {
         let inlet = cap.state;
         let air = cap.mass_flow_kg_s_per_m;
 
-        // Diffuser (isolator): isentropic area change from the captured stream tube to the
-        // combustor area A2 = (A2/A1) × inlet face height.
+        // Turn into the duct (axial stream thrust kept), then the diffuser (isolator):
+        // isentropic area change to the combustor area A2 = (A2/A1) × inlet face height.
+        let Some((turned, duct_area)) = duct_entry(&cap, geometry, conditions) else {
+            return unstarted(out, geometry, conditions, Some(ramp.inlet));
+        };
         let face_height = (geometry.cowl_lip() - geometry.ramp_end()).norm();
         let combustor_area = self.diffuser_area_ratio * face_height;
-        let Some(entry) =
-            supersonic_area_change(&inlet, cap.face_area_m2_per_m, combustor_area, gas)?
-        else {
+        let Some(entry) = supersonic_area_change(&turned, duct_area, combustor_area, gas)? else {
             return unstarted(out, geometry, conditions, Some(ramp.inlet));
         };
 

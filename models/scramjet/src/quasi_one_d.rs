@@ -11,7 +11,7 @@ use hsv_core::propulsion::EngineStatus;
 
 use crate::flow::{Compression, FlowState, supersonic_area_change, turn};
 use crate::geometry::{SectionGeometry, slope_rad};
-use crate::inlet::capture;
+use crate::inlet::{capture, duct_entry};
 use crate::section::{
     COMBUSTOR_ENTRY, COMBUSTOR_EXIT, Fuel, INLET, NOZZLE_EXIT, SectionConditions, SectionSolution,
     Station, add_flow_path_force, check_finite, plume_pressures, ramp_flow, unstarted,
@@ -162,20 +162,25 @@ impl Burner<'_> {
 }
 
 impl QuasiOneDEngine {
-    /// Inlet wave system from the cowl lip to the isolator exit: at each wall the flow is
-    /// turned parallel to that wall (cowl shock at the lip, then reflections), by an oblique
-    /// shock for compression or a Prandtl-Meyer fan for expansion; each wave crosses the duct
-    /// of height h in Δs = h / tan(β - δ) (β wave angle to the upstream flow, δ the turn).
-    /// The duct's upper wall is taken parallel to the cowl at the same station (the unmeshed
-    /// flow-path top of a rigid engine cross-section). The flow at the isolator exit is taken
-    /// as processed by every wave launched before it. `None`: a wave detaches or chokes the
-    /// flow (unstart).
-    fn inlet_waves(
+    /// Whether the inlet starts: the wave system from the cowl lip to the isolator exit stays
+    /// attached and supersonic. At each wall the flow is turned parallel to that wall (cowl
+    /// shock at the lip, then reflections), by an oblique shock for compression or a
+    /// Prandtl-Meyer fan for expansion; each wave crosses the duct of height h in
+    /// Δs = h / tan(β - δ) (β wave angle to the upstream flow, δ the turn). The duct's upper
+    /// wall is taken parallel to the cowl at the same station (the unmeshed flow-path top of a
+    /// rigid engine cross-section). False: a wave detaches or chokes the flow (unstart).
+    ///
+    /// The waves' uniform end state is not the isolator's state: it leaves part of the duct
+    /// to an unmodelled shoulder expansion, and filling the duct from it isentropically made
+    /// 961 N/m of axial force from walls with no axial area (Mach 6, 26 km, c_f = 0; issue 10
+    /// item 8). The isolator state is the conservative stream-thrust average
+    /// ([`crate::duct_entry`]).
+    fn inlet_starts(
         &self,
         geometry: &SectionGeometry,
         inlet: &FlowState,
         gas: &PerfectGas,
-    ) -> Result<Option<FlowState>, ModelError> {
+    ) -> Result<bool, ModelError> {
         let cowl = &geometry.cowl_m;
         let lip = geometry.cowl_lip();
         let e = nalgebra::Vector2::from(cowl[1] - cowl[0]).normalize();
@@ -211,13 +216,13 @@ impl QuasiOneDEngine {
             let turned = match turn(&state, compression, gas, Compression::Shock) {
                 Ok(t) => t,
                 Err(GasError::Detached { .. }) | Err(GasError::Subsonic { .. }) => {
-                    return Ok(None);
+                    return Ok(false);
                 }
                 Err(e) => return Err(e.into()),
             };
             let crossing = turned.wave_angle_rad - compression;
             if crossing.is_nan() || crossing <= 0.0 {
-                return Ok(None);
+                return Ok(false);
             }
             state = turned.state;
             flow_slope = wall;
@@ -227,7 +232,7 @@ impl QuasiOneDEngine {
             }
             on_cowl = !on_cowl;
         }
-        Ok(Some(state))
+        Ok(true)
     }
 
     /// Solves one section into `out` (buffers reused).
@@ -258,15 +263,17 @@ impl QuasiOneDEngine {
         let inlet = cap.state;
         let air = cap.mass_flow_kg_s_per_m;
 
-        let Some(processed) = self.inlet_waves(geometry, &inlet, gas)? else {
+        if !self.inlet_starts(geometry, &inlet, gas)? {
+            return unstarted(out, geometry, conditions, Some(ramp.inlet));
+        }
+        // The isolator: the captured flow turned into the duct with its axial stream thrust
+        // kept, then an isentropic area change to the combustor entry area.
+        let Some((turned, duct_area)) = duct_entry(&cap, geometry, conditions) else {
             return unstarted(out, geometry, conditions, Some(ramp.inlet));
         };
-        // The processed stream tube fills the isolator: isentropic area change (the shoulder
-        // expansion) to the combustor entry area.
-        let tube = air / processed.mass_flux_kg_m2_s(gas);
         let face_height = (geometry.cowl_lip() - geometry.ramp_end()).norm();
         let entry_area = self.diffuser_area_ratio * face_height;
-        let Some(entry) = supersonic_area_change(&processed, tube, entry_area, gas)? else {
+        let Some(entry) = supersonic_area_change(&turned, duct_area, entry_area, gas)? else {
             return unstarted(out, geometry, conditions, Some(ramp.inlet));
         };
 

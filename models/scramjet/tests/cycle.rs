@@ -237,6 +237,35 @@ fn constant_area_combustor_conserves_impulse_so_fuel_thrust_is_aftbody_thrust() 
     );
 }
 
+/// Axial momentum in the duct: the sample's flow path between the inlet face and the engine
+/// exit has walls parallel to the exhaust (horizontal) and vertical faces, so without wall
+/// friction its walls can push the flow only up or down and the flow path's axial force on
+/// the vehicle, engine force minus ramp and aftbody gauge-pressure forces (summed by hand),
+/// is zero (momentum conservation; Heiser & Pratt's stream thrust is unchanged between the
+/// faces). To 1e-9 (1-d) and 1e-7 (q1d with c_f = 0, RK4) of ṁ V∞, at Mach 6, 26 km for
+/// φ = 0, 0.13 and 0.3. Before issue 10 item 8 both engines turned the ramp flow into the duct
+/// isentropically and created 1187 N/m (1-d) and 961 N/m (q1d) of axial force here.
+#[test]
+fn walls_without_axial_area_exert_no_axial_force() {
+    let (section, solvers) = setup(Some(0.0));
+    let f = Freestream::standard(6.0, 26_000.0, PerfectGas::AIR).expect("atmosphere");
+    for ((name, solve), tolerance) in solvers.iter().zip([1e-9, 1e-7]) {
+        for phi in [0.0, 0.13, 0.3] {
+            let out = solve(&section, &conditions(&f, phi));
+            let ramp = surface_force(&section.ramp_m, &out.ramp_pressure_pa, f.pressure_pa);
+            let aftbody = surface_force(&section.nozzle_m, &out.nozzle_pressure_pa, f.pressure_pa);
+            let duct = out.force_n_per_m - ramp - aftbody;
+            let scale = out.air_mass_flow_kg_s_per_m * f.velocity_m_s;
+            eprintln!("{name} phi {phi}: flow-path force {duct:?} N/m");
+            assert!(
+                duct.x.abs() < tolerance * scale,
+                "{name} phi {phi}: the flow path pushes {} N/m axially",
+                duct.x
+            );
+        }
+    }
+}
+
 /// Second law: no aftbody bounded by a free shear layer beats the fully expanded cycle. At
 /// shock-on-lip (no additive drag) each engine's thrust stays below Heiser & Pratt's
 /// uninstalled thrust with the exhaust expanded isentropically to p∞,

@@ -151,6 +151,60 @@ fn flutter_shards_merged_equal_one_unsharded_run() {
     }
 }
 
+/// The merge reruns the root finding on the config the shards ran on: a config edited since is
+/// refused, naming the file.
+#[test]
+fn a_config_changed_after_the_shards_is_refused() {
+    let dir = scratch("config");
+    std::fs::create_dir_all(&dir).unwrap();
+    let config = dir.join("vehicle.toml");
+    std::fs::write(&config, succeed(&["config"])).unwrap();
+    let shard = |k: usize| {
+        let out = dir.join(format!("shard-{k}"));
+        succeed(&[
+            "flutter",
+            "--config",
+            config.to_str().unwrap(),
+            "--mach-range",
+            "2:40",
+            "--mach-step",
+            "38",
+            "--times-s",
+            "0",
+            "--no-compare",
+            "--shard",
+            &format!("{k}/2"),
+            "--out",
+            out.to_str().unwrap(),
+        ]);
+        out
+    };
+    let (s0, s1) = (shard(0), shard(1));
+    // A comment alone leaves the parsed config, and so its fingerprint, as it was.
+    let text = std::fs::read_to_string(&config).unwrap();
+    assert!(
+        text.contains("emissivity = 0.8 "),
+        "the sample's eckert emissivity"
+    );
+    let text = text.replacen("emissivity = 0.8 ", "emissivity = 0.5 ", 1);
+    std::fs::write(&config, text).unwrap();
+    let run = hsv_run(&[
+        "merge",
+        s0.to_str().unwrap(),
+        s1.to_str().unwrap(),
+        "--out",
+        dir.join("merged").to_str().unwrap(),
+    ]);
+    assert!(!run.status.success());
+    let stderr = String::from_utf8_lossy(&run.stderr);
+    assert!(
+        stderr.contains("has changed since the flutter shards ran")
+            && stderr.contains("vehicle.toml"),
+        "{stderr}"
+    );
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
 #[test]
 fn flutter_slurm_script_runs_the_shards_and_the_merge() {
     let out = scratch("slurm");

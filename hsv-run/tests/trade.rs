@@ -331,7 +331,21 @@ fn bad_variations_are_refused_before_any_case_runs() {
     let run = hsv_run(&["trade", "--out", scratch("bad3").to_str().unwrap()]);
     assert!(!run.status.success());
     assert!(String::from_utf8_lossy(&run.stderr).contains("nothing to vary"));
-    for d in ["bad", "bad2", "bad3"] {
+    // A flutter study's grid given to a trim study.
+    let run = hsv_run(&[
+        "trade",
+        "--vary",
+        VARY,
+        "--times-s",
+        "0,10",
+        "--out",
+        scratch("bad4").to_str().unwrap(),
+    ]);
+    assert!(!run.status.success());
+    assert!(
+        String::from_utf8_lossy(&run.stderr).contains("--times-s is an option of a flutter study")
+    );
+    for d in ["bad", "bad2", "bad3", "bad4"] {
         let _ = std::fs::remove_dir_all(scratch(d));
     }
 }

@@ -226,7 +226,7 @@ impl FlutterAtTime {
                  Mach {at_mach}, least damping ratio {least_damping_ratio:.4}){}",
                 limited_by
                     .as_ref()
-                    .map_or_else(String::new, |l| format!(", analysable only below {l}"))
+                    .map_or_else(String::new, |l| format!(", not analysable {l}"))
             ),
             FlutterBoundary::FluttersEverywhere {
                 lowest_mach,

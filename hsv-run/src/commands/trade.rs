@@ -195,7 +195,21 @@ fn study(
     };
     let flutter = match job {
         TradeJob::Flutter => Some(flutter_grid(args, &settings, loaded, &variations)?),
-        _ => None,
+        _ => {
+            let given = [
+                ("--mach-range", args.mach_range.is_some()),
+                ("--mach-step", args.mach_step.is_some()),
+                ("--times-s", !args.times_s.is_empty()),
+                ("--alpha-deg", args.alpha_deg.is_some()),
+            ];
+            if let Some((flag, _)) = given.iter().find(|(_, g)| *g) {
+                bail!(
+                    "{flag} is an option of a flutter study (--job flutter), not of {}",
+                    job.as_str()
+                );
+            }
+            None
+        }
     };
     let mut spec = StudySpec {
         job,

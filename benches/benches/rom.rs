@@ -139,38 +139,28 @@ fn rom(c: &mut Criterion) {
             black_box(source.forces[0])
         })
     });
-    group.bench_function("convolution-rom: one evaluation with pressures", |b| {
-        b.iter(|| {
-            rom.evaluate_modal(
-                &region.mesh,
-                &flight,
-                &rest,
-                STEP_S,
-                black_box(&q),
-                &q_dot,
-                &mut forces,
-                Some(&mut pressures),
-            )
-            .expect("rom");
-            black_box(forces[0])
-        })
-    });
-    group.bench_function("convolution-rom: one evaluation, forces only", |b| {
-        b.iter(|| {
-            rom.evaluate_modal(
-                &region.mesh,
-                &flight,
-                &rest,
-                STEP_S,
-                black_box(&q),
-                &q_dot,
-                &mut forces,
-                None,
-            )
-            .expect("rom");
-            black_box(forces[0])
-        })
-    });
+    for (name, with_pressures) in [
+        ("convolution-rom: one evaluation with pressures", true),
+        ("convolution-rom: one evaluation, forces only", false),
+    ] {
+        group.bench_function(name, |b| {
+            b.iter(|| {
+                let out = with_pressures.then_some(&mut pressures);
+                rom.evaluate_modal(
+                    &region.mesh,
+                    &flight,
+                    &rest,
+                    STEP_S,
+                    black_box(&q),
+                    &q_dot,
+                    &mut forces,
+                    out,
+                )
+                .expect("rom");
+                black_box(forces[0])
+            })
+        });
+    }
     group.bench_function("source: 0.1 s of modal motion (100 steps)", |b| {
         b.iter(|| {
             for step in 1..=STEPS {

@@ -106,11 +106,12 @@ pub fn check_wall_temperature(
     melting_point_k: f64,
     panel: Option<usize>,
 ) -> Result<(), ModelError> {
-    let at = panel.map_or_else(String::new, |p| format!(" at panel {p}"));
+    // Built only on failure: this runs per panel in the time loop, which allocates nothing.
+    let at = || panel.map_or_else(String::new, |p| format!(" at panel {p}"));
     if !(wall_temperature_k.is_finite() && wall_temperature_k > 0.0) {
         return Err(ModelError::out_of_range(
             model,
-            &format!("wall temperature (K){at}"),
+            &format!("wall temperature (K){}", at()),
             wall_temperature_k,
             "finite and > 0",
         ));
@@ -118,7 +119,7 @@ pub fn check_wall_temperature(
     if wall_temperature_k > melting_point_k {
         return Err(ModelError::out_of_range(
             model,
-            &format!("wall temperature (K){at}: the structure has melted"),
+            &format!("wall temperature (K){}: the structure has melted", at()),
             wall_temperature_k,
             format!("<= melting point {melting_point_k} K"),
         ));

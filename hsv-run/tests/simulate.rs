@@ -346,3 +346,58 @@ fn a_gliding_rigid_vehicle_loses_kinetic_and_potential_energy_to_the_work_of_its
         "energy change {lost} J vs work of the loads {work} J"
     );
 }
+
+#[global_allocator]
+static GLOBAL: hsv_core::testing::CountingAllocator = hsv_core::testing::CountingAllocator;
+
+#[test]
+fn the_time_loop_allocates_nothing_once_its_buffers_exist() {
+    use hsv_run::vehicle::partitioned::{HeatingRates, SurfaceModel};
+    // The heated partitioned vehicle (coarse surfaces) with the body at its 1 ms rate, the
+    // surfaces heating, their stiffness updated every 50 ms and a sample recorded every step:
+    // after the first steps have sized every buffer, the loop must not touch the heap. One
+    // rayon thread, so every allocation happens on the thread the counter watches.
+    let pool = rayon::ThreadPoolBuilder::new()
+        .num_threads(1)
+        .build()
+        .expect("pool");
+    pool.install(|| {
+        let loaded = common::parse(&common::coarse_text());
+        let (mut vehicle, mut state, controls) =
+            common::trimmed(&loaded, SurfaceModel::Partitioned, true);
+        vehicle
+            .start_heating(&HeatingRates {
+                conduction_s: 0.01,
+                heat_flux_s: 0.02,
+                stiffness_s: 0.05,
+                initial_k: 293.0,
+            })
+            .expect("heating");
+        let settings = RunSettings {
+            dt_s: 0.002,
+            duration_s: 0.2,
+            record_every: 1,
+            start_step: 0,
+        };
+        let mut counts = vec![0_usize; 200];
+        let mut n = 0;
+        simulate(
+            &mut vehicle,
+            &mut state,
+            &controls,
+            &Inputs::paper_doublet(),
+            &settings,
+            |_, _, _| {
+                if n < counts.len() {
+                    counts[n] = hsv_core::testing::allocations();
+                }
+                n += 1;
+                true
+            },
+        )
+        .expect("flies");
+        assert_eq!(n, 101, "one sample per step and the initial one");
+        let steady = counts[100] - counts[20];
+        assert_eq!(steady, 0, "{steady} allocations in steps 20 to 100");
+    });
+}

@@ -213,18 +213,11 @@ pub fn simulate(
         .map_err(|e| wrap(0.0)(VehicleError::Input(e.to_string())))?;
     let steps = plan.steps;
     let record = |vehicle: &mut PartitionedVehicle, state: &VehicleState, t: f64| {
-        let temperatures = vehicle.surface_temperatures();
-        let (mut lo, mut hi, mut sum) = (f64::INFINITY, f64::NEG_INFINITY, 0.0);
-        for (_, t) in &temperatures {
-            lo = lo.min(t.min_k);
-            hi = hi.max(t.max_k);
-            sum += t.mean_k;
-        }
-        let (lo, hi, mean) = if temperatures.is_empty() {
-            (f64::NAN, f64::NAN, f64::NAN)
-        } else {
-            (lo, hi, sum / temperatures.len() as f64)
-        };
+        let (lo, hi, mean) = vehicle
+            .heated_surface_range()
+            .map_or((f64::NAN, f64::NAN, f64::NAN), |t| {
+                (t.min_k, t.max_k, t.mean_k)
+            });
         let rigid = &state.rigid;
         let (airspeed, alpha, beta) = rigid.air_data(&nalgebra::Vector3::zeros());
         let (roll, pitch, yaw) = rigid.euler_angles();

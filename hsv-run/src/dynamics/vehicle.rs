@@ -156,7 +156,7 @@ impl VehicleDynamics {
         let s = self
             .surfaces
             .get_mut(surface)
-            .ok_or(DynamicsError::Dimension {
+            .ok_or_else(|| DynamicsError::Dimension {
                 what: format!("lifting surface index {surface}"),
                 expected: n,
                 got: surface + 1,

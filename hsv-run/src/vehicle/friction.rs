@@ -44,11 +44,12 @@ impl RegionFriction {
         let n = mesh.panels.len();
         self.wall_k.resize(n, FRICTION_WALL_TEMPERATURE_K);
         self.shear_pa.resize(n, 0.0);
-        let name = self.model.name().to_owned();
-        let law = self
-            .model
-            .skin_friction()
-            .ok_or_else(|| ModelError::inconsistent(&name, "no wall-shear law"))?;
+        let Some(law) = self.model.skin_friction() else {
+            return Err(ModelError::inconsistent(
+                self.model.name(),
+                "no wall-shear law",
+            ));
+        };
         law.wall_shear(mesh, flight, aero, &self.wall_k, &mut self.shear_pa)?;
         Ok(integrate_shear(
             mesh,

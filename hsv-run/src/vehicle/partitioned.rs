@@ -1228,21 +1228,45 @@ impl PartitionedVehicle {
     /// Structure temperatures of each heated surface (empty for unheated surfaces).
     pub fn surface_temperatures(&mut self) -> Vec<(String, SurfaceTemperatures)> {
         let mut out = Vec::new();
+        self.each_surface_temperature(|name, t| out.push((name.to_owned(), t)));
+        out
+    }
+
+    /// Lowest, highest and mean (of the surfaces' means) structure temperature over every
+    /// heated surface, K; None when no surface heats. Allocates nothing (the time loop's record).
+    pub fn heated_surface_range(&mut self) -> Option<SurfaceTemperatures> {
+        let mut range: Option<SurfaceTemperatures> = None;
+        let mut n = 0.0;
+        self.each_surface_temperature(|_, t| {
+            n += 1.0;
+            range = Some(match range {
+                None => t,
+                Some(r) => SurfaceTemperatures {
+                    min_k: r.min_k.min(t.min_k),
+                    max_k: r.max_k.max(t.max_k),
+                    mean_k: r.mean_k + (t.mean_k - r.mean_k) / n,
+                },
+            });
+        });
+        range
+    }
+
+    /// Each heated surface's name and temperatures.
+    fn each_surface_temperature(&mut self, mut visit: impl FnMut(&str, SurfaceTemperatures)) {
         for s in &mut self.surfaces {
             if let Some(t) = &mut s.thermal {
                 t.conduction.node_temperatures(&t.state, &mut t.node_k);
                 let n = t.node_k.len().max(1) as f64;
-                out.push((
-                    s.name.clone(),
+                visit(
+                    &s.name,
                     SurfaceTemperatures {
                         min_k: t.node_k.iter().copied().fold(f64::INFINITY, f64::min),
                         max_k: t.node_k.iter().copied().fold(f64::NEG_INFINITY, f64::max),
                         mean_k: t.node_k.iter().sum::<f64>() / n,
                     },
-                ));
+                );
             }
         }
-        out
     }
 
     /// The vehicle's OML as last evaluated (body deformed by its modes, surfaces deformed and

@@ -28,15 +28,25 @@
 //! **`scramjet-1d`** (after Bolender & Doman, "Nonlinear longitudinal dynamical model of an
 //! air-breathing hypersonic vehicle", J. Spacecraft Rockets 44(2), 2007): one bow shock from
 //! the ramp (deflection = ramp angle + α), mass capture with spillage when the shock passes
-//! ahead of the cowl lip, an isentropic diffuser to the combustor area, a constant-area
-//! combustor with Rayleigh heat addition and the fuel's mass, thermal-choking detection, an
-//! isentropic internal nozzle and the plume aftbody below.
+//! ahead of the cowl lip, the turn into the duct and an isentropic diffuser to the combustor
+//! area, a constant-area combustor with Rayleigh heat addition and the fuel's mass,
+//! thermal-choking detection, an isentropic internal nozzle and the plume aftbody below.
 //!
 //! **`scramjet-q1d`** (after the structure of MASIV, paper §III.E, in reduced form): oblique
 //! shocks and Prandtl-Meyer expansions panel by panel along the ramp, a cowl shock and its
-//! reflections between the duct walls to the isolator exit, a quasi-one-dimensional combustor
-//! integrated along its length with area change, wall friction and fuel mass and heat released
-//! along a mixing-efficiency curve, an isentropic internal nozzle and the plume aftbody below.
+//! reflections between the duct walls to the isolator exit deciding whether the inlet starts,
+//! the same turn into the duct, a quasi-one-dimensional combustor integrated along its length
+//! with area change, wall friction and fuel mass and heat released along a mixing-efficiency
+//! curve, an isentropic internal nozzle and the plume aftbody below.
+//!
+//! **Inlet face and duct (both models, [`capture`], [`duct_entry`]).** The face carries the
+//! shock-layer flow, or, once the bow shock enters the cowl, shocked flow and freestream side
+//! by side; its stream thrust is their sum. The flow enters the duct by stream-thrust
+//! averaging on the duct axis (Heiser & Pratt 1994): mass, energy and axial stream thrust
+//! kept, the transverse momentum given to the cowl. Issue 10 item 8 found that the former
+//! isentropic turn (1-d) and wave-system end state filled isentropically (q1d) made 1.19 and
+//! 0.96 kN/m of axial force at Mach 6 from duct walls that have no axial area, and that the
+//! face pressure acted along the flow instead of normal to the face.
 //!
 //! **Aftbody (both models).** The exhaust expands as a quasi-one-dimensional isentropic stream
 //! tube between the aftbody and a straight shear layer from the cowl trailing edge, turned
@@ -47,17 +57,32 @@
 //! Schmidt law p_e/(1 + (s/L)(p_e/p∞ − 1)) gives a mean that grows only as ln(p_e/p∞), which
 //! turned its thrust down with α against Bolender & Doman's.
 //!
-//! **Where to trust them.** Validated (tests/bolender_doman.rs, validation.rs) against the
-//! published Bolender & Doman thrust fit of Parker et al. (J. Guidance Control Dynamics
-//! 30(3), 2007) at Mach 8, 85 kft: ∂T/∂φ 0.69× (1-d) and 0.70× (q1d), ∂T/∂α at φ 0.25 0.83×
-//! and 0.73×, ∂²T/∂φ∂α 0.52× and 0.54× of theirs (bands: factor 2, 3, 2); on the sample at
-//! Mach 6, 26 km the two agree within 10 % for φ ≥ 0.3 and α from -4° to 8°, within 45 % at
-//! the trim φ ≈ 0.13 (small net thrust, a difference of large terms). Use them for thrust
-//! trends and trim near the design point with a started, under-expanded engine, to a factor
-//! of about 1.5 in absolute thrust. Not validated: absolute thrust against a published
-//! cycle (no Heiser & Pratt reference cycle is reproduced), unstarted or choked engines
-//! (statuses, crude loads), over-expanded exhausts, and aftbody pressure distributions
-//! (a 1-D plume, not a method-of-characteristics solution).
+//! **Where to trust them.** Validated against conservation laws of Heiser & Pratt's cycle
+//! analysis (tests/cycle.rs): from shock-on-lip up the engine force is the stream-thrust
+//! difference S_e − ṁV∞ plus the aftbody force (1e-9), the exit T0 closes the burner energy
+//! balance (1e-9), the frictionless duct exerts no axial force (1e-9, q1d 1e-7), and the
+//! thrust stays below the fully expanded cycle (1-d 38-51 %, q1d 30-49 % of it at
+//! shock-on-lip, φ 0.1-0.6); components against tables and closed forms (validation.rs,
+//! plume.rs: θ-β-M, Rayleigh, Fanno, shock-on-lip, choking φ, plume area-Mach). Against the
+//! published Bolender & Doman thrust fit (Parker et al., J. Guidance Control Dynamics 30(3),
+//! 2007) at Mach 8, 85 kft: ∂T/∂φ 0.70× (1-d) and 0.71× (q1d), ∂T/∂α at φ 0.25 0.73× and
+//! 0.64×, ∂²T/∂φ∂α 0.53× and 0.55× (bands: factor 2, 3, 2). On the sample at Mach 6, 26 km,
+//! α −4° to 8°, q1d gives 7-10 % less thrust than 1-d at φ 0.3 and 2-3.4 kN less at φ 0.13:
+//! its duct wall friction (c_f 0.002, about 3.3 kN); with c_f = 0 the two agree exactly while
+//! unchoked. At φ 0.13, α 0 the net thrust (1-d 6.9 kN, q1d 4.5 kN) is a difference of large
+//! terms: ramp drag 13.7 kN against 20.6 kN (1-d) and 21.5 kN (q1d) of aftbody thrust; the
+//! constant-area duct adds none (impulse conserved), so fuel thrust is aftbody thrust.
+//!
+//! Use them for thrust, lift and moment of a started, unchoked, under-expanded engine and
+//! their trends in φ and α, to about a factor 1.5 in absolute thrust against Bolender &
+//! Doman. Not trustworthy: absolute thrust against a real engine (no published Heiser & Pratt
+//! worked cycle is reproduced; the sample's inlet barely compresses, combustor entry about
+//! Mach 4.9 and 314 K at Mach 6, where hydrogen would not ignite and no model checks
+//! ignition), thermal choking (φ ≳ 0.43 at Mach 6, 26 km: sonic exit at the limiting heat, a
+//! real engine would unstart) and unstart (crude loads), over-expanded exhausts, the aftbody
+//! pressure distribution (1-D plume with a straight shear layer, not a method-of-characteristics
+//! solution), and the duct-entry losses (stream-thrust averaging is the fully mixed state:
+//! total pressure 19 % below the ramp flow's at Mach 6, more than a cowl shock alone costs).
 //!
 //! **Off-design.** Spillage, thermal choking and unstart are statuses, never NaN. At thermal
 //! choking the combustor takes the largest heat release it can pass (sonic exit) and reports
@@ -296,17 +321,24 @@ hsv_core::register_model!(ModelDescriptor {
     name: one_d::NAME,
     origin: env!("CARGO_PKG_NAME"),
     fidelity: 1,
-    summary: "1-D scramjet after Bolender & Doman (2007): ramp shock with spillage, isentropic \
-              diffuser, Rayleigh combustor with choking detection, quasi-1-D plume aftbody \
-              bounded by a pressure-matched shear layer; on spanwise strips with a quadratic fit. \
-              Trust: thrust trends in phi and alpha near the design point (within a factor 2 of \
-              Bolender & Doman's published fit at Mach 8); not unstarted or choked engines",
+    summary: "1-D scramjet after Bolender & Doman (2007): ramp shock with spillage, momentum- \
+              conserving turn into the duct, isentropic diffuser, Rayleigh combustor with choking \
+              detection, quasi-1-D plume aftbody bounded by a pressure-matched shear layer; on \
+              spanwise strips with a quadratic fit. Trust: started, unchoked engines and their \
+              phi/alpha trends (0.5-0.7x Bolender & Doman's published slopes at Mach 8); not \
+              choked or unstarted engines, not absolute Isp",
     settings_doc: "spanwise_strips = 5                  # sections across the engine (>= 3)\n\
                    stoichiometric_fuel_air_ratio = 0.0291 # H2 (Heiser & Pratt 1994)\n\
                    fuel_heating_value_j_kg = 1.2e8      # H2 lower heating value (Heiser & Pratt 1994)\n\
                    combustion_efficiency = 0.9          # fraction of the heating value released\n\
                    # diffuser_area_ratio = 1.0          # combustor area / inlet height; default from [geometry]\n\
-                   # internal_nozzle_area_ratio = 1.0   # nozzle exit / combustor area (>= 1); default from [geometry]",
+                   # internal_nozzle_area_ratio = 1.0   # nozzle exit / combustor area (>= 1); default from [geometry]\n\
+                   # Trustworthy (tests/cycle.rs, bolender_doman.rs): started, unchoked, under-expanded engines;\n\
+                   #   force = Heiser & Pratt stream-thrust difference + aftbody (exact), mass and T0 conserved,\n\
+                   #   dT/dphi 0.70x and dT/dalpha 0.73x Bolender & Doman's published fit at Mach 8.\n\
+                   # Not: thermal choking (phi above ~0.43 at Mach 6, 26 km), unstart, over-expanded exhaust,\n\
+                   #   absolute Isp (the sample inlet barely compresses: combustor entry ~Mach 4.9, 314 K;\n\
+                   #   ignition is not modelled), aftbody pressure distribution (1-D plume, not MOC)",
     constructor: Constructor::Propulsion(build_1d),
 });
 
@@ -314,12 +346,12 @@ hsv_core::register_model!(ModelDescriptor {
     name: quasi_one_d::NAME,
     origin: env!("CARGO_PKG_NAME"),
     fidelity: 2,
-    summary: "Quasi-1-D scramjet: 2-D inlet shocks with cowl-shock reflections, combustor \
-              integrated with area change, friction and mixing-limited heat release, quasi-1-D \
-              plume aftbody bounded by a pressure-matched shear layer; on spanwise strips with a \
-              quadratic fit. Trust: thrust trends in phi and alpha near the design point (within \
-              a factor 2 of Bolender & Doman's published fit at Mach 8); not unstarted or \
-              choked engines",
+    summary: "Quasi-1-D scramjet: 2-D inlet shocks with cowl-shock reflections (start check), \
+              momentum-conserving turn into the duct, combustor integrated with area change, \
+              friction and mixing-limited heat release, quasi-1-D plume aftbody bounded by a \
+              pressure-matched shear layer; on spanwise strips with a quadratic fit. Trust: \
+              started, unchoked engines and their phi/alpha trends (0.5-0.7x Bolender & Doman's \
+              published slopes at Mach 8); not choked or unstarted engines, not absolute Isp",
     settings_doc: "spanwise_strips = 5                  # sections across the engine (>= 3)\n\
                    stoichiometric_fuel_air_ratio = 0.0291 # H2 (Heiser & Pratt 1994)\n\
                    fuel_heating_value_j_kg = 1.2e8      # H2 lower heating value (Heiser & Pratt 1994)\n\
@@ -331,6 +363,13 @@ hsv_core::register_model!(ModelDescriptor {
                    combustor_length_fraction = 0.5      # combustor / engine length\n\
                    combustor_steps = 200                # RK4 steps along the combustor\n\
                    # diffuser_area_ratio = 1.0          # combustor entry / inlet height; default from [geometry]\n\
-                   # internal_nozzle_area_ratio = 1.0   # nozzle exit / combustor exit (>= 1); default from [geometry]",
+                   # internal_nozzle_area_ratio = 1.0   # nozzle exit / combustor exit (>= 1); default from [geometry]\n\
+                   # Trustworthy (tests/cycle.rs, bolender_doman.rs): started, unchoked, under-expanded engines;\n\
+                   #   force = Heiser & Pratt stream-thrust difference + aftbody (exact), mass and T0 conserved,\n\
+                   #   dT/dphi 0.71x and dT/dalpha 0.64x Bolender & Doman's published fit at Mach 8. Its duct\n\
+                   #   wall friction costs ~3.3 kN at Mach 6, 26 km: the whole difference to scramjet-1d there.\n\
+                   # Not: thermal choking (phi above ~0.43 at Mach 6, 26 km), unstart, over-expanded exhaust,\n\
+                   #   absolute Isp (the sample inlet barely compresses; ignition is not modelled), the cowl\n\
+                   #   wave pattern (it only decides start), aftbody pressure distribution (1-D plume, not MOC)",
     constructor: Constructor::Propulsion(build_q1d),
 });

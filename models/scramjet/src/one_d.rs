@@ -1,5 +1,5 @@
-//! `scramjet-1d` on one section, after Bolender & Doman (2007): ramp shock, spillage, isentropic
-//! diffuser, constant-area combustor with Rayleigh heat (and fuel mass) addition, isentropic
+//! `scramjet-1d` on one section, after Bolender & Doman (2007): ramp shock, spillage, the
+//! momentum-conserving turn into the duct ([`crate::duct_entry`]), isentropic diffuser, constant-area combustor with Rayleigh heat (and fuel mass) addition, isentropic
 //! internal nozzle, and the quasi-one-dimensional plume expansion along the external nozzle
 //! (shared with `scramjet-q1d`).
 

@@ -1,6 +1,7 @@
 //! `scramjet-q1d` on one section: a two-dimensional inlet wave system (bow shock and ramp
 //! shocks/expansions panel by panel, cowl shock, reflections between the duct walls up to the
-//! isolator exit), a quasi-one-dimensional combustor integrated along its length (area change,
+//! isolator exit, which decides whether the inlet starts), the momentum-conserving turn into
+//! the duct shared with `scramjet-1d` ([`crate::duct_entry`]), a quasi-one-dimensional combustor integrated along its length (area change,
 //! wall friction, fuel mass addition and heat release following a mixing-efficiency curve), an
 //! isentropic internal nozzle and a quasi-one-dimensional plume expansion along the aftbody,
 //! bounded below by a pressure-matched shear layer.

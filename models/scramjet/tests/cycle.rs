@@ -70,9 +70,13 @@ fn setup(friction: Option<f64>) -> (SectionGeometry, Vec<(&'static str, Solver)>
 }
 
 fn conditions(freestream: &Freestream, phi: f64) -> SectionConditions<'_> {
+    conditions_at(freestream, 0.0, phi)
+}
+
+fn conditions_at(freestream: &Freestream, alpha_deg: f64, phi: f64) -> SectionConditions<'_> {
     SectionConditions {
         freestream,
-        alpha_rad: 0.0,
+        alpha_rad: alpha_deg.to_radians(),
         fuel_equivalence_ratio: phi,
         reference_m: Point2::new(-15.2, 0.0),
     }
@@ -115,34 +119,42 @@ fn shock_on_lip_mach(section: &SectionGeometry) -> f64 {
 /// stream-thrust difference S_e - ṁ V∞ (exit flow aft through the level exit face), plus the
 /// aftbody's gauge-pressure force, here summed by hand: in x and z, to 1e-9 of ṁ V∞, for
 /// φ = 0 (no fuel) and 0.3, at the on-lip Mach number (10.47) and at 1.1 and 1.3 times it
-/// (bow shock inside the cowl). Before issue 10 item 8 the engines took the inlet-face
+/// (bow shock inside the cowl), and at 1.3 times it with α = ±2° (the freestream, aft at
+/// angle α, u = (-cos α, -sin α) in body x-z: the force is then ṁ V∞ u - S_e x̂ + aftbody). Before issue 10 item 8 the engines took the inlet-face
 /// pressure along the flow instead of normal to the face (off by 8 % of the z force at
 /// shock-on-lip) and, with the shock inside the cowl, all the captured flow at the
 /// shock-layer state (at 1.1 times the on-lip Mach 275 N/m too much thrust).
 #[test]
 fn engine_force_is_the_stream_thrust_difference_plus_the_aftbody() {
     let (section, solvers) = setup(None);
-    for factor in [1.0, 1.1, 1.3] {
+    for (factor, alpha_deg) in [(1.0, 0.0), (1.1, 0.0), (1.3, 0.0), (1.3, 2.0), (1.3, -2.0)] {
         let mach = factor * shock_on_lip_mach(&section);
         let f = Freestream::standard(mach, 30_000.0, PerfectGas::AIR).expect("atmosphere");
-        check_forebody_momentum(&section, &solvers, &f);
+        check_forebody_momentum(&section, &solvers, &f, alpha_deg);
     }
 }
 
 /// Asserts the forebody momentum closure at `f` for both engines, φ = 0 and 0.3.
-fn check_forebody_momentum(section: &SectionGeometry, solvers: &[(&str, Solver)], f: &Freestream) {
+fn check_forebody_momentum(
+    section: &SectionGeometry,
+    solvers: &[(&str, Solver)],
+    f: &Freestream,
+    alpha_deg: f64,
+) {
     let gas = f.gas;
+    let alpha = alpha_deg.to_radians();
+    let u = Vector2::new(-alpha.cos(), -alpha.sin());
     for (name, solve) in solvers {
         for phi in [0.0, 0.3] {
-            let out = solve(section, &conditions(f, phi));
+            let out = solve(section, &conditions_at(f, alpha_deg, phi));
             assert_relative_eq!(out.captured_fraction, 1.0, epsilon = 1e-9);
             let air = out.air_mass_flow_kg_s_per_m;
             let exit = out.station(NOZZLE_EXIT).expect("started");
             let s_e = stream_thrust(exit, &gas, f.pressure_pa);
             let aftbody = surface_force(&section.nozzle_m, &out.nozzle_pressure_pa, f.pressure_pa);
-            let expected = Vector2::new(s_e - air * f.velocity_m_s, 0.0) + aftbody;
+            let expected = air * f.velocity_m_s * u + Vector2::new(s_e, 0.0) + aftbody;
             eprintln!(
-                "{name} M {:.3} phi {phi}: F = {:?} N/m, expected {expected:?}",
+                "{name} M {:.3} alpha {alpha_deg} phi {phi}: F = {:?} N/m, expected {expected:?}",
                 f.mach, out.force_n_per_m
             );
             assert!(

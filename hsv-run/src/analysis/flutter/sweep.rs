@@ -13,9 +13,12 @@
 //! round-off threshold, [`super::stability`]); Brent's method then finds the zero, each
 //! evaluation a fresh heating march at that Mach number to that time. A range with no stable
 //! point, or no unstable one, is reported as such with the largest real part and least
-//! damping found, never as a crossing. A buckled surface (stiffness no longer positive
-//! definite) or a melting one (wall past the solidus) is reported at its Mach number and time
-//! and takes no part in the bracketing.
+//! damping found, never as a crossing. A surface buckled in vacuum (its own stiffness no
+//! longer positive definite) is analysed with its aero like any other and flagged; where the
+//! flow does not hold it, its real root in the right half plane (divergence) is the
+//! instability the bracketing finds (paper Eq. 8 counts every root crossing). A melting
+//! surface (wall past the solidus) or one past its material data is reported at its Mach
+//! number and time and takes no part in the bracketing.
 
 use std::sync::Mutex;
 use std::sync::atomic::{AtomicUsize, Ordering};
@@ -119,6 +122,10 @@ pub struct FlutterPoint {
     pub method_difference: Option<MethodDifference>,
     /// Wall time of the identification and eigen-analysis, s.
     pub analysis_wall_time_s: f64,
+    /// Why the structure alone is buckled (stiffness not positive definite) at the point, if
+    /// it is: the point is analysed with its aero all the same ([`super::surface`]).
+    #[serde(default)]
+    pub buckled_in_vacuum: Option<String>,
 }
 
 /// Builds model `name` of role `M` for `region`.
@@ -318,6 +325,7 @@ fn failed_point(mach: f64, time_s: f64, e: &FlutterError, range: (f64, f64, f64)
         mean_temperature_k: range.2,
         method_difference: None,
         analysis_wall_time_s: 0.0,
+        buckled_in_vacuum: None,
     }
 }
 
@@ -340,18 +348,19 @@ pub fn march(
     let mut structure: Box<dyn StructureModel> =
         build(&setup.region, registry, &setup.models.structure)?;
     let mut thermal = Thermal::new(setup, registry, flight, structure.as_ref())?;
-    let initial = setup.heating.initial_k;
     let mut points = Vec::with_capacity(times_s.len());
-    let mut stopped: Option<FlutterError> = None;
+    // The error that ended the march and the temperatures it ended at: later points report
+    // both (not the initial field).
+    let mut stopped: Option<(FlutterError, (f64, f64, f64))> = None;
     for &time_s in times_s {
-        if let Some(e) = &stopped {
-            points.push(failed_point(mach, time_s, e, (initial, initial, initial)));
+        if let Some((e, range)) = &stopped {
+            points.push(failed_point(mach, time_s, e, *range));
             continue;
         }
         if let Err(e) = thermal.advance_to(time_s, setup.heating.dt_s) {
             let range = temperature_range(thermal.heating.node_temperatures_k());
             points.push(failed_point(mach, time_s, &e, range));
-            stopped = Some(e);
+            stopped = Some((e, range));
             continue;
         }
         let range = match thermal.apply(structure.as_mut(), &setup.models.structure) {
@@ -402,6 +411,10 @@ fn analyse_point(
             mean_temperature_k: range.2,
             method_difference: difference,
             analysis_wall_time_s: start.elapsed().as_secs_f64(),
+            buckled_in_vacuum: structure
+                .natural_frequencies_hz()
+                .err()
+                .map(|e| e.to_string()),
         },
         Err(e) => failed_point(mach, time_s, &e, range),
     }

@@ -1,7 +1,7 @@
 //! Cost of whole jobs on the sample vehicle (Mach 6, 26 km, the embedded config's models): one
 //! state derivative of the partitioned flexible vehicle at its trim (body–surface coupling
 //! converged), one rigid trim (Nelder–Mead and its restart check, as `hsv-run trim`), and 0.1 s
-//! of flight from trim under the paper's elevon doublet (200 steps of 0.5 ms, as
+//! of flight from trim under the paper's elevon doublet (100 steps of 1 ms, as
 //! `hsv-run simulate`).
 //!
 //! `cargo bench -p hsv-benches --bench jobs -- --measurement-time 3 --warm-up-time 1`. The
@@ -77,12 +77,13 @@ fn jobs(c: &mut Criterion) {
 
     let inputs = Inputs::paper_doublet();
     let settings = RunSettings {
-        dt_s: 0.0005,
+        dt_s: 0.001,
+        integrator: hsv_run::analysis::simulate::Integrator::default(),
         duration_s: 0.1,
         record_every: 20,
         start_step: 0,
     };
-    group.bench_function("simulate 0.1 s (partitioned, dt 0.5 ms)", |b| {
+    group.bench_function("simulate 0.1 s (partitioned, dt 1 ms)", |b| {
         b.iter_batched(
             || (partitioned(&loaded, &registry), trimmed.clone()),
             |(mut fresh, mut state)| {

@@ -2,7 +2,7 @@
 //! put, the elevon doublet's altitude response is non-minimum phase (paper Fig. 11), and input
 //! tables are checked; restarts are bit-identical and a glide conserves energy with its loads.
 
-use hsv_run::analysis::simulate::{InputTable, Inputs, RunSettings, Sample, simulate};
+use hsv_run::analysis::simulate::{InputTable, Inputs, Integrator, RunSettings, Sample, simulate};
 use hsv_run::vehicle::body_rate::BodyLoadRate;
 use hsv_run::vehicle::partitioned::{FlightControls, PartitionedVehicle};
 
@@ -30,11 +30,22 @@ fn fly_with(duration_s: f64, dt_s: f64, inputs: &Inputs) -> Vec<Sample> {
 }
 
 fn fly_at_rate(duration_s: f64, dt_s: f64, rate: BodyLoadRate, inputs: &Inputs) -> Vec<Sample> {
+    fly_full(duration_s, dt_s, rate, Integrator::default(), inputs).expect("flies")
+}
+
+fn fly_full(
+    duration_s: f64,
+    dt_s: f64,
+    rate: BodyLoadRate,
+    integrator: Integrator,
+    inputs: &Inputs,
+) -> Result<Vec<Sample>, hsv_run::analysis::simulate::SimulationError> {
     let (mut vehicle, mut state, controls) = trimmed();
     vehicle.set_body_load_rate(rate);
     let mut samples = Vec::new();
     let settings = RunSettings {
         dt_s,
+        integrator,
         duration_s,
         record_every: 5,
         start_step: 0,
@@ -49,9 +60,8 @@ fn fly_at_rate(duration_s: f64, dt_s: f64, rate: BodyLoadRate, inputs: &Inputs) 
             samples.push(s.clone());
             true
         },
-    )
-    .expect("flies");
-    samples
+    )?;
+    Ok(samples)
 }
 
 #[test]
@@ -168,6 +178,34 @@ fn the_body_region_at_a_coarser_rate_than_the_stages_leaves_the_doublet_response
 }
 
 #[test]
+fn the_exponential_integrator_past_the_runge_kutta_limit_matches_a_fine_runge_kutta_run() {
+    // The surfaces' structure integrated exactly (ETDRK4, Cox & Matthews 2002) at a step where
+    // classical RK4 is unstable on the coarse surfaces' stiffest Ritz vector, against classical
+    // RK4 at a quarter of that step: the same bound as the step-halving test (a hundredth of
+    // the response's 1e-2 scale), fixed before running it.
+    let doublet = Inputs::paper_doublet();
+    let rate = BodyLoadRate::default();
+    let coarse_step = 0.008;
+    let exponential = fly_full(0.9, coarse_step, rate, Integrator::ExponentialRk4, &doublet)
+        .expect("the exponential integrator is stable");
+    let fine = fly_full(0.9, coarse_step / 4.0, rate, Integrator::Rk4, &doublet).expect("flies");
+    let (a, b) = (exponential.last().expect("exp"), fine.last().expect("fine"));
+    assert!((a.time_s - b.time_s).abs() < 1e-12);
+    assert!((a.pitch_deg - b.pitch_deg).abs() < 1e-4, "{a:?} vs {b:?}");
+    assert!((a.altitude_m - b.altitude_m).abs() < 1e-4, "{a:?} vs {b:?}");
+    let unstable = match fly_full(0.9, coarse_step, rate, Integrator::Rk4, &doublet) {
+        Err(_) => true,
+        Ok(s) => s
+            .last()
+            .is_none_or(|l| (l.pitch_deg - b.pitch_deg).abs() > 1.0),
+    };
+    assert!(
+        unstable,
+        "classical RK4 at {coarse_step} s should be unstable here"
+    );
+}
+
+#[test]
 fn a_duration_that_is_not_a_whole_number_of_steps_ends_exactly_at_it() {
     // 0.205 s at 2 ms: 102 full steps and a last one of 1 ms, never a silent 0.206 s.
     let still = Inputs {
@@ -212,6 +250,7 @@ fn a_run_resumed_from_its_restart_file_continues_bit_for_bit() {
     };
     let settings = |start_step: usize| RunSettings {
         dt_s: 0.002,
+        integrator: hsv_run::analysis::simulate::Integrator::default(),
         duration_s: 0.2,
         record_every: 1,
         start_step,
@@ -313,6 +352,7 @@ fn a_gliding_rigid_vehicle_loses_kinetic_and_potential_energy_to_the_work_of_its
     let mut last_e = e0;
     let settings = RunSettings {
         dt_s: 0.0005,
+        integrator: hsv_run::analysis::simulate::Integrator::default(),
         duration_s: 0.2,
         record_every: 1,
         start_step: 0,
@@ -375,6 +415,7 @@ fn the_time_loop_allocates_nothing_once_its_buffers_exist() {
             .expect("heating");
         let settings = RunSettings {
             dt_s: 0.002,
+            integrator: hsv_run::analysis::simulate::Integrator::default(),
             duration_s: 0.2,
             record_every: 1,
             start_step: 0,

@@ -31,7 +31,7 @@ pub struct CompareArgs {
     )]
     pub duration_s: f64,
     /// Aeroelastic step, s (see `simulate --help`).
-    #[arg(long = "dt-s", default_value_t = 0.0005, allow_negative_numbers = true)]
+    #[arg(long = "dt-s", default_value_t = 0.001, allow_negative_numbers = true)]
     pub dt_s: f64,
     /// Run folder (default: runs/compare-<UTC time>).
     #[arg(long, value_name = "DIR")]
@@ -82,6 +82,7 @@ fn fly(
         vehicle.level_flight_state(mach, altitude_m, t.alpha_deg.to_radians(), &controls)?;
     let settings = RunSettings {
         dt_s: args.dt_s,
+        integrator: super::simulate::integrator(loaded)?,
         duration_s: args.duration_s,
         record_every: 10,
         start_step: 0,

@@ -63,7 +63,7 @@ pub struct TradeArgs {
     /// Flight time of a simulate study, s (default 2).
     #[arg(long = "duration-s", allow_negative_numbers = true)]
     pub duration_s: Option<f64>,
-    /// Aeroelastic step of a simulate study, s (default 0.0005, as `hsv-run simulate`); the
+    /// Aeroelastic step of a simulate study, s (default 0.001, as `hsv-run simulate`); the
     /// conduction step of a flutter study (default 0.1, as `hsv-run flutter`).
     #[arg(long = "dt-s", allow_negative_numbers = true)]
     pub dt_s: Option<f64>,
@@ -178,7 +178,7 @@ fn study(
         TradeJob::Trim | TradeJob::Flutter => None,
         TradeJob::Simulate => {
             let duration_s = args.duration_s.or(settings.duration_s).unwrap_or(2.0);
-            let dt_s = args.dt_s.or(settings.dt_s).unwrap_or(0.0005);
+            let dt_s = args.dt_s.or(settings.dt_s).unwrap_or(0.001);
             super::steps::time_steps(duration_s, dt_s).map_err(|e| {
                 anyhow::anyhow!("trade flight of {duration_s} s with steps of {dt_s} s: {e}")
             })?;

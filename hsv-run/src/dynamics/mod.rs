@@ -26,7 +26,7 @@ pub mod rigid_body;
 pub mod vehicle;
 
 pub use flight_modes::{FlightMode, ModeName, ModeScales, StateRole, flight_modes};
-pub use integrate::Rk4;
+pub use integrate::{ExponentialRk4, LinearBlock, Rk4};
 pub use linearize::{LinearModel, PerturbationRule, linearize, linearize_outputs};
 pub use modal::{
     ModalDynamics, ModalRate, ModalState, RootMotion, SurfaceAttachment, mean_axes_cosine,

@@ -132,6 +132,22 @@ impl ModalDynamics {
         Ok(())
     }
 
+    /// The generator of the unforced equations on (q, q̇): [[0, I], [−M⁻¹K, −M⁻¹C]].
+    pub fn state_generator(&self) -> DMatrix<f64> {
+        let n = self.n_modes();
+        let mut l = DMatrix::zeros(2 * n, 2 * n);
+        l.view_mut((0, n), (n, n)).fill_with_identity();
+        let mut stiffness = -self.stiffness.clone();
+        let mut damping = -self.damping.clone();
+        if n > 0 {
+            self.mass_factor.solve_mut(&mut stiffness);
+            self.mass_factor.solve_mut(&mut damping);
+        }
+        l.view_mut((n, 0), (n, n)).copy_from(&stiffness);
+        l.view_mut((n, n), (n, n)).copy_from(&damping);
+        l
+    }
+
     /// q̈ from M q̈ = Q − C q̇ − K q − C_rb a (`rigid`: C_rb and a, when the structure is driven
     /// by its support's motion), into `out` together with q̇. No allocation.
     pub fn acceleration(

@@ -18,7 +18,7 @@
 use hsv_core::aero::Loads;
 use hsv_core::frames;
 use hsv_core::structure::ModalModel;
-use nalgebra::{DVector, Quaternion, UnitQuaternion, Vector3};
+use nalgebra::{DMatrix, DVector, Quaternion, UnitQuaternion, Vector3};
 use serde::{Deserialize, Serialize};
 
 use super::flight_modes::StateRole;
@@ -65,6 +65,9 @@ pub struct VehicleDerivative {
 #[derive(Debug, Clone)]
 struct Surface {
     modal: ModalDynamics,
+    /// The structural generator at assembly (before any temperature update): what the exponential
+    /// integrator propagates exactly, so a resumed run uses the same one.
+    reference_generator: DMatrix<f64>,
     attachment: SurfaceAttachment,
     root_acceleration: DVector<f64>,
 }
@@ -117,6 +120,7 @@ impl VehicleDynamics {
                 )?;
                 Ok(Surface {
                     root_acceleration: DVector::zeros(attachment.dofs.len()),
+                    reference_generator: modal.state_generator(),
                     modal,
                     attachment,
                 })
@@ -144,6 +148,21 @@ impl VehicleDynamics {
     /// A surface's attachment.
     pub fn surface_attachment(&self, surface: usize) -> Option<&SurfaceAttachment> {
         self.surfaces.get(surface).map(|s| &s.attachment)
+    }
+
+    /// Each lifting surface's structural equations as a linear block of the flat state
+    /// (generator at assembly), for [`ExponentialRk4`](super::ExponentialRk4): the stiff Ritz vectors
+    /// are then propagated exactly and the heating's stiffness change, the aero, the root
+    /// motion and the coupling stay in the explicit remainder.
+    pub fn surface_linear_blocks(&self, layout: &StateLayout) -> Vec<super::LinearBlock> {
+        self.surfaces
+            .iter()
+            .enumerate()
+            .map(|(i, s)| super::LinearBlock {
+                start: layout.surface_modes(i),
+                generator: s.reference_generator.clone(),
+            })
+            .collect()
     }
 
     /// Updates a surface's modal matrices in place (temperature-dependent stiffness).

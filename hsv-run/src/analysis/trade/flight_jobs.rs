@@ -78,6 +78,7 @@ pub(super) fn simulate_case(
     )?;
     let settings = RunSettings {
         dt_s: flight.dt_s,
+        integrator: crate::analysis::simulate::Integrator::default(),
         duration_s: flight.duration_s,
         record_every: flight.record_every.max(1),
         start_step: 0,

@@ -24,7 +24,8 @@ use serde_json::json;
 use super::{ConfigArg, JsonFlag, OutArgs, load_config};
 use crate::analysis::flutter::panel::{SimplySupportedPanel, mach_grid, panel_flutter};
 use crate::analysis::flutter::sweep::{
-    FlutterBoundary, FlutterMap, FlutterModels, FlutterSetup, PointStatus, flutter_map, status_text,
+    FlutterBoundary, FlutterMap, FlutterModels, FlutterPoint, FlutterSetup, PointStatus,
+    flutter_map, status_text,
 };
 use crate::analysis::flutter::{DerivativeMethod, FlutterError, SurfaceOptions};
 use crate::analysis::heating::HeatingSteps;
@@ -401,37 +402,88 @@ fn print_table(setup: &FlutterSetup, map: &FlutterMap, folder: &Path) -> Result<
     Ok(())
 }
 
-/// CSVs and PNGs of Figs. 14-16.
-fn write_outputs(folder: &mut RunFolder, map: &FlutterMap) -> Result<()> {
-    // Fig. 16: flutter Mach number versus time.
-    let (t_f, m_f): (Vec<f64>, Vec<f64>) = map
+/// The lowest grid Mach number of `row` that could not be analysed (melting, past the
+/// material data, failed): above it the row says nothing about flutter.
+fn limit_mach(row: &[FlutterPoint]) -> Option<f64> {
+    row.iter()
+        .filter(|p| !p.status.is_analysed())
+        .map(|p| p.mach)
+        .reduce(f64::min)
+}
+
+/// Fig. 16: the instability Mach number versus time (flutter_mach.csv; a critical frequency
+/// of 0 is divergence), the limit of the analysable range versus time (flutter_limits.csv),
+/// and both in flutter_mach.png.
+fn write_flutter_mach(folder: &mut RunFolder, map: &FlutterMap) -> Result<()> {
+    let mut crossings: [Vec<f64>; 3] = Default::default();
+    for (t, b) in map.times_s.iter().zip(&map.boundaries) {
+        if let FlutterBoundary::Crossing {
+            mach, frequency_hz, ..
+        } = b
+        {
+            for (c, v) in crossings.iter_mut().zip([*t, *mach, *frequency_hz]) {
+                c.push(v);
+            }
+        }
+    }
+    let [t_f, m_f, f_f] = crossings;
+    let path = folder.join("flutter_mach.csv");
+    output::write_csv(
+        &path,
+        &["time_s", "flutter_mach", "critical_frequency_hz"],
+        &[&t_f, &m_f, &f_f],
+    )?;
+    folder.record(path);
+    let (t_l, m_l): (Vec<f64>, Vec<f64>) = map
         .times_s
         .iter()
-        .zip(&map.boundaries)
-        .filter_map(|(t, b)| b.mach().map(|m| (*t, m)))
+        .zip(&map.points)
+        .filter_map(|(t, row)| limit_mach(row).map(|m| (*t, m)))
         .unzip();
-    let path = folder.join("flutter_mach.csv");
-    output::write_csv(&path, &["time_s", "flutter_mach"], &[&t_f, &m_f])?;
+    let path = folder.join("flutter_limits.csv");
+    output::write_csv(
+        &path,
+        &["time_s", "lowest_unanalysable_mach"],
+        &[&t_l, &m_l],
+    )?;
     folder.record(path);
+    let mut series = Vec::new();
     if !t_f.is_empty() {
-        let path = folder.join("flutter_mach.png");
-        output::write_line_plots_png(
-            &path,
-            &[LinePlot {
-                title: "Flutter Mach number versus time in flow".to_owned(),
-                x_label: "time in flow (s)".to_owned(),
-                y_label: "flutter Mach number".to_owned(),
-                series: vec![Series {
-                    label: "flutter Mach".to_owned(),
-                    x: t_f.clone(),
-                    y: m_f.clone(),
-                }],
-            }],
-            1,
-            (900, 600),
-        )?;
-        folder.record(path);
+        series.push(Series {
+            label: "flutter or divergence Mach".to_owned(),
+            x: t_f,
+            y: m_f,
+        });
     }
+    if !t_l.is_empty() {
+        series.push(Series {
+            label: "lowest Mach melted or past material data".to_owned(),
+            x: t_l,
+            y: m_l,
+        });
+    }
+    if series.is_empty() {
+        return Ok(());
+    }
+    let path = folder.join("flutter_mach.png");
+    output::write_line_plots_png(
+        &path,
+        &[LinePlot {
+            title: "Flutter Mach number versus time in flow".to_owned(),
+            x_label: "time in flow (s)".to_owned(),
+            y_label: "Mach number".to_owned(),
+            series,
+        }],
+        1,
+        (900, 600),
+    )?;
+    folder.record(path);
+    Ok(())
+}
+
+/// CSVs and PNGs of Figs. 14-16.
+fn write_outputs(folder: &mut RunFolder, map: &FlutterMap) -> Result<()> {
+    write_flutter_mach(folder, map)?;
     // Fig. 15: root loci of the tracked modes over Mach and time.
     let mut cols: [Vec<f64>; 7] = Default::default();
     let mut loci = Vec::new();

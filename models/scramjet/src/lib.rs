@@ -321,9 +321,9 @@ hsv_core::register_model!(ModelDescriptor {
     name: one_d::NAME,
     origin: env!("CARGO_PKG_NAME"),
     fidelity: 1,
-    summary: "1-D scramjet after Bolender & Doman (2007): ramp shock with spillage, momentum- \
-              conserving turn into the duct, isentropic diffuser, Rayleigh combustor with choking \
-              detection, quasi-1-D plume aftbody bounded by a pressure-matched shear layer; on \
+    summary: "1-D scramjet after Bolender & Doman (2007): ramp shock with spillage, \
+              momentum-conserving turn into the duct, isentropic diffuser, Rayleigh combustor \
+              with choking detection, quasi-1-D plume aftbody bounded by a pressure-matched shear layer; on \
               spanwise strips with a quadratic fit. Trust: started, unchoked engines and their \
               phi/alpha trends (0.5-0.7x Bolender & Doman's published slopes at Mach 8); not \
               choked or unstarted engines, not absolute Isp",

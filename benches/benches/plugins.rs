@@ -23,8 +23,7 @@ use hsv_plugin_ackeret as _;
 use hsv_plugin_laminar_plate as _;
 
 fn builtin() -> &'static Registry {
-    static REGISTRY: std::sync::OnceLock<Registry> = std::sync::OnceLock::new();
-    REGISTRY.get_or_init(|| hsv_run::registry().expect("built-in models register"))
+    hsv_run::shared_registry().expect("built-in models register")
 }
 
 /// The built-in model `name` on the guest side of the in-process plugin.

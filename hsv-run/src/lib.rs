@@ -12,4 +12,4 @@ pub mod progress;
 pub mod steps;
 pub mod vehicle;
 
-pub use linked::registry;
+pub use linked::{registry, shared_registry};

@@ -20,3 +20,14 @@ use hsv_model_shock_expansion as _;
 pub fn registry() -> Result<Registry, RegistryError> {
     Registry::builtin()
 }
+
+/// [`registry`] built once per process and shared: for tests, benches and anything else that
+/// asks for the built-in models many times.
+pub fn shared_registry() -> Result<&'static Registry, RegistryError> {
+    static REGISTRY: std::sync::OnceLock<Result<Registry, RegistryError>> =
+        std::sync::OnceLock::new();
+    REGISTRY
+        .get_or_init(registry)
+        .as_ref()
+        .map_err(Clone::clone)
+}

@@ -74,8 +74,7 @@ fn config_edits() -> impl Strategy<Value = Vec<(usize, f64)>> {
 }
 
 fn registry() -> &'static Registry {
-    static REGISTRY: std::sync::OnceLock<Registry> = std::sync::OnceLock::new();
-    REGISTRY.get_or_init(|| hsv_run::registry().expect("registry"))
+    hsv_run::shared_registry().expect("registry")
 }
 
 /// A clear error: one non-empty line.

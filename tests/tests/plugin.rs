@@ -91,8 +91,7 @@ fn build<M: ?Sized + RoleModel>(
 }
 
 fn builtin() -> &'static Registry {
-    static REGISTRY: std::sync::OnceLock<Registry> = std::sync::OnceLock::new();
-    REGISTRY.get_or_init(|| hsv_run::registry().expect("built-in models register"))
+    hsv_run::shared_registry().expect("built-in models register")
 }
 
 // ---------------------------------------------------------------------------------------------

@@ -359,7 +359,7 @@ hsv_core::register_model!(ModelDescriptor {
                    combustor_area_ratio = 1.0           # combustor exit / entry area\n\
                    wall_friction_coefficient = 0.002    # c_f in the combustor\n\
                    mixing_shape_parameter = 5.0         # theta of eta_m = theta x / (1 + (theta - 1) x)\n\
-                   isolator_length_fraction = 0.2       # inlet face to combustor entry / engine length\n\
+                   isolator_length_fraction = 0.2       # inlet face to combustor entry / engine length (cowl waves: start check)\n\
                    combustor_length_fraction = 0.5      # combustor / engine length\n\
                    combustor_steps = 200                # RK4 steps along the combustor\n\
                    # diffuser_area_ratio = 1.0          # combustor entry / inlet height; default from [geometry]\n\

@@ -15,9 +15,11 @@
 //!    q̈_surfaces with Aitken's Δ² relaxation until the root loads change by less than the
 //!    tolerance (relative), recording iterations and the residual.
 //!
-//! Not yet modelled here (documented in the issue notes): the body's elastic displacement of the
-//! pivot moving the surface geometry (its acceleration does drive the surface), and in-flight
-//! heating (the surfaces keep their current stiffness; `analysis::heating` owns that loop).
+//! Not yet modelled here (documented in the issue notes): the body's elastic motion at the
+//! pivots. The surfaces hang on the body frame: `SurfaceAttachment::body_modes_at_pivot` is left
+//! at zero, so the beam modes neither move the surface geometry nor drive the surfaces' root
+//! acceleration, and the root loads reach the rigid body but not the beam's generalized forces.
+//! Closing that loop consistently also needs the surfaces' rigid mass in the beam's modal mass.
 
 use hsv_core::ModelError;
 use hsv_core::aero::{AeroModel, AeroSolution, Loads, PanelMotion, integrate_pressure};

@@ -6,8 +6,9 @@
 //! Fundamentals of the Finite Element Method for Heat and Fluid Flow, 2004, ch. 7):
 //! C(T) dT/dt + K(T) T = F, with K = Σ_e k_e(T̄_e) G_e (k at the element's mean temperature),
 //! C = diag(Σ_materials ρ c_p(T) V) (lumped), F = Σ_panels w q A (the panel's heat flux times its
-//! area, spread over the 4 face nodes below its centroid with bilinear weights, so Σ F = Σ q A
-//! exactly). All other boundaries are adiabatic.
+//! area, spread over the 4 face nodes below its centroid with bilinear weights, or for a panel
+//! facing sideways over the side face through the whole stack ([`PanelMap`]); the weights of a
+//! panel sum to 1, so Σ F = Σ q A exactly). All other boundaries are adiabatic.
 //!
 //! Backward Euler with the capacity at the step's midpoint temperature,
 //! C(½(Tⁿ + Tⁿ⁺¹)) (Tⁿ⁺¹ − Tⁿ)/Δt + K(Tⁿ⁺¹) Tⁿ⁺¹ = F, conserves energy exactly for a c_p linear in
@@ -147,17 +148,49 @@ impl Settings {
     }
 }
 
-/// Where each panel of the wetted mesh meets the grid: the 4 face dofs under its centroid with
-/// their bilinear weights, and the area through which its heat flux enters (0 for panels
-/// that are not wetted lifting-surface panels, e.g. the root cap against the body).
+/// Where each panel of the wetted mesh meets the grid: the dofs its heat enters with their
+/// weights (summing to 1), and the area through which its heat flux enters (0 for panels that
+/// are not wetted lifting-surface panels, e.g. the root cap against the body).
+///
+/// A panel facing up or down (normal within 45° of the grid's normal) meets the upper or lower
+/// face: the 4 face dofs under its centroid, bilinear weights. A panel facing sideways (the tip
+/// face) meets the grid's side face, which spans the whole stack: bilinear weights along the
+/// edge times [`ThermalGrid::side_face_weights`] through the thickness. So a symmetric section
+/// under a symmetric flux is loaded symmetrically (sending the tip's heat to one face made a
+/// false through-thickness difference of ~10 K at the tip).
 #[derive(Debug, Clone, PartialEq)]
 pub struct PanelMap {
-    pub dofs: Vec<[usize; 4]>,
-    pub weights: Vec<[f64; 4]>,
+    /// Panel p's entries are `start[p]..start[p + 1]` of `dofs` and `weights`.
+    pub start: Vec<usize>,
+    pub dofs: Vec<usize>,
+    pub weights: Vec<f64>,
     pub loaded_area_m2: Vec<f64>,
 }
 
-/// Builds the panel map: upper face for panels facing the grid's upper side, lower otherwise.
+impl PanelMap {
+    pub fn n_panels(&self) -> usize {
+        self.loaded_area_m2.len()
+    }
+
+    /// (dof, weight) of panel `p`.
+    pub fn entries(&self, p: usize) -> impl Iterator<Item = (usize, f64)> + '_ {
+        let range = self.start[p]..self.start[p + 1];
+        self.dofs[range.clone()]
+            .iter()
+            .copied()
+            .zip(self.weights[range].iter().copied())
+    }
+}
+
+/// Revision of [`map_panels`], part of a POD basis's fingerprint: a basis trained from
+/// snapshots of an earlier map (revision 1 sent the tip face's heat to the lower face) is
+/// retrained rather than reused.
+pub const PANEL_MAP_REVISION: u32 = 2;
+
+/// |n · up| below which a panel faces sideways: cos 45°, halfway between a face and the side.
+const SIDE_FACING_COSINE: f64 = std::f64::consts::FRAC_1_SQRT_2;
+
+/// Builds the panel map (see [`PanelMap`]).
 fn map_panels(
     grid: &SurfaceGrid,
     thermal: &ThermalGrid,
@@ -168,15 +201,30 @@ fn map_panels(
         .map_err(|e| ModelError::inconsistent(NAME, e.to_string()))?;
     let top = thermal.n_levels - 1;
     let mut map = PanelMap {
-        dofs: Vec::with_capacity(points.len()),
-        weights: Vec::with_capacity(points.len()),
+        start: Vec::with_capacity(points.len() + 1),
+        dofs: Vec::with_capacity(4 * points.len()),
+        weights: Vec::with_capacity(4 * points.len()),
         loaded_area_m2: Vec::with_capacity(points.len()),
     };
+    map.start.push(0);
     for (panel, point) in mesh.panels.iter().zip(&points) {
-        let up: nalgebra::Vector3<f64> = point.nodes.iter().map(|&n| thermal.up[n]).sum();
-        let level = if panel.normal.dot(&up) > 0.0 { top } else { 0 };
-        map.dofs.push(point.nodes.map(|n| thermal.dof(n, level)));
-        map.weights.push(point.weights);
+        let up: nalgebra::Vector3<f64> = (0..4)
+            .map(|a| point.weights[a] * thermal.up[point.nodes[a]])
+            .sum();
+        let facing = panel.normal.dot(&up.normalize());
+        for (&node, &w) in point.nodes.iter().zip(&point.weights) {
+            if facing.abs() >= SIDE_FACING_COSINE {
+                let level = if facing > 0.0 { top } else { 0 };
+                map.dofs.push(thermal.dof(node, level));
+                map.weights.push(w);
+            } else {
+                for (level, share) in thermal.side_face_weights(node) {
+                    map.dofs.push(thermal.dof(node, level));
+                    map.weights.push(w * share);
+                }
+            }
+        }
+        map.start.push(map.dofs.len());
         let wetted = mesh.surfaces[usize::from(panel.surface)].region == RegionKind::LiftingSurface;
         map.loaded_area_m2
             .push(if wetted { panel.area_m2 } else { 0.0 });
@@ -314,10 +362,10 @@ impl FullOrder {
     pub fn panel_loads(&self, flux_w_m2: &[f64], load: &mut [f64]) {
         load.fill(0.0);
         let p = &self.panels;
-        for i in 0..p.dofs.len() {
+        for i in 0..p.n_panels() {
             let power = flux_w_m2[i] * p.loaded_area_m2[i];
-            for a in 0..4 {
-                load[p.dofs[i][a]] += p.weights[i][a] * power;
+            for (dof, w) in p.entries(i) {
+                load[dof] += w * power;
             }
         }
     }
@@ -412,13 +460,13 @@ impl FullOrder {
                 ),
             ));
         }
-        if flux_w_m2.len() != self.panels.dofs.len() {
+        if flux_w_m2.len() != self.panels.n_panels() {
             return Err(ModelError::inconsistent(
                 NAME,
                 format!(
                     "{} heat fluxes for {} surface panels",
                     flux_w_m2.len(),
-                    self.panels.dofs.len()
+                    self.panels.n_panels()
                 ),
             ));
         }
@@ -466,7 +514,7 @@ impl ConductionModel for FullOrder {
     }
 
     fn n_surface_panels(&self) -> usize {
-        self.panels.dofs.len()
+        self.panels.n_panels()
     }
 
     fn uniform_state(&self, temperature_k: f64) -> Result<DVector<f64>, ModelError> {
@@ -535,8 +583,8 @@ impl ConductionModel for FullOrder {
 
     fn surface_temperatures(&self, state: &DVector<f64>, out_k: &mut [f64]) {
         let p = &self.panels;
-        for (i, out) in out_k.iter_mut().enumerate().take(p.dofs.len()) {
-            *out = (0..4).map(|a| p.weights[i][a] * state[p.dofs[i][a]]).sum();
+        for (i, out) in out_k.iter_mut().enumerate().take(p.n_panels()) {
+            *out = p.entries(i).map(|(dof, w)| w * state[dof]).sum();
         }
     }
 

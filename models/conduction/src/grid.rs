@@ -321,6 +321,21 @@ impl ThermalGrid {
         plate_node * self.n_levels + level
     }
 
+    /// Share of a uniform flux on the grid's side face at `plate_node` taken by each level:
+    /// w_k = ∫ N_k ds / H = (s_{k+1} − s_{k−1}) / 2H along the node's stack (the consistent
+    /// load of linear elements, Hughes §3.5); (level, weight), summing to 1.
+    pub fn side_face_weights(&self, plate_node: usize) -> impl Iterator<Item = (usize, f64)> + '_ {
+        let at = move |level: usize| self.positions_m[self.dof(plate_node, level)];
+        let top = self.n_levels - 1;
+        let gap = move |level: usize| (at(level + 1) - at(level)).norm();
+        let height: f64 = (0..top).map(gap).sum();
+        (0..=top).map(move |level| {
+            let below = if level > 0 { gap(level - 1) } else { 0.0 };
+            let above = if level < top { gap(level) } else { 0.0 };
+            (level, 0.5 * (below + above) / height)
+        })
+    }
+
     /// Weights over the structure's levels whose sum is the thickness average (trapezoid rule
     /// over its equal sub-layers): (level, weight).
     pub fn structure_average_weights(&self) -> Vec<(usize, f64)> {

@@ -506,14 +506,13 @@ impl Pod {
             .collect();
         // Inputs and outputs.
         let map = full.panel_map();
-        let n_panels = map.dofs.len();
+        let n_panels = map.n_panels();
         let mut load_map = DMatrix::zeros(r, n_panels);
         let mut surface_map = DMatrix::zeros(r, n_panels);
         for p in 0..n_panels {
-            for a in 0..4 {
-                let w = map.weights[p][a];
+            for (dof, w) in map.entries(p) {
                 for j in 0..r {
-                    let v = phi[(map.dofs[p][a], j)];
+                    let v = phi[(dof, j)];
                     load_map[(j, p)] += w * map.loaded_area_m2[p] * v;
                     surface_map[(j, p)] += w * v;
                 }

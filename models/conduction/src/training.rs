@@ -106,8 +106,8 @@ impl Training {
     }
 }
 
-/// What a basis was built from, as one string: the training conditions, the full-order grid
-/// and materials, the planform and the settings of the base models. A cached basis serves only
+/// What a basis was built from, as one string: the training conditions, the revision of the
+/// panel-to-grid map, the full-order grid and materials, the planform and the settings of the base models. A cached basis serves only
 /// a run whose fingerprint is the same.
 pub fn fingerprint(
     ctx: &ModelContext<'_>,
@@ -117,6 +117,7 @@ pub fn fingerprint(
     let planform = ctx.region.lifting_surface(NAME)?.0;
     serde_json::to_string(&(
         training,
+        crate::full_order::PANEL_MAP_REVISION,
         full.settings(),
         planform,
         &ctx.settings_for(&training.heat_flux).table,

@@ -827,6 +827,62 @@ fn lateral_747_modes_are_named_dutch_roll_roll_and_spiral() {
     assert_eq!(modes.len(), 3);
 }
 
+/// A phugoid (u̇ = −g θ, θ̇ = 2 g u / V², Lanchester: ω² = 2 (g/V)²) driving a stiff structural
+/// mode quasi-statically (η̈ = −Ω² (η − κ u), so η ≈ κ u at the phugoid's frequency): with a
+/// large κ the modal coordinate dominates the eigenvector, but 0.08 rad/s is a thousandth of
+/// Ω, so with the structure's frequency given the root is named by its rigid content.
+#[test]
+fn a_slow_root_carrying_a_quasi_static_deflection_is_named_by_its_rigid_motion() {
+    let (g, v, omega, kappa) = (9.81, 170.0, 60.0, 50.0);
+    let a = DMatrix::from_row_slice(
+        4,
+        4,
+        &[
+            0.0,
+            -g,
+            0.0,
+            0.0, //
+            2.0 * g / (v * v),
+            0.0,
+            0.0,
+            0.0, //
+            0.0,
+            0.0,
+            0.0,
+            1.0, //
+            omega * omega * kappa,
+            0.0,
+            -omega * omega,
+            -0.1 * omega,
+        ],
+    );
+    let roles = [
+        StateRole::ForwardSpeed,
+        StateRole::Pitch,
+        StateRole::Structural { mode: 0 },
+        StateRole::StructuralRate { mode: 0 },
+    ];
+    let slow = |scales: &ModeScales| {
+        flight_modes(&a, &roles, scales)
+            .expect("modes")
+            .into_iter()
+            .min_by(|x, y| {
+                x.natural_frequency_rad_s
+                    .total_cmp(&y.natural_frequency_rad_s)
+            })
+            .expect("a root")
+    };
+    let lanchester = std::f64::consts::SQRT_2 * g / v;
+    let plain = slow(&ModeScales::new(v));
+    assert!((plain.natural_frequency_rad_s - lanchester).abs() < 1e-3 * lanchester);
+    assert!(
+        matches!(plain.name, ModeName::Structural { .. }),
+        "the quasi-static deflection dominates without the structure's frequency: {plain:?}"
+    );
+    let named = slow(&ModeScales::new(v).with_structure(omega));
+    assert_eq!(named.name, ModeName::Phugoid, "{named:?}");
+}
+
 /// A derivative and an RK4 step of the whole flexible vehicle (3 body modes, two 5-mode
 /// surfaces with root coupling and body modes at the pivots), through the flat quaternion and
 /// Euler layouts, allocate nothing once the buffers exist.

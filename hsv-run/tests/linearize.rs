@@ -46,7 +46,10 @@ fn phugoid_and_short_period_agree_with_their_classical_approximations() {
     assert!(error < 0.10, "phugoid {:?} vs {omega} rad/s", phugoid);
 
     // Short period: λ² − (Z_w + M_q) λ + (Z_w M_q − u0 M_w) = 0 from the A entries of w and q
-    // (Etkin & Reid §6.3, the short-period approximation).
+    // (Etkin & Reid §6.3, the short-period approximation), with the structural states
+    // residualized (quasi-static: ẋ_s = 0, so A_rr − A_rs A_ss⁻¹ A_sr; Waszak & Schmidt,
+    // "Flight dynamics of aeroelastic vehicles", J. Aircraft 25(6), 1988): the flexible surfaces'
+    // static deflection follows w and q at these frequencies, far below their own.
     let index = |name: &str| {
         lin.model
             .state_names
@@ -56,7 +59,18 @@ fn phugoid_and_short_period_agree_with_their_classical_approximations() {
     };
     let (w, q) = (index("w_"), index("q_"));
     let a = &lin.model.a;
-    let (z_w, m_w, m_q) = (a[(w, w)], a[(q, w)], a[(q, q)]);
+    let rigid = [w, q];
+    let structural: Vec<usize> = (0..a.nrows())
+        .filter(|&i| lin.model.state_names[i].contains("_eta_"))
+        .collect();
+    let sub = |rows: &[usize], cols: &[usize]| {
+        nalgebra::DMatrix::from_fn(rows.len(), cols.len(), |i, j| a[(rows[i], cols[j])])
+    };
+    let a_ss = sub(&structural, &structural);
+    let a_sr = sub(&structural, &rigid);
+    let x = a_ss.lu().solve(&a_sr).expect("structural block invertible");
+    let reduced = sub(&rigid, &rigid) - sub(&rigid, &structural) * x;
+    let (z_w, m_w, m_q) = (reduced[(0, 0)], reduced[(1, 0)], reduced[(1, 1)]);
     let trace = z_w + m_q;
     let det = z_w * m_q - speed * m_w;
     let disc = trace * trace - 4.0 * det;

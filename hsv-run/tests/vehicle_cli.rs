@@ -35,8 +35,8 @@ fn vehicle_mass_is_the_beam_of_table_1_plus_two_titanium_double_wedges() {
     // Paper Table 1: μ_f L_f + μ_a L_a = 838·15.2 + 1250·15.2 kg.
     let beam = 838.0 * 15.2 + 1250.0 * 15.2;
     // A double wedge of thickness ratio τ tapering linearly from c_r to c_t over b has volume
-    // (τ/2) b (c_r² + c_r c_t + c_t²)/3; sample planform 4.0/1.6/3.0 m, τ = 0.05; Ti-6Al-4V.
-    let (cr, ct, b, tau) = (4.0, 1.6, 3.0, 0.05);
+    // (τ/2) b (c_r² + c_r c_t + c_t²)/3; sample planform 4.0/1.6/3.0 m, τ = 0.028; Ti-6Al-4V.
+    let (cr, ct, b, tau) = (4.0, 1.6, 3.0, 0.028);
     let volume = 0.5 * tau * b * (cr * cr + cr * ct + ct * ct) / 3.0;
     let rho = hsv_core::material::Material::ti_6al_4v().density_kg_m3;
     let surface = rho * volume;

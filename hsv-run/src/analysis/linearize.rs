@@ -110,6 +110,10 @@ pub fn linearize(
         INPUT_NAMES.iter().map(|s| s.to_string()).collect(),
         OUTPUT_NAMES.iter().map(|s| s.to_string()).collect(),
     )?;
-    let modes = flight_modes(&model.a, &layout.roles(), &ModeScales::new(speed))?;
+    let scales = match vehicle.dynamics().lowest_natural_frequency_rad_s() {
+        Some(w) => ModeScales::new(speed).with_structure(w),
+        None => ModeScales::new(speed),
+    };
+    let modes = flight_modes(&model.a, &layout.roles(), &scales)?;
     Ok(Linearization { model, modes })
 }

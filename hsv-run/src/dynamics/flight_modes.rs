@@ -155,6 +155,11 @@ pub struct ModeScales {
     pub structural: f64,
     /// Floor on |λ| in the rate and position scalings, rad/s (keeps zero roots finite).
     pub frequency_floor_rad_s: f64,
+    /// Roots slower than this (rad/s) are named by their rigid-body content alone: far below
+    /// the structure's natural frequencies the modal coordinates in their eigenvectors are the
+    /// quasi-static deflection that follows the flight condition (a phugoid changes dynamic
+    /// pressure, so a flexible surface's static bending follows it), not a vibration. 0: off.
+    pub quasi_static_below_rad_s: f64,
 }
 
 impl ModeScales {
@@ -163,6 +168,17 @@ impl ModeScales {
             reference_speed_m_s,
             structural: 1.0,
             frequency_floor_rad_s: 1e-3,
+            quasi_static_below_rad_s: 0.0,
+        }
+    }
+
+    /// Names roots slower than a tenth of `lowest_structural_rad_s` by their rigid-body content
+    /// (a tenth: the quasi-static response of a mode excited at a tenth of its natural frequency
+    /// is within 1 % of its static deflection, 1/(1 − 0.1²)).
+    pub fn with_structure(self, lowest_structural_rad_s: f64) -> Self {
+        Self {
+            quasi_static_below_rad_s: 0.1 * lowest_structural_rad_s,
+            ..self
         }
     }
 }
@@ -207,7 +223,8 @@ fn mode_of(
     let magnitude = lambda.norm();
     let oscillatory = lambda.im > 1e-10 * (1.0 + magnitude);
     let content = content_of(&vector, roles, magnitude, scales);
-    let name = first_name(&content, roles, &vector, oscillatory);
+    let quasi_static = magnitude < scales.quasi_static_below_rad_s;
+    let name = first_name(&content, roles, &vector, oscillatory, quasi_static);
     FlightMode {
         real_per_s: lambda.re,
         imaginary_rad_s: lambda.im,
@@ -306,8 +323,10 @@ fn first_name(
     roles: &[StateRole],
     vector: &DVector<Complex<f64>>,
     oscillatory: bool,
+    quasi_static: bool,
 ) -> ModeName {
-    let groups = [c.longitudinal, c.lateral, c.structural, c.position];
+    let structural = if quasi_static { 0.0 } else { c.structural };
+    let groups = [c.longitudinal, c.lateral, structural, c.position];
     let best = groups
         .iter()
         .enumerate()

@@ -150,6 +150,19 @@ impl VehicleDynamics {
         self.surfaces.get(surface).map(|s| &s.attachment)
     }
 
+    /// The lowest natural frequency of the body's and the surfaces' modal models, rad/s:
+    /// min √(K_ii / M_ii) (their bases are M- and K-orthogonal); None without modes.
+    pub fn lowest_natural_frequency_rad_s(&self) -> Option<f64> {
+        std::iter::once(&self.body)
+            .chain(self.surfaces.iter().map(|s| &s.modal))
+            .flat_map(|m| {
+                let (mass, _, stiffness) = m.matrices();
+                (0..m.n_modes()).map(move |i| (stiffness[(i, i)] / mass[(i, i)]).sqrt())
+            })
+            .filter(|w| w.is_finite())
+            .reduce(f64::min)
+    }
+
     /// Each lifting surface's structural equations as a linear block of the flat state
     /// (generator at assembly), for [`ExponentialRk4`](super::ExponentialRk4): the stiff Ritz vectors
     /// are then propagated exactly and the heating's stiffness change, the aero, the root

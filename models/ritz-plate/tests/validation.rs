@@ -126,8 +126,12 @@ fn sample_surface() -> hsv_core::vehicle::LiftingSurfaceConfig {
 }
 
 fn sample_ritz(settings: &Settings) -> RitzPlate {
+    ritz_on(&sample_surface(), settings)
+}
+
+fn ritz_on(surface: &hsv_core::vehicle::LiftingSurfaceConfig, settings: &Settings) -> RitzPlate {
     let grid = SurfaceGrid::lifting_surface(
-        &sample_surface(),
+        surface,
         hsv_core::vehicle::Side::Right,
         settings.elements_chordwise,
         settings.elements_spanwise,
@@ -246,11 +250,20 @@ fn ritz_basis_reproduces_the_free_modes_and_static_shapes_improve_the_heated_res
         elements_spanwise: 10,
         ..Settings::default()
     };
-    let full_basis = sample_ritz(&settings);
-    let modes_only = sample_ritz(&Settings {
-        static_shapes: 0,
-        ..settings.clone()
-    });
+    // A 5 % section: the sample's 2.8 % buckles under this 700 K leading edge, and the test is
+    // about the Ritz basis, not the sample.
+    let surface = hsv_core::vehicle::LiftingSurfaceConfig {
+        thickness_to_chord: 0.05,
+        ..sample_surface()
+    };
+    let full_basis = ritz_on(&surface, &settings);
+    let modes_only = ritz_on(
+        &surface,
+        &Settings {
+            static_shapes: 0,
+            ..settings.clone()
+        },
+    );
     let plate = full_basis.plate();
     let f_full = plate.frequencies_hz(None, 10).expect("full");
     let f_ritz = full_basis.natural_frequencies_hz().expect("ritz");

@@ -128,7 +128,13 @@ fn panel_projection(shapes: &ModeShapes, panel: &Panel, mode: usize) -> f64 {
 
 /// Q_k = −Σ (p − p_ref) A n · φ_k over the panels whose region passes `include`, on the geometry
 /// of `mesh` as given (pass the deformed mesh for the exact deformed-geometry sum), into `out`
-/// (one entry per mode). Allocates nothing.
+/// (one entry per mode).
+///
+/// Summed as Q_k = Σ_v F_v · φ_k(v): each panel's force −(p − p_ref) A n goes in equal shares to
+/// its vertices (φ at a panel is its vertices' mean), then one pass down each contiguous mode
+/// column; the same sum in another order, about four times fewer multiplications than
+/// averaging φ per panel and mode. The vertex buffer is per thread: it allocates on a thread's
+/// first call (and when a larger mesh comes), never after.
 pub fn generalized_forces(
     mesh: &PanelMesh,
     shapes: &ModeShapes,
@@ -141,16 +147,40 @@ pub fn generalized_forces(
     check_len("panel pressure (Pa)", pressure_pa.len(), mesh.panels.len())?;
     check_len("generalized-force buffer", out.len(), shapes.n_modes())?;
     out.fill(0.0);
-    for (panel, &p) in mesh.panels.iter().zip(pressure_pa) {
-        if !included(mesh, panel, &include) {
-            continue;
+    VERTEX_FORCE_SCRATCH.with_borrow_mut(|vertex_force| {
+        vertex_force.clear();
+        vertex_force.resize(shapes.vertex_displacement.nrows(), 0.0);
+        for (panel, &p) in mesh.panels.iter().zip(pressure_pa) {
+            if !included(mesh, panel, &include) {
+                continue;
+            }
+            let idx = panel.vertex_indices();
+            let share = -(p - reference_pressure_pa) * panel.area_m2 / idx.len() as f64;
+            let force = panel.normal * share;
+            for &v in idx {
+                vertex_force[3 * v] += force.x;
+                vertex_force[3 * v + 1] += force.y;
+                vertex_force[3 * v + 2] += force.z;
+            }
         }
-        let gauge = p - reference_pressure_pa;
-        for (k, q) in out.iter_mut().enumerate() {
-            *q -= gauge * panel_projection(shapes, panel, k);
+        // Column-major storage: mode k is the contiguous slice [k n_rows, (k+1) n_rows).
+        let n_rows = vertex_force.len().max(1);
+        let columns = shapes.vertex_displacement.as_slice().chunks_exact(n_rows);
+        for (q, column) in out.iter_mut().zip(columns) {
+            *q = vertex_force
+                .iter()
+                .zip(column)
+                .map(|(f, phi)| f * phi)
+                .sum();
         }
-    }
+    });
     check_generalized_forces(pressure_pa, out)
+}
+
+thread_local! {
+    /// Per-vertex force scratch (x, y, z interleaved) of [`generalized_forces`].
+    static VERTEX_FORCE_SCRATCH: std::cell::RefCell<Vec<f64>> =
+        const { std::cell::RefCell::new(Vec::new()) };
 }
 
 /// Rigid loads ([`integrate_pressure`]: F = −Σ (p − p_ref) A n, M = Σ (r − r_0) × F about

@@ -12,6 +12,10 @@
 
 use std::f64::consts::FRAC_PI_2;
 
+mod kernels;
+
+use kernels::{cubic_and_slope, halley, mach_wave_cubic, pow_half_integer};
+
 /// Ratio of specific heats of air below dissociation temperatures.
 pub const GAMMA_AIR: f64 = 1.4;
 
@@ -283,18 +287,21 @@ pub fn total_temperature_ratio(mach: f64, gamma: f64) -> f64 {
 
 /// p0/p = (1 + (γ-1)/2 M²)^(γ/(γ-1)) (NACA 1135 eq. 44).
 pub fn total_pressure_ratio(mach: f64, gamma: f64) -> f64 {
-    total_temperature_ratio(mach, gamma).powf(gamma / (gamma - 1.0))
+    pow_half_integer(total_temperature_ratio(mach, gamma), gamma / (gamma - 1.0))
 }
 
 /// ρ0/ρ = (1 + (γ-1)/2 M²)^(1/(γ-1)) (NACA 1135 eq. 45).
 pub fn total_density_ratio(mach: f64, gamma: f64) -> f64 {
-    total_temperature_ratio(mach, gamma).powf(1.0 / (gamma - 1.0))
+    pow_half_integer(total_temperature_ratio(mach, gamma), 1.0 / (gamma - 1.0))
 }
 
 /// A/A* = (1/M) [2/(γ+1) (1 + (γ-1)/2 M²)]^((γ+1)/(2(γ-1))) (NACA 1135 eq. 80); ∞ at M = 0.
 pub fn area_mach_ratio(mach: f64, gamma: f64) -> f64 {
     let exponent = 0.5 * (gamma + 1.0) / (gamma - 1.0);
-    (2.0 / (gamma + 1.0) * total_temperature_ratio(mach, gamma)).powf(exponent) / mach
+    pow_half_integer(
+        2.0 / (gamma + 1.0) * total_temperature_ratio(mach, gamma),
+        exponent,
+    ) / mach
 }
 
 /// M from A/A* >= 1 on the chosen branch: inverse of NACA 1135 eq. 80 by safeguarded Newton in ln M.
@@ -389,18 +396,23 @@ pub struct NormalShock {
 
 /// Normal-shock relations for M >= 1 (unchecked): NACA 1135 eqs. 93 (p), 94 (ρ), 96 (M2), 99 (p0).
 fn normal_shock_unchecked(mach: f64, gamma: f64) -> NormalShock {
-    let m2 = mach.max(1.0).powi(2);
+    normal_shock_of_mach_squared(mach.max(1.0).powi(2), gamma)
+}
+
+/// [`normal_shock_unchecked`] from M² >= 1, so an oblique shock passes M² sin²β without a root.
+fn normal_shock_of_mach_squared(m2: f64, gamma: f64) -> NormalShock {
     let pressure_ratio = 1.0 + 2.0 * gamma / (gamma + 1.0) * (m2 - 1.0);
     let density_ratio = (gamma + 1.0) * m2 / ((gamma - 1.0) * m2 + 2.0);
     let mach_downstream = (((gamma - 1.0) * m2 + 2.0) / (2.0 * gamma * m2 - (gamma - 1.0))).sqrt();
-    // p02/p01 = (ρ2/ρ1)^(γ/(γ-1)) (p2/p1)^(-1/(γ-1)).
+    // p02/p01 = (ρ2/ρ1)^(γ/(γ-1)) (p2/p1)^(-1/(γ-1)) = (ρ2/ρ1) (T2/T1)^(-1/(γ-1)).
+    let temperature_ratio = pressure_ratio / density_ratio;
     let total_pressure_ratio =
-        ((gamma * density_ratio.ln() - pressure_ratio.ln()) / (gamma - 1.0)).exp();
+        density_ratio * pow_half_integer(temperature_ratio, -1.0 / (gamma - 1.0));
     NormalShock {
         mach_downstream,
         pressure_ratio,
         density_ratio,
-        temperature_ratio: pressure_ratio / density_ratio,
+        temperature_ratio,
         total_pressure_ratio: total_pressure_ratio.min(1.0),
     }
 }
@@ -465,12 +477,34 @@ pub fn deflection_from_wave_angle(mach: f64, wave_angle_rad: f64, gamma: f64) ->
 
 /// sin²β at maximum deflection: [(γ+1)M² - 4 + √((γ+1)((γ+1)M⁴ + 8(γ-1)M² + 16))] / (4γM²)
 /// (NACA 1135, oblique-shock maximum-deflection relation).
-fn wave_angle_at_max_deflection(mach: f64, gamma: f64) -> f64 {
+fn sin2_wave_angle_at_max_deflection(mach: f64, gamma: f64) -> f64 {
     let m2 = mach * mach;
     let gp1 = gamma + 1.0;
     let root = (gp1 * (gp1 * m2 * m2 + 8.0 * (gamma - 1.0) * m2 + 16.0)).sqrt();
     let sin2 = (gp1 * m2 - 4.0 + root) / (4.0 * gamma * m2);
-    sin2.clamp(0.0, 1.0).sqrt().asin()
+    sin2.clamp(0.0, 1.0)
+}
+
+/// (θ_max, sin²β at θ_max) for M >= 1: every detachment test uses this one value of θ_max.
+fn max_deflection_sin2(mach: f64, gamma: f64) -> (f64, f64) {
+    let x_max = sin2_wave_angle_at_max_deflection(mach, gamma);
+    let (numerator, denominator) = theta_beta_parts_of_sin2(mach * mach, x_max, gamma);
+    (numerator.atan2(denominator).max(0.0), x_max)
+}
+
+/// (θ_max, β at θ_max), rad, from [`max_deflection_sin2`].
+fn max_deflection_unchecked(mach: f64, gamma: f64) -> (f64, f64) {
+    let (theta_max, x_max) = max_deflection_sin2(mach, gamma);
+    (theta_max, x_max.sqrt().asin())
+}
+
+/// (numerator, denominator > 0) of tan θ in [`theta_beta_parts`] from M² and x = sin²β
+/// (cot β = √((1-x)/x), cos 2β = 1 - 2x).
+fn theta_beta_parts_of_sin2(mach2: f64, x: f64, gamma: f64) -> (f64, f64) {
+    let cot = ((1.0 - x) / x).sqrt();
+    let numerator = 2.0 * cot * (mach2 * x - 1.0);
+    let denominator = mach2 * (gamma + 1.0 - 2.0 * x) + 2.0;
+    (numerator, denominator)
 }
 
 /// (θ_max, β at θ_max), rad, for M >= 1: closed-form sin²β at θ_max (NACA 1135) into the θ-β-M
@@ -478,15 +512,18 @@ fn wave_angle_at_max_deflection(mach: f64, gamma: f64) -> f64 {
 pub fn max_deflection(mach: f64, gamma: f64) -> Result<(f64, f64), GasError> {
     let gamma = check_gamma(gamma)?;
     let m = check_supersonic(mach, "an oblique shock needs M >= 1")?;
-    let beta = wave_angle_at_max_deflection(m, gamma);
-    Ok((deflection_from_wave_angle(m, beta, gamma).max(0.0), beta))
+    Ok(max_deflection_unchecked(m, gamma))
 }
 
 /// Thompson's closed form for β(M, θ) (Thompson 1950, as given in Anderson MCF ch. 4):
 /// tan β = [M² - 1 + 2λ cos((4πδ + acos χ)/3)] / [3 (1 + (γ-1)/2 M²) tan θ], δ = 1 weak, 0 strong.
 fn wave_angle_closed_form(mach: f64, theta: f64, gamma: f64, branch: ShockBranch) -> f64 {
+    thompson_tan_wave_angle(mach, theta.tan(), gamma, branch).atan()
+}
+
+/// tan β of [`wave_angle_closed_form`] from t = tan θ.
+fn thompson_tan_wave_angle(mach: f64, t: f64, gamma: f64, branch: ShockBranch) -> f64 {
     let m2 = mach * mach;
-    let t = theta.tan();
     let a = 1.0 + 0.5 * (gamma - 1.0) * m2;
     let lambda2 = (m2 - 1.0).powi(2) - 3.0 * a * (1.0 + 0.5 * (gamma + 1.0) * m2) * t * t;
     let lambda = lambda2.max(0.0).sqrt();
@@ -497,7 +534,7 @@ fn wave_angle_closed_form(mach: f64, theta: f64, gamma: f64, branch: ShockBranch
         ShockBranch::Strong => 0.0,
     };
     let angle = (4.0 * std::f64::consts::PI * delta + chi.clamp(-1.0, 1.0).acos()) / 3.0;
-    ((m2 - 1.0 + 2.0 * lambda * angle.cos()) / (3.0 * a * t)).atan()
+    (m2 - 1.0 + 2.0 * lambda * angle.cos()) / (3.0 * a * t)
 }
 
 /// Oblique-shock ratios from M and β: normal-shock relations on M1n = M1 sin β, M2 = M2n / sin(β - θ).
@@ -522,8 +559,91 @@ fn oblique_from_beta(mach: f64, beta: f64, theta: f64, gamma: f64) -> ObliqueSho
     }
 }
 
-/// Oblique shock turning M >= 1 flow by θ in [0, θ_max] rad on the chosen branch: Thompson's
-/// closed form polished by safeguarded Newton on the θ-β-M relation (Anderson MCF eq. 4.17).
+/// Oblique-shock ratios from M and y = sin²β - 1/M²: normal-shock relations on
+/// M1n² = M² sin²β = 1 + M² y, M2 = M2n / sin(β - θ) with sin(β - θ) = sin β cos θ - cos β sin θ.
+fn oblique_from_mach_wave_offset(
+    mach: f64,
+    y: f64,
+    theta: f64,
+    (sin_theta, cos_theta): (f64, f64),
+    gamma: f64,
+) -> ObliqueShock {
+    let m2 = mach * mach;
+    let normal_mach2 = (1.0 + m2 * y).max(1.0);
+    let normal = normal_shock_of_mach_squared(normal_mach2, gamma);
+    // sin²β = 1/M² + y, cos²β = (1 - 1/M²) - y.
+    let sin_beta = (1.0 / m2 + y).sqrt();
+    let cos_beta = ((mach - 1.0) * (mach + 1.0) / m2 - y).max(0.0).sqrt();
+    let sin_turn = sin_beta * cos_theta - cos_beta * sin_theta;
+    ObliqueShock {
+        wave_angle_rad: sin_beta.atan2(cos_beta),
+        deflection_rad: theta,
+        normal_mach_upstream: normal_mach2.sqrt(),
+        mach_downstream: if sin_turn > 0.0 {
+            normal.mach_downstream / sin_turn
+        } else {
+            0.0
+        },
+        pressure_ratio: normal.pressure_ratio,
+        density_ratio: normal.density_ratio,
+        temperature_ratio: normal.temperature_ratio,
+        total_pressure_ratio: normal.total_pressure_ratio,
+    }
+}
+
+/// Weak oblique shock for θ >= 0 (checked inputs): y = sin²β - 1/M², the root of the θ-β-M
+/// cubic (NACA 1135 eq. 150, [`mach_wave_cubic`]) between the Mach wave y = 0 and θ_max, by
+/// safeguarded Newton from Thompson's closed form. One `sin_cos` of θ and no trigonometry
+/// inside the iteration, where the β form needs a `sin_cos` and an `atan2` per step; the same
+/// root to rounding.
+fn weak_oblique_shock(m: f64, theta: f64, gamma: f64) -> Result<ObliqueShock, GasError> {
+    let x_max = sin2_wave_angle_at_max_deflection(m, gamma);
+    let (numerator, denominator) = theta_beta_parts_of_sin2(m * m, x_max, gamma);
+    let trig = theta.sin_cos();
+    // tan θ_max = numerator / denominator with θ_max < π/2 and denominator > 0, so for θ < π/2
+    // sin θ · denominator - numerator · cos θ has the sign of θ - θ_max: θ_max itself (an
+    // atan2) is needed only near a tie or past it, and is then the value of [`max_deflection`].
+    let gap = trig.0 * denominator - numerator * trig.1;
+    let clear = theta < FRAC_PI_2 && gap < -1e-9 * (trig.0 * denominator).abs();
+    let at_max = if clear {
+        false
+    } else {
+        let theta_max = numerator.atan2(denominator).max(0.0);
+        if theta > theta_max {
+            return Err(GasError::Detached {
+                mach: m,
+                deflection_rad: theta,
+                max_deflection_rad: theta_max,
+            });
+        }
+        theta == theta_max
+    };
+    let x_mach_wave = 1.0 / (m * m);
+    let y_max = x_max - x_mach_wave;
+    let y = if at_max {
+        y_max
+    } else if theta == 0.0 {
+        0.0
+    } else {
+        // The closed form loses precision as θ → 0 (1 - χ cancels); there the small-deflection
+        // slope dβ/dθ = (γ+1) M² / (4 (M² - 1)) times d(sin²β)/dβ = 2√(M²-1)/M² at the Mach
+        // angle is the better start (below tan θ = 1e-3 tan θ_max).
+        let guess = if trig.0 * denominator < 1e-3 * numerator * trig.1 {
+            (gamma + 1.0) * theta / (2.0 * ((m - 1.0) * (m + 1.0)).sqrt())
+        } else {
+            let t = thompson_tan_wave_angle(m, trig.0 / trig.1, gamma, ShockBranch::Weak);
+            t * t / (1.0 + t * t) - x_mach_wave
+        };
+        let cubic = mach_wave_cubic(m, trig.0, gamma);
+        solve_bracketed(|y| cubic_and_slope(cubic, y), 0.0, y_max, guess, false, 0.0)
+    };
+    Ok(oblique_from_mach_wave_offset(m, y, theta, trig, gamma))
+}
+
+/// Oblique shock turning M >= 1 flow by θ in [0, θ_max] rad on the chosen branch: on the weak
+/// branch the root of the θ-β-M cubic in sin²β ([`weak_oblique_shock`]); on the strong branch
+/// Thompson's closed form polished by safeguarded Newton on the θ-β-M relation (Anderson MCF
+/// eq. 4.17).
 pub fn oblique_shock(
     mach: f64,
     deflection_rad: f64,
@@ -540,8 +660,10 @@ pub fn oblique_shock(
             "theta >= 0 (a negative turn is an expansion)",
         ));
     }
-    let beta_max = wave_angle_at_max_deflection(m, gamma);
-    let theta_max = deflection_from_wave_angle(m, beta_max, gamma).max(0.0);
+    if branch == ShockBranch::Weak {
+        return weak_oblique_shock(m, theta, gamma);
+    }
+    let (theta_max, beta_max) = max_deflection_unchecked(m, gamma);
     if theta > theta_max {
         return Err(GasError::Detached {
             mach: m,
@@ -549,34 +671,19 @@ pub fn oblique_shock(
             max_deflection_rad: theta_max,
         });
     }
-    let mu = (1.0 / m).asin();
     let beta = if theta == theta_max {
         beta_max
     } else if theta == 0.0 {
-        match branch {
-            ShockBranch::Weak => mu,
-            ShockBranch::Strong => FRAC_PI_2,
-        }
+        FRAC_PI_2
     } else {
-        // The closed form loses precision as θ → 0 on the weak branch (1 - χ cancels); there the
-        // small-deflection slope dβ/dθ = (γ+1) M² / (4 (M² - 1)) is the better start.
-        let guess = if branch == ShockBranch::Weak && theta < 1e-3 * theta_max {
-            mu + (gamma + 1.0) * m * m / (4.0 * (m - 1.0) * (m + 1.0)) * theta
-        } else {
-            wave_angle_closed_form(m, theta, gamma, branch)
-        };
+        let guess = wave_angle_closed_form(m, theta, gamma, ShockBranch::Strong);
         let residual = |b: f64| {
             let (t, slope) = theta_and_slope(m, b, gamma);
             (t - theta, slope)
         };
         // θ(β) carries a few ulp of rounding; stop there.
         let f_tolerance = 8.0 * f64::EPSILON;
-        match branch {
-            ShockBranch::Weak => solve_bracketed(residual, mu, beta_max, guess, true, f_tolerance),
-            ShockBranch::Strong => {
-                solve_bracketed(residual, beta_max, FRAC_PI_2, guess, false, f_tolerance)
-            }
-        }
+        solve_bracketed(residual, beta_max, FRAC_PI_2, guess, false, f_tolerance)
     };
     Ok(oblique_from_beta(m, beta, theta, gamma))
 }
@@ -629,6 +736,15 @@ fn pm_slope_of_x(x: f64, a: f64) -> f64 {
     x2 * (1.0 - 1.0 / (a * a)) / ((1.0 + x2 / (a * a)) * (1.0 + x2))
 }
 
+/// (dν/dx, d²ν/dx²) = ((a²-1) x² / v, 2 (a²-1) x (a² - x⁴) / v²), v = (a² + x²)(1 + x²)
+/// (derivatives of Anderson MCF eq. 4.44 in x = √(M²-1)).
+fn pm_slope_and_curvature_of_x(x: f64, a: f64) -> (f64, f64) {
+    let (a2, x2) = (a * a, x * x);
+    let v = (a2 + x2) * (1.0 + x2);
+    let slope = (a2 - 1.0) * x2 / v;
+    (slope, 2.0 * (a2 - 1.0) * x * (a2 - x2 * x2) / (v * v))
+}
+
 /// ν(M) = √((γ+1)/(γ-1)) atan √((γ-1)/(γ+1) (M²-1)) - atan √(M²-1), rad, M >= 1
 /// (Anderson MCF eq. 4.44).
 pub fn prandtl_meyer(mach: f64, gamma: f64) -> Result<f64, GasError> {
@@ -643,8 +759,9 @@ pub fn max_prandtl_meyer(gamma: f64) -> f64 {
     FRAC_PI_2 * (pm_scale(gamma) - 1.0)
 }
 
-/// M(ν) for ν in [0, ν_max) rad: Hall (1975) rational approximation as the start, then safeguarded
-/// Newton on ν(√(M²-1)) to machine precision (Hall, Aeronautical J. 79, 1975, p. 417).
+/// M(ν) for ν in [0, ν_max) rad: Hall (1975) rational approximation as the start, then Halley's
+/// method on ν(√(M²-1)) (two steps from Hall's start reach machine precision; safeguarded Newton
+/// if a step leaves the bracket) (Hall, Aeronautical J. 79, 1975, p. 417).
 pub fn inverse_prandtl_meyer(nu_rad: f64, gamma: f64) -> Result<f64, GasError> {
     let gamma = check_gamma(gamma)?;
     let nu = finite("Prandtl-Meyer angle (rad)", nu_rad)?;
@@ -659,42 +776,82 @@ pub fn inverse_prandtl_meyer(nu_rad: f64, gamma: f64) -> Result<f64, GasError> {
     if nu == 0.0 {
         return Ok(1.0);
     }
-    let a = pm_scale(gamma);
-    // Hall's fit (exact coefficients for γ = 1.4; a fair start for other γ).
-    let y = (nu / nu_max).powf(2.0 / 3.0);
+    Ok(mach_from_prandtl_meyer(nu, gamma, None))
+}
+
+/// Hall's start x = √(M²-1) for ν in (0, ν_max) (exact coefficients for γ = 1.4; a fair start
+/// for other γ); the small-turn asymptote ν ≈ (1 - 1/a²) x³ / 3 below 1e-6 ν_max.
+fn hall_start(nu: f64, nu_max: f64, a: f64) -> f64 {
+    if nu < 1e-6 * nu_max {
+        return (3.0 * nu / (1.0 - 1.0 / (a * a))).cbrt();
+    }
+    // (ν/ν_max)^(2/3) as a cube root: the same start, no `powf`.
+    let y = (nu / nu_max).powi(2).cbrt();
     let hall =
         (1.0 + y * (1.360_4 + y * (0.096_2 - 0.512_7 * y))) / (1.0 - y * (0.672_2 + 0.327_8 * y));
+    if hall.is_finite() && hall > 1.0 {
+        ((hall - 1.0) * (hall + 1.0)).sqrt()
+    } else {
+        f64::NAN
+    }
+}
+
+/// M(ν) for a checked ν in (0, ν_max): Halley's method from `start` (x = √(M²-1)) or Hall's
+/// start, safeguarded Newton if a step leaves the bracket (0, (a²-1)/(ν_max - ν)).
+fn mach_from_prandtl_meyer(nu: f64, gamma: f64, start: Option<f64>) -> f64 {
+    let a = pm_scale(gamma);
+    let nu_max = max_prandtl_meyer(gamma);
     let deficit = nu_max - nu;
     // ν_max - ν(x) < (a²-1)/x, so x = (a²-1)/deficit brackets the root from above.
     let hi = (a * a - 1.0) / deficit;
-    let guess = if nu < 1e-6 * nu_max {
-        // Small-turn asymptote ν ≈ (1 - 1/a²) x³ / 3.
-        (3.0 * nu / (1.0 - 1.0 / (a * a))).cbrt()
-    } else if hall.is_finite() && hall > 1.0 {
-        ((hall - 1.0) * (hall + 1.0)).sqrt()
+    let start = start.unwrap_or_else(|| hall_start(nu, nu_max, a));
+    let guess = if start > 0.0 && start < hi {
+        start
     } else {
         0.5 * hi
     };
     let x = if nu <= 0.5 * nu_max {
-        solve_bracketed(
-            |x| (pm_of_x(x, a) - nu, pm_slope_of_x(x, a)),
-            0.0,
-            hi,
-            guess,
-            true,
-            0.0,
-        )
+        let residual = |x| {
+            let (slope, curvature) = pm_slope_and_curvature_of_x(x, a);
+            (pm_of_x(x, a) - nu, slope, curvature)
+        };
+        halley(residual, 0.0, hi, guess).unwrap_or_else(|| {
+            solve_bracketed(
+                |x| (pm_of_x(x, a) - nu, pm_slope_of_x(x, a)),
+                0.0,
+                hi,
+                guess,
+                true,
+                0.0,
+            )
+        })
     } else {
-        solve_bracketed(
-            |x| (pm_deficit_of_x(x, a) - deficit, -pm_slope_of_x(x, a)),
-            0.0,
-            hi,
-            guess,
-            false,
-            0.0,
-        )
+        let residual = |x| {
+            let (slope, curvature) = pm_slope_and_curvature_of_x(x, a);
+            (pm_deficit_of_x(x, a) - deficit, -slope, -curvature)
+        };
+        halley(residual, 0.0, hi, guess).unwrap_or_else(|| {
+            solve_bracketed(
+                |x| (pm_deficit_of_x(x, a) - deficit, -pm_slope_of_x(x, a)),
+                0.0,
+                hi,
+                guess,
+                false,
+                0.0,
+            )
+        })
     };
-    Ok((1.0 + x * x).sqrt())
+    (1.0 + x * x).sqrt()
+}
+
+/// Start for the downstream x2 = √(M2²-1) of a turn by τ from x1 > 0: the second-order Taylor
+/// step Δx = τ/ν' - ν'' (τ/ν')² / (2ν') of ν(x) (derivatives of Anderson MCF eq. 4.44); `None`
+/// when the step is not small against x1 (then Hall's start is the better one).
+fn expansion_start(x1: f64, turn: f64, a: f64) -> Option<f64> {
+    let (slope, curvature) = pm_slope_and_curvature_of_x(x1, a);
+    let first = turn / slope;
+    let step = first - 0.5 * curvature * first * first / slope;
+    (x1 > 0.0 && step.is_finite() && step.abs() <= 0.25 * x1).then_some(x1 + step)
 }
 
 /// Isentropic state change through a Prandtl-Meyer expansion fan; ratios are downstream over upstream.
@@ -727,26 +884,30 @@ pub fn prandtl_meyer_expansion(
             "turn >= 0 (a turn into the flow is a compression)",
         ));
     }
-    let nu1 = prandtl_meyer(m1, gamma)?;
-    let max_turn = max_prandtl_meyer(gamma) - nu1;
-    if turn >= max_turn {
+    let a = pm_scale(gamma);
+    let x1 = ((m1 - 1.0) * (m1 + 1.0)).sqrt();
+    let nu1 = pm_of_x(x1, a);
+    let nu_max = max_prandtl_meyer(gamma);
+    let max_turn = nu_max - nu1;
+    if turn >= max_turn || nu1 + turn >= nu_max {
         return Err(GasError::VacuumExpansion {
             mach: m1,
             turn_rad: turn,
             max_turn_rad: max_turn,
         });
     }
+    // Small turns (panel to panel along a strip) start from the upstream state: one Halley step.
     let m2 = if turn == 0.0 {
         m1
     } else {
-        inverse_prandtl_meyer(nu1 + turn, gamma)?
+        mach_from_prandtl_meyer(nu1 + turn, gamma, expansion_start(x1, turn, a))
     };
     let temperature_ratio = total_temperature_ratio(m1, gamma) / total_temperature_ratio(m2, gamma);
     Ok(Expansion {
         mach_downstream: m2,
-        pressure_ratio: temperature_ratio.powf(gamma / (gamma - 1.0)),
+        pressure_ratio: pow_half_integer(temperature_ratio, gamma / (gamma - 1.0)),
         temperature_ratio,
-        density_ratio: temperature_ratio.powf(1.0 / (gamma - 1.0)),
+        density_ratio: pow_half_integer(temperature_ratio, 1.0 / (gamma - 1.0)),
     })
 }
 
@@ -764,7 +925,10 @@ pub fn rayleigh_pitot_pressure_ratio(mach: f64, gamma: f64) -> Result<f64, GasEr
     }
     let m2 = m * m;
     let bracket = (gamma + 1.0).powi(2) * m2 / (4.0 * gamma * m2 - 2.0 * (gamma - 1.0));
-    Ok(bracket.powf(gamma / (gamma - 1.0)) * (1.0 - gamma + 2.0 * gamma * m2) / (gamma + 1.0))
+    Ok(
+        pow_half_integer(bracket, gamma / (gamma - 1.0)) * (1.0 - gamma + 2.0 * gamma * m2)
+            / (gamma + 1.0),
+    )
 }
 
 /// Cp,max = (p02/p1 - 1) / (γ/2 M²), the modified-Newtonian stagnation coefficient for M > 0
@@ -809,8 +973,7 @@ pub fn detached_surface(
     let gamma = check_gamma(gamma)?;
     let m = check_supersonic(mach, "a detached-shock surface pressure needs M >= 1")?;
     let theta = finite("surface inclination (rad)", inclination_rad)?;
-    let beta_max = wave_angle_at_max_deflection(m, gamma);
-    let theta_max = deflection_from_wave_angle(m, beta_max, gamma).max(0.0);
+    let (theta_max, beta_max) = max_deflection_unchecked(m, gamma);
     // A few ulp below θ_max is rounding in the caller's detachment test.
     if theta < theta_max - 1e-9 {
         return Err(GasError::out_of_range(
@@ -872,7 +1035,7 @@ pub fn rayleigh_flow(mach: f64, gamma: f64) -> Result<RayleighFlow, GasError> {
             / (denominator * denominator),
         temperature_ratio: m2 * pressure_ratio * pressure_ratio,
         pressure_ratio,
-        total_pressure_ratio: pressure_ratio * stagnation.powf(gamma / (gamma - 1.0)),
+        total_pressure_ratio: pressure_ratio * pow_half_integer(stagnation, gamma / (gamma - 1.0)),
         velocity_ratio: (gamma + 1.0) * m2 / denominator,
     })
 }
@@ -941,7 +1104,10 @@ pub fn piston_pressure_ratio_exact(
             limit: -2.0 / (gamma - 1.0),
         });
     }
-    Ok(sound_speed_ratio.powf(2.0 * gamma / (gamma - 1.0)))
+    Ok(pow_half_integer(
+        sound_speed_ratio,
+        2.0 * gamma / (gamma - 1.0),
+    ))
 }
 
 /// p/p∞ = 1 + γ w/a + γ(γ+1)/4 (w/a)² + γ(γ+1)/12 (w/a)³, third-order piston theory

@@ -810,7 +810,13 @@ impl ModeShapes {
     }
 
     /// Velocity of each panel centroid from modal velocities (mean of its vertices' Φ q̇), m/s,
-    /// written into `out` (len = panels). Allocates nothing.
+    /// written into `out` (len = panels).
+    ///
+    /// The vertex velocities Φ q̇ come first (one pass down each contiguous mode column), then
+    /// each panel averages its 3-4 vertices: every vertex is shared by about four panels, so
+    /// this is about four times fewer multiplications than averaging Φ per panel and mode, with
+    /// the same sums in another order. The vertex buffer is per thread: it allocates on a
+    /// thread's first call (and when a larger mesh comes), never after.
     pub fn panel_velocities(
         &self,
         mesh: &PanelMesh,
@@ -820,10 +826,41 @@ impl ModeShapes {
         debug_assert_eq!(out.len(), mesh.panels.len());
         debug_assert_eq!(modal_velocities.len(), self.n_modes());
         let n_modes = self.n_modes().min(modal_velocities.len());
-        for (panel, v_out) in mesh.panels.iter().zip(out.iter_mut()) {
-            *v_out = (0..n_modes)
-                .map(|k| self.panel_displacement(panel, k) * modal_velocities[k])
-                .sum();
-        }
+        VERTEX_SCRATCH.with_borrow_mut(|vertex_velocity| {
+            let n_rows = self.vertex_displacement.nrows();
+            vertex_velocity.clear();
+            vertex_velocity.resize(n_rows, 0.0);
+            // Column-major storage: mode k is the contiguous slice [k n_rows, (k+1) n_rows).
+            let columns = self
+                .vertex_displacement
+                .as_slice()
+                .chunks_exact(n_rows.max(1));
+            for (column, &q_dot) in columns.zip(modal_velocities.iter()).take(n_modes) {
+                if q_dot == 0.0 {
+                    continue;
+                }
+                for (v, &phi) in vertex_velocity.iter_mut().zip(column) {
+                    *v += phi * q_dot;
+                }
+            }
+            for (panel, v_out) in mesh.panels.iter().zip(out.iter_mut()) {
+                *v_out = vertex_mean(vertex_velocity, panel);
+            }
+        });
     }
+}
+
+thread_local! {
+    /// Per-vertex scratch (x, y, z interleaved) of [`ModeShapes::panel_velocities`].
+    static VERTEX_SCRATCH: std::cell::RefCell<Vec<f64>> = const { std::cell::RefCell::new(Vec::new()) };
+}
+
+/// Mean over a panel's vertices of a per-vertex field stored x, y, z interleaved (the panel rule
+/// of [`ModeShapes::panel_displacement`]).
+fn vertex_mean(field: &[f64], panel: &Panel) -> Vector3<f64> {
+    let idx = panel.vertex_indices();
+    let sum = idx.iter().fold(Vector3::zeros(), |acc, &v| {
+        acc + Vector3::new(field[3 * v], field[3 * v + 1], field[3 * v + 2])
+    });
+    sum / idx.len() as f64
 }

@@ -227,6 +227,22 @@ fn add_scaled(dst: &mut DMatrix<f64>, a: f64, src: &DMatrix<f64>) {
     }
 }
 
+/// The lower triangle (diagonal included) of `dst += a src` for square matrices: the entries
+/// a symmetric matrix's Cholesky factorization reads, half the work of [`add_scaled`] and the
+/// same operations on those entries.
+fn add_scaled_lower(dst: &mut DMatrix<f64>, a: f64, src: &DMatrix<f64>) {
+    let n = dst.nrows();
+    let columns = dst
+        .as_mut_slice()
+        .chunks_exact_mut(n.max(1))
+        .zip(src.as_slice().chunks_exact(n.max(1)));
+    for (b, (d, s)) in columns.enumerate() {
+        for (d, s) in d[b..].iter_mut().zip(&s[b..]) {
+            *d += a * s;
+        }
+    }
+}
+
 /// Modified Gram-Schmidt on the columns, in place.
 fn orthonormalize(modes: &mut DMatrix<f64>) -> Result<(), ModelError> {
     for k in 0..modes.ncols() {
@@ -410,6 +426,7 @@ pub struct Pod {
     surface_k: Vec<f64>,
     matrix: BandedMatrix,
     capacity: DMatrix<f64>,
+    /// K(T) of the current Picard iterate; only its lower triangle is kept up to date.
     conduction: DMatrix<f64>,
     load: DVector<f64>,
     midpoint: DVector<f64>,
@@ -689,7 +706,8 @@ impl ConductionModel for Pod {
             self.conduction.copy_from(&self.k0);
             for j in 0..r {
                 add_scaled(&mut self.capacity, self.midpoint[j], &self.c1[j]);
-                add_scaled(&mut self.conduction, self.iterate[j], &self.k1[j]);
+                // Only the lower triangle of K(T) enters the (symmetric) system matrix.
+                add_scaled_lower(&mut self.conduction, self.iterate[j], &self.k1[j]);
             }
             self.matrix.clear();
             for a in 0..r {

@@ -394,8 +394,47 @@ pub fn swept_blend_w_m2(stagnation_w_m2: f64, flat_plate_w_m2: f64, inclination_
 #[derive(Debug, Clone, PartialEq)]
 pub struct Eckert {
     settings: Settings,
+    /// Powers of the (fixed) Prandtl number every panel needs, computed once.
+    prandtl: PrandtlPowers,
     running_length_m: Vec<f64>,
     diagnostics: HeatFluxDiagnostics,
+}
+
+/// The Prandtl-number powers of steps 1 and 5, from the settings at construction: the same
+/// expressions as [`recovery_factor`] and [`stanton_number`], evaluated once per model instead
+/// of once per panel.
+#[derive(Debug, Clone, Copy, PartialEq)]
+struct PrandtlPowers {
+    /// r = Pr^(1/2).
+    laminar_recovery: f64,
+    /// r = Pr^(1/3).
+    turbulent_recovery: f64,
+    /// Pr^(-2/3) of Colburn's analogy.
+    colburn: f64,
+}
+
+impl PrandtlPowers {
+    fn new(prandtl_number: f64) -> Self {
+        Self {
+            laminar_recovery: recovery_factor(prandtl_number, false),
+            turbulent_recovery: recovery_factor(prandtl_number, true),
+            colburn: prandtl_number.powf(-2.0 / 3.0),
+        }
+    }
+
+    /// [`recovery_factor`] of the model's Prandtl number.
+    fn recovery_factor(&self, turbulent: bool) -> f64 {
+        if turbulent {
+            self.turbulent_recovery
+        } else {
+            self.laminar_recovery
+        }
+    }
+
+    /// [`stanton_number`] St = C_f / 2 · Pr^(−2/3) of the model's Prandtl number.
+    fn stanton_number(&self, skin_friction: f64) -> f64 {
+        0.5 * skin_friction * self.colburn
+    }
 }
 
 impl Eckert {
@@ -406,6 +445,7 @@ impl Eckert {
         }
         Ok(Self {
             settings,
+            prandtl: PrandtlPowers::new(settings.prandtl_number),
             running_length_m: Vec::new(),
             diagnostics: HeatFluxDiagnostics::default(),
         })
@@ -477,7 +517,7 @@ impl Eckert {
             Regime::Turbulent => true,
             Regime::Transitional => edge_reynolds >= s.transition_reynolds,
         };
-        let r = recovery_factor(s.prandtl_number, turbulent);
+        let r = self.prandtl.recovery_factor(turbulent);
         let taw = recovery_temperature_k(te, edge.mach, gas.gamma, r);
         let t_ref = match s.reference {
             Reference::Eckert => eckert_reference_temperature_k(te, wall_temperature_k, taw),
@@ -498,7 +538,7 @@ impl Eckert {
         } else {
             laminar_skin_friction(reynolds)
         };
-        let st = stanton_number(cf, s.prandtl_number);
+        let st = self.prandtl.stanton_number(cf);
         ConvectiveHeating {
             turbulent,
             recovery_factor: r,
@@ -515,10 +555,10 @@ impl Eckert {
         }
     }
 
-    /// A windward panel whose edge flow is subsonic (detached shock ahead of it), with stagnation
-    /// heating switched on.
-    fn in_stagnation_region(&self, edge: &EdgeState, inclination_rad: f64) -> bool {
-        self.settings.leading_edge_radius_m > 0.0 && edge.mach < 1.0 && inclination_rad > 0.0
+    /// A windward panel (sin θ > 0, i.e. θ > 0) whose edge flow is subsonic (detached shock ahead
+    /// of it), with stagnation heating switched on.
+    fn in_stagnation_region(&self, edge: &EdgeState, sin_inclination: f64) -> bool {
+        self.settings.leading_edge_radius_m > 0.0 && edge.mach < 1.0 && sin_inclination > 0.0
     }
 
     /// Re-radiation ε σ T_w⁴ from the wall to cold surroundings, W/m².
@@ -609,13 +649,11 @@ impl HeatFluxModel for Eckert {
                 diagnostics.turbulent_panels += usize::from(h.turbulent);
                 h.heat_flux_w_m2
             };
-            let inclination_rad = mesh.panels[i]
-                .normal
-                .dot(&direction)
-                .clamp(-1.0, 1.0)
-                .asin();
-            let convection = if self.in_stagnation_region(edge, inclination_rad) {
+            // sin θ = n · V̂; θ itself (an `asin`) only on the few stagnation-region panels.
+            let sin_inclination = mesh.panels[i].normal.dot(&direction).clamp(-1.0, 1.0);
+            let convection = if self.in_stagnation_region(edge, sin_inclination) {
                 diagnostics.stagnation_panels += 1;
+                let inclination_rad = sin_inclination.asin();
                 let q0 = fay_riddell_heat_flux_w_m2(
                     &flight.freestream,
                     self.settings.leading_edge_radius_m,

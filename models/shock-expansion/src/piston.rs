@@ -25,7 +25,7 @@ pub const NAME: &str = "shock-expansion-piston";
 /// Cesnik, Crowell & McNamara, AIAA J. 49(8), 2011). P3 is the third-order expansion of the
 /// simple-wave piston pressure (Lighthill 1953; Ashley & Zartarian 1956).
 ///
-/// The edge state follows the simple wave isentropically (T ∝ p^((γ-1)/γ), ρ ∝ p^(1/γ)) with the
+/// The edge state follows the simple wave isentropically (ρ ∝ p^(1/γ), T ∝ p/ρ = p^((γ-1)/γ)) with the
 /// tangential edge velocity kept. |w|/a_e ≥ 1 is outside piston theory and counted in
 /// `piston_theory_violations`; a cubic that falls below zero (w/a_e < about -1.27 for γ = 1.4)
 /// is clipped to vacuum. Panels already at vacuum in the mean flow are left at zero pressure.
@@ -89,12 +89,12 @@ impl AeroModel for ShockExpansionPiston {
             let ratio = gas::piston_pressure_ratio_third_order(w_over_a, gas.gamma);
             if ratio > 0.0 {
                 let pressure = edge.pressure_pa * ratio;
-                let temperature =
-                    edge.temperature_k * isentropic_temperature_ratio(ratio, gas.gamma);
+                let density_ratio = isentropic_density_ratio(ratio, gas.gamma);
+                let temperature = edge.temperature_k * (ratio / density_ratio);
                 out.pressure_pa[index] = pressure;
                 out.edge[index].pressure_pa = pressure;
                 out.edge[index].temperature_k = temperature;
-                out.edge[index].density_kg_m3 = edge.density_kg_m3 * ratio.powf(1.0 / gas.gamma);
+                out.edge[index].density_kg_m3 = edge.density_kg_m3 * density_ratio;
                 out.edge[index].mach = edge.velocity_m_s / gas.speed_of_sound(temperature);
             } else {
                 let vacuum = wave::vacuum(local.flow, gas.gamma).flow;
@@ -106,7 +106,48 @@ impl AeroModel for ShockExpansionPiston {
     }
 }
 
-/// T2/T1 = (p2/p1)^((γ-1)/γ), isentropic (NACA 1135 eq. 44 with eq. 43).
-fn isentropic_temperature_ratio(pressure_ratio: f64, gamma: f64) -> f64 {
-    pressure_ratio.powf((gamma - 1.0) / gamma)
+/// ρ2/ρ1 = (p2/p1)^(1/γ), isentropic (NACA 1135 eq. 45 with eq. 44); the temperature ratio is
+/// then (p2/p1)/(ρ2/ρ1) = (p2/p1)^((γ-1)/γ) (perfect gas), one `powf` for both.
+fn isentropic_density_ratio(pressure_ratio: f64, gamma: f64) -> f64 {
+    pressure_ratio.powf(1.0 / gamma)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    const GAMMA: f64 = 1.4;
+
+    /// T2/T1 = (p2/p1)/(ρ2/ρ1) with ρ2/ρ1 = (p2/p1)^(1/γ) is the isentropic (p2/p1)^((γ-1)/γ)
+    /// it replaced (NACA 1135 eqs. 44-45), to 1e-14 relative over the piston-theory range of
+    /// P3 (w/a_e from -1 to 1: p2/p1 from 0.07 to 3.9).
+    #[test]
+    fn one_power_gives_the_isentropic_temperature_ratio() {
+        for k in 0..=200 {
+            let w = -1.0 + 0.01 * f64::from(k);
+            let ratio = gas::piston_pressure_ratio_third_order(w, GAMMA);
+            let temperature = ratio / isentropic_density_ratio(ratio, GAMMA);
+            let previous = ratio.powf((GAMMA - 1.0) / GAMMA);
+            assert!(
+                (temperature / previous - 1.0).abs() <= 1e-14,
+                "w/a {w}: {temperature} against {previous}"
+            );
+        }
+    }
+
+    /// Along the exact simple wave p/p∞ = (1 + (γ-1)/2 w/a)^(2γ/(γ-1)) the temperature ratio is
+    /// (1 + (γ-1)/2 w/a)² (Lighthill 1953: a/a∞ = 1 + (γ-1)/2 w/a), to 1e-14 relative.
+    #[test]
+    fn simple_wave_temperature_is_lighthills_closed_form() {
+        for k in 0..=100 {
+            let w = -0.5 + 0.01 * f64::from(k);
+            let ratio = gas::piston_pressure_ratio_exact(w, GAMMA).unwrap();
+            let temperature = ratio / isentropic_density_ratio(ratio, GAMMA);
+            let closed_form = (1.0 + 0.5 * (GAMMA - 1.0) * w).powi(2);
+            assert!(
+                (temperature / closed_form - 1.0).abs() <= 1e-14,
+                "w/a {w}: {temperature} against {closed_form}"
+            );
+        }
+    }
 }

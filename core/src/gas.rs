@@ -865,6 +865,9 @@ pub struct Expansion {
     pub temperature_ratio: f64,
     /// ρ2/ρ1 <= 1.
     pub density_ratio: f64,
+    /// ν(M2) = ν(M1) + turn, rad: the downstream Prandtl-Meyer angle, for the next turn of the
+    /// same flow ([`prandtl_meyer_expansion_from`]).
+    pub prandtl_meyer_downstream_rad: f64,
 }
 
 /// Expansion of M >= 1 flow turning away from itself by `turn_rad` >= 0: ν(M2) = ν(M1) + turn,
@@ -884,9 +887,51 @@ pub fn prandtl_meyer_expansion(
             "turn >= 0 (a turn into the flow is a compression)",
         ));
     }
-    let a = pm_scale(gamma);
     let x1 = ((m1 - 1.0) * (m1 + 1.0)).sqrt();
-    let nu1 = pm_of_x(x1, a);
+    expansion_of_checked(m1, x1, pm_of_x(x1, pm_scale(gamma)), turn, gamma)
+}
+
+/// [`prandtl_meyer_expansion`] of M >= 1 flow whose Prandtl-Meyer angle ν(M) is already known,
+/// e.g. the [`Expansion::prandtl_meyer_downstream_rad`] of the expansion that produced it: the
+/// same state change without evaluating ν(M) again (two `atan`s). `nu_rad` must be ν(mach) to
+/// rounding; it is checked to lie in [0, ν_max).
+pub fn prandtl_meyer_expansion_from(
+    mach: f64,
+    nu_rad: f64,
+    turn_rad: f64,
+    gamma: f64,
+) -> Result<Expansion, GasError> {
+    let gamma = check_gamma(gamma)?;
+    let m1 = check_supersonic(mach, "a Prandtl-Meyer expansion needs M >= 1")?;
+    let turn = finite("expansion turn (rad)", turn_rad)?;
+    let nu1 = finite("Prandtl-Meyer angle (rad)", nu_rad)?;
+    if turn < 0.0 {
+        return Err(GasError::out_of_range(
+            "expansion turn (rad)",
+            turn,
+            "turn >= 0 (a turn into the flow is a compression)",
+        ));
+    }
+    let nu_max = max_prandtl_meyer(gamma);
+    if !(0.0..nu_max).contains(&nu1) {
+        return Err(GasError::out_of_range(
+            "Prandtl-Meyer angle (rad)",
+            nu1,
+            format!("0 <= nu < nu_max = {nu_max}"),
+        ));
+    }
+    expansion_of_checked(m1, ((m1 - 1.0) * (m1 + 1.0)).sqrt(), nu1, turn, gamma)
+}
+
+/// The expansion of checked M1 >= 1 (x1 = √(M1²-1), ν1 = ν(M1)) by a turn >= 0.
+fn expansion_of_checked(
+    m1: f64,
+    x1: f64,
+    nu1: f64,
+    turn: f64,
+    gamma: f64,
+) -> Result<Expansion, GasError> {
+    let a = pm_scale(gamma);
     let nu_max = max_prandtl_meyer(gamma);
     let max_turn = nu_max - nu1;
     if turn >= max_turn || nu1 + turn >= nu_max {
@@ -908,6 +953,7 @@ pub fn prandtl_meyer_expansion(
         pressure_ratio: pow_half_integer(temperature_ratio, gamma / (gamma - 1.0)),
         temperature_ratio,
         density_ratio: pow_half_integer(temperature_ratio, 1.0 / (gamma - 1.0)),
+        prandtl_meyer_downstream_rad: nu1 + turn,
     })
 }
 

@@ -541,11 +541,12 @@ impl PanelMesh {
     pub fn panel_length_along_m(&self, p: usize, along: &Vector3<f64>) -> f64 {
         let panel = &self.panels[p];
         let across = panel.normal.cross(along);
-        let norm = across.norm();
-        if norm <= f64::EPSILON * along.norm().max(1.0) {
+        // |n × along| <= ε max(|along|, 1), compared squared (one root fewer per panel).
+        let norm2 = across.norm_squared();
+        if norm2 <= f64::EPSILON * f64::EPSILON * along.norm_squared().max(1.0) {
             return panel.area_m2.sqrt();
         }
-        let across = across / norm;
+        // The extent along the unnormalized `across`, divided by its length once.
         let (lo, hi) = panel
             .vertex_indices()
             .iter()
@@ -553,7 +554,7 @@ impl PanelMesh {
             .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), s| {
                 (lo.min(s), hi.max(s))
             });
-        let width = hi - lo;
+        let width = (hi - lo) / norm2.sqrt();
         if width > 0.0 {
             panel.area_m2 / width
         } else {
@@ -778,20 +779,20 @@ impl ModeShapes {
         }
         let n_rows = self.vertex_displacement.nrows();
         let n_modes = self.n_modes().min(modal_coordinates.len());
-        for k in 0..n_modes {
-            let q = modal_coordinates[k];
+        // Column-major storage: mode k is the contiguous slice [k n_rows, (k+1) n_rows), read
+        // three rows (one vertex) at a time.
+        let columns = self
+            .vertex_displacement
+            .as_slice()
+            .chunks_exact(n_rows.max(1));
+        for (col, &q) in columns.zip(modal_coordinates.iter()).take(n_modes) {
             if q == 0.0 {
                 continue;
             }
-            let col = self.vertex_displacement.column(k);
-            for (i, v) in out.vertices.iter_mut().enumerate() {
-                let r = 3 * i;
-                if r + 2 >= n_rows {
-                    break;
-                }
-                v.x += col[r] * q;
-                v.y += col[r + 1] * q;
-                v.z += col[r + 2] * q;
+            for (v, d) in out.vertices.iter_mut().zip(col.chunks_exact(3)) {
+                v.x += d[0] * q;
+                v.y += d[1] * q;
+                v.z += d[2] * q;
             }
         }
         out.update_geometry();

@@ -300,6 +300,42 @@ fn expansion_from_the_upstream_state_equals_the_inverse_from_hall() {
 }
 
 #[test]
+fn expansion_from_a_known_angle_equals_the_expansion_from_mach() {
+    // A strip's second expansion starts from ν(M1) + τ1 of the first instead of ν(M2): the same
+    // state to 1e-12 (ν(M2) = ν(M1) + τ1 holds to the solve's rounding).
+    for gamma in [1.2, G, 1.67] {
+        for mach in log_space(1.01, 20.0, 40) {
+            for first in log_space(1e-6, 0.5, 12) {
+                let Ok(a) = prandtl_meyer_expansion(mach, first, gamma) else {
+                    continue;
+                };
+                for second in log_space(1e-9, 0.5, 12) {
+                    let fresh = prandtl_meyer_expansion(a.mach_downstream, second, gamma);
+                    let known = prandtl_meyer_expansion_from(
+                        a.mach_downstream,
+                        a.prandtl_meyer_downstream_rad,
+                        second,
+                        gamma,
+                    );
+                    let (Ok(fresh), Ok(known)) = (fresh, known) else {
+                        continue;
+                    };
+                    let at = format!("M {mach}, turns {first} + {second}, gamma {gamma}");
+                    let pairs = [
+                        ("M2", known.mach_downstream, fresh.mach_downstream),
+                        ("p2/p1", known.pressure_ratio, fresh.pressure_ratio),
+                        ("rho2/rho1", known.density_ratio, fresh.density_ratio),
+                    ];
+                    for (what, k, f) in pairs {
+                        assert_same(&format!("{what} at {at}"), k, f, 1e-12);
+                    }
+                }
+            }
+        }
+    }
+}
+
+#[test]
 fn isentropic_powers_equal_powf() {
     for gamma in [1.2, G, 1.67, 1.3, 1.05] {
         for mach in log_space(0.01, 60.0, 400) {

@@ -64,14 +64,21 @@ impl AeroModel for ShockExpansionPiston {
         check_panel_method_inputs(NAME, mesh, flight, motion)?;
         self.mean.evaluate_steady(mesh, flight, out)?;
         let gas = flight.freestream.gas;
-        let mean_velocity = flight.velocity_body_m_s();
+        let omega = flight.angular_velocity_rad_s;
         for (index, (panel, local)) in mesh.panels.iter().zip(self.mean.local()).enumerate() {
             if local.regime == Regime::Vacuum {
                 continue;
             }
             let edge = out.edge[index];
             let sound_speed = gas.speed_of_sound(edge.temperature_k);
-            let relative = motion.panel_velocity_m_s(flight, mesh, index) - mean_velocity;
+            // The panel's velocity relative to the air minus the vehicle's, ω × (r - r_c) + v_el
+            // (`PanelMotion::panel_velocity_m_s` without the mean velocity V it would add and
+            // this would take away again, and without V's wind-to-body trigonometry).
+            let rigid = omega.cross(&(panel.centroid - flight.rotation_center_m));
+            let relative = match motion.elastic_velocity_m_s {
+                Some(elastic) => rigid + elastic[index],
+                None => rigid,
+            };
             let w_over_a = relative.dot(&panel.normal) / sound_speed;
             if !w_over_a.is_finite() {
                 return Err(ModelError::non_finite_at_panel(

@@ -221,5 +221,6 @@ fn freestream_local(flight: &FlightCondition) -> Local {
             density_kg_m3: f.density_kg_m3,
         },
         regime: Regime::Freestream,
+        prandtl_meyer_rad: None,
     }
 }

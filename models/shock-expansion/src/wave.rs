@@ -43,6 +43,9 @@ pub struct Flow {
 pub struct Local {
     pub flow: Flow,
     pub regime: Regime,
+    /// ν(M), rad, when an expansion produced the state (its ν(M1) + turn): the next expansion
+    /// of the strip starts from it instead of evaluating ν(M) again.
+    pub prandtl_meyer_rad: Option<f64>,
 }
 
 impl Flow {
@@ -103,6 +106,7 @@ pub fn turn(local: Local, turn_rad: f64, gamma: f64) -> Result<Local, GasError> 
                     shock.density_ratio,
                 ),
                 regime: Regime::Compression,
+                prandtl_meyer_rad: None,
             }),
             Err(GasError::Detached { .. }) => detached(flow, turn_rad, gamma),
             Err(other) => Err(other),
@@ -113,7 +117,13 @@ pub fn turn(local: Local, turn_rad: f64, gamma: f64) -> Result<Local, GasError> 
     } else {
         flow
     };
-    match gas::prandtl_meyer_expansion(start.mach, -turn_rad, gamma) {
+    let fan = match local.prandtl_meyer_rad {
+        Some(nu) if flow.mach >= 1.0 => {
+            gas::prandtl_meyer_expansion_from(start.mach, nu, -turn_rad, gamma)
+        }
+        _ => gas::prandtl_meyer_expansion(start.mach, -turn_rad, gamma),
+    };
+    match fan {
         Ok(fan) => Ok(Local {
             flow: start.scaled(
                 fan.mach_downstream,
@@ -122,6 +132,7 @@ pub fn turn(local: Local, turn_rad: f64, gamma: f64) -> Result<Local, GasError> 
                 fan.density_ratio,
             ),
             regime: Regime::Expansion,
+            prandtl_meyer_rad: Some(fan.prandtl_meyer_downstream_rad),
         }),
         Err(GasError::VacuumExpansion { .. }) => Ok(vacuum(flow, gamma)),
         Err(other) => Err(other),
@@ -176,6 +187,7 @@ fn at_total_pressure(
             pressure_ratio / temperature,
         ),
         regime: Regime::Detached,
+        prandtl_meyer_rad: None,
     })
 }
 
@@ -204,6 +216,7 @@ pub fn vacuum(flow: Flow, gamma: f64) -> Local {
             density_kg_m3: 0.0,
         },
         regime: Regime::Vacuum,
+        prandtl_meyer_rad: None,
     }
 }
 
@@ -223,6 +236,7 @@ mod tests {
                 density_kg_m3: 1.0e4 / (287.0 * 220.0),
             },
             regime: Regime::Freestream,
+            prandtl_meyer_rad: None,
         }
     }
 

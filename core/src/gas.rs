@@ -625,19 +625,30 @@ fn weak_oblique_shock(m: f64, theta: f64, gamma: f64) -> Result<ObliqueShock, Ga
     } else if theta == 0.0 {
         0.0
     } else {
-        // The closed form loses precision as θ → 0 (1 - χ cancels); there the small-deflection
-        // slope dβ/dθ = (γ+1) M² / (4 (M² - 1)) times d(sin²β)/dβ = 2√(M²-1)/M² at the Mach
-        // angle is the better start (below tan θ = 1e-3 tan θ_max).
-        let guess = if trig.0 * denominator < 1e-3 * numerator * trig.1 {
-            (gamma + 1.0) * theta / (2.0 * ((m - 1.0) * (m + 1.0)).sqrt())
+        let cubic = mach_wave_cubic(m, trig.0, gamma);
+        // Below tan θ = 0.1 tan θ_max the root of the cubic without its y³ term (y is small
+        // there) starts Newton two or three steps from the root, cheaper than Thompson's
+        // closed form (an `acos` and a `cos`), which also loses precision as θ → 0.
+        let guess = if trig.0 * denominator < 0.1 * numerator * trig.1 {
+            small_deflection_start(cubic)
         } else {
             let t = thompson_tan_wave_angle(m, trig.0 / trig.1, gamma, ShockBranch::Weak);
             t * t / (1.0 + t * t) - x_mach_wave
         };
-        let cubic = mach_wave_cubic(m, trig.0, gamma);
         solve_bracketed(|y| cubic_and_slope(cubic, y), 0.0, y_max, guess, false, 0.0)
     };
     Ok(oblique_from_mach_wave_offset(m, y, theta, trig, gamma))
+}
+
+/// Positive root of B y² + C y + D = 0 (B < 0 < D), the cubic of [`mach_wave_cubic`] without
+/// its y³ term, in the form without cancellation for either sign of C.
+fn small_deflection_start([b, c, d]: [f64; 3]) -> f64 {
+    let root = (c * c - 4.0 * b * d).sqrt();
+    if c >= 0.0 {
+        (c + root) / (-2.0 * b)
+    } else {
+        2.0 * d / (root - c)
+    }
 }
 
 /// Oblique shock turning M >= 1 flow by θ in [0, θ_max] rad on the chosen branch: on the weak

@@ -229,18 +229,19 @@ fn panel_geometry(
     let cross = (v2 - v0).cross(&(v3 - v1));
     let twice_area = cross.norm();
     let normal = if twice_area > 0.0 {
-        cross / twice_area
+        cross * twice_area.recip()
     } else {
         Vector3::zeros()
     };
     // Area-weighted centroid of the split along one diagonal, averaged with the split along the
-    // other: exact for planar panels, symmetric for warped ones.
+    // other: exact for planar panels, symmetric for warped ones. The triangle centroids' 1/3
+    // and the weights' sum share one reciprocal (one division per split instead of nine).
     let split = |a: &Point3<f64>, b: &Point3<f64>, c: &Point3<f64>, d: &Point3<f64>| {
         let w1 = (b - a).cross(&(c - a)).norm();
         let w2 = (c - a).cross(&(d - a)).norm();
-        let c1 = (a.coords + b.coords + c.coords) / 3.0;
-        let c2 = (a.coords + c.coords + d.coords) / 3.0;
-        (w1 + w2 > 0.0).then(|| (c1 * w1 + c2 * w2) / (w1 + w2))
+        let s1 = a.coords + b.coords + c.coords;
+        let s2 = a.coords + c.coords + d.coords;
+        (w1 + w2 > 0.0).then(|| (s1 * w1 + s2 * w2) * (3.0 * (w1 + w2)).recip())
     };
     let centroid = match (split(&v0, &v1, &v2, &v3), split(&v1, &v2, &v3, &v0)) {
         (Some(a), Some(b)) => Point3::from((a + b) / 2.0),

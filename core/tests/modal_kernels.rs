@@ -7,13 +7,16 @@
 //! Q_k = −Σ (p − p_ref) A n · φ̄_k(panel) with φ̄ the vertex mean (`ModeShapes::panel_displacement`,
 //! the rule of Thomson, *Theory of Vibration with Applications* (2010) Eq. (11.1-10) as
 //! `ModalProjection` still builds it), are the same sums in another order: they must agree to
-//! 1e-12 of the largest term. The closed-form checks (rigid modes, uniform heave) stay in
-//! `mesh.rs` and `coupling.rs`.
+//! 1e-12 of the largest term. The panel geometry now shares one reciprocal per diagonal split
+//! where it divided nine times; it must agree with the previous form (Hess & Smith 1967 normal
+//! from the diagonals, area-weighted centroids of both splits) to 1e-14 of the panel size. The
+//! closed-form checks (rigid modes, uniform heave, planar panel geometry) stay in `mesh.rs` and
+//! `coupling.rs`.
 
 use hsv_core::coupling::{ModalProjection, generalized_forces};
 use hsv_core::mesh::{ModeShapes, PanelMesh, RegionKind};
 use hsv_core::testing::sample_region;
-use nalgebra::{DMatrix, DVector, Vector3};
+use nalgebra::{DMatrix, DVector, Point3, Vector3};
 
 /// Eight smooth shapes (bending, twist, in-plane, non-linear in x, y, z), m per unit coordinate.
 fn shapes(mesh: &PanelMesh) -> ModeShapes {
@@ -101,6 +104,55 @@ fn generalized_forces_equal_the_per_panel_projection() {
                 assert!(
                     (n - o).abs() <= 1e-12 * scale,
                     "{region} mode {k}: {n} against {o} (scale {scale})"
+                );
+            }
+        }
+    }
+}
+
+/// The previous `panel_geometry`: (centroid, normal, area) with a division per component.
+fn previous_geometry(v: [Point3<f64>; 4]) -> (Point3<f64>, Vector3<f64>, f64) {
+    let [v0, v1, v2, v3] = v;
+    let cross = (v2 - v0).cross(&(v3 - v1));
+    let twice_area = cross.norm();
+    let normal = cross / twice_area;
+    let split = |a: &Point3<f64>, b: &Point3<f64>, c: &Point3<f64>, d: &Point3<f64>| {
+        let w1 = (b - a).cross(&(c - a)).norm();
+        let w2 = (c - a).cross(&(d - a)).norm();
+        let c1 = (a.coords + b.coords + c.coords) / 3.0;
+        let c2 = (a.coords + c.coords + d.coords) / 3.0;
+        (c1 * w1 + c2 * w2) / (w1 + w2)
+    };
+    let centroid = Point3::from((split(&v0, &v1, &v2, &v3) + split(&v1, &v2, &v3, &v0)) / 2.0);
+    (centroid, normal, 0.5 * twice_area)
+}
+
+#[test]
+fn panel_geometry_equals_the_previous_divisions() {
+    for region in ["main_body", "left_surface"] {
+        let mesh = &sample_region(region).mesh;
+        // Warp the mesh (non-planar quads) the way modal deformation does.
+        let shapes = shapes(mesh);
+        let mut warped = PanelMesh::default();
+        shapes.deform(mesh, &DVector::from_element(8, 0.05), &mut warped);
+        for m in [mesh, &warped] {
+            for (p, panel) in m.panels.iter().enumerate() {
+                let idx = panel.vertices;
+                let v = idx.map(|i| m.vertices[i]);
+                let (centroid, normal, area) = previous_geometry(v);
+                let size = area.sqrt();
+                assert!(
+                    (panel.centroid - centroid).amax() <= 1e-14 * (size + centroid.coords.amax()),
+                    "{region} panel {p}: centroid {:?} against {centroid:?}",
+                    panel.centroid
+                );
+                assert!(
+                    (panel.normal - normal).amax() <= 1e-15,
+                    "{region} panel {p}"
+                );
+                assert!(
+                    (panel.area_m2 / area - 1.0).abs() <= 1e-15,
+                    "{region} panel {p}"
                 );
             }
         }

@@ -425,6 +425,7 @@ pub struct Pod {
     // Scratch.
     surface_k: Vec<f64>,
     matrix: BandedMatrix,
+    /// C(T) of the current Picard iterate; only its lower triangle is kept up to date.
     capacity: DMatrix<f64>,
     /// K(T) of the current Picard iterate; only its lower triangle is kept up to date.
     conduction: DMatrix<f64>,
@@ -704,9 +705,10 @@ impl ConductionModel for Pod {
             self.midpoint *= 0.5;
             self.capacity.copy_from(&self.c0);
             self.conduction.copy_from(&self.k0);
+            // C(T) and K(T) are symmetric: only their lower triangles are formed and read (the
+            // system matrix's Cholesky factorization and the symmetric product C(T) a).
             for j in 0..r {
-                add_scaled(&mut self.capacity, self.midpoint[j], &self.c1[j]);
-                // Only the lower triangle of K(T) enters the (symmetric) system matrix.
+                add_scaled_lower(&mut self.capacity, self.midpoint[j], &self.c1[j]);
                 add_scaled_lower(&mut self.conduction, self.iterate[j], &self.k1[j]);
             }
             self.matrix.clear();
@@ -726,7 +728,7 @@ impl ConductionModel for Pod {
                     ),
                 )
             })?;
-            self.rhs.gemv(1.0 / dt_s, &self.capacity, state, 0.0);
+            self.rhs.sygemv(1.0 / dt_s, &self.capacity, state, 0.0);
             self.rhs += &self.load;
             self.matrix.solve_in_place(self.rhs.as_mut_slice());
             let mut change = 0.0;

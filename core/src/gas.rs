@@ -1,5 +1,7 @@
 //! Perfect-gas relations: isentropic flow, normal and oblique shocks, Prandtl-Meyer expansions,
-//! Rayleigh flow, pitot and Newtonian stagnation pressures, and piston theory.
+//! Rayleigh flow, pitot and Newtonian stagnation pressures, and piston theory (one file: the
+//! relations build on each other and share the input checks and the safeguarded solver; the
+//! cheaper inner kernels are in `gas/kernels.rs`).
 //!
 //! Calorically perfect gas with constant ratio of specific heats γ. SI units; angles in radians.
 //! References: NACA Report 1135 (Ames Research Staff, 1953, "Equations, Tables, and Charts for
@@ -775,15 +777,7 @@ pub fn max_prandtl_meyer(gamma: f64) -> f64 {
 /// if a step leaves the bracket) (Hall, Aeronautical J. 79, 1975, p. 417).
 pub fn inverse_prandtl_meyer(nu_rad: f64, gamma: f64) -> Result<f64, GasError> {
     let gamma = check_gamma(gamma)?;
-    let nu = finite("Prandtl-Meyer angle (rad)", nu_rad)?;
-    let nu_max = max_prandtl_meyer(gamma);
-    if !(0.0..nu_max).contains(&nu) {
-        return Err(GasError::out_of_range(
-            "Prandtl-Meyer angle (rad)",
-            nu,
-            format!("0 <= nu < nu_max = {nu_max}"),
-        ));
-    }
+    let nu = check_prandtl_meyer_angle(nu_rad, gamma)?;
     if nu == 0.0 {
         return Ok(1.0);
     }
@@ -888,16 +882,7 @@ pub fn prandtl_meyer_expansion(
     turn_rad: f64,
     gamma: f64,
 ) -> Result<Expansion, GasError> {
-    let gamma = check_gamma(gamma)?;
-    let m1 = check_supersonic(mach, "a Prandtl-Meyer expansion needs M >= 1")?;
-    let turn = finite("expansion turn (rad)", turn_rad)?;
-    if turn < 0.0 {
-        return Err(GasError::out_of_range(
-            "expansion turn (rad)",
-            turn,
-            "turn >= 0 (a turn into the flow is a compression)",
-        ));
-    }
+    let (m1, turn, gamma) = check_expansion(mach, turn_rad, gamma)?;
     let x1 = ((m1 - 1.0) * (m1 + 1.0)).sqrt();
     expansion_of_checked(m1, x1, pm_of_x(x1, pm_scale(gamma)), turn, gamma)
 }
@@ -912,10 +897,16 @@ pub fn prandtl_meyer_expansion_from(
     turn_rad: f64,
     gamma: f64,
 ) -> Result<Expansion, GasError> {
+    let (m1, turn, gamma) = check_expansion(mach, turn_rad, gamma)?;
+    let nu1 = check_prandtl_meyer_angle(nu_rad, gamma)?;
+    expansion_of_checked(m1, ((m1 - 1.0) * (m1 + 1.0)).sqrt(), nu1, turn, gamma)
+}
+
+/// (M >= 1, turn >= 0, γ > 1) of an expansion, or the error naming the bad one.
+fn check_expansion(mach: f64, turn_rad: f64, gamma: f64) -> Result<(f64, f64, f64), GasError> {
     let gamma = check_gamma(gamma)?;
     let m1 = check_supersonic(mach, "a Prandtl-Meyer expansion needs M >= 1")?;
     let turn = finite("expansion turn (rad)", turn_rad)?;
-    let nu1 = finite("Prandtl-Meyer angle (rad)", nu_rad)?;
     if turn < 0.0 {
         return Err(GasError::out_of_range(
             "expansion turn (rad)",
@@ -923,15 +914,21 @@ pub fn prandtl_meyer_expansion_from(
             "turn >= 0 (a turn into the flow is a compression)",
         ));
     }
+    Ok((m1, turn, gamma))
+}
+
+/// ν in [0, ν_max) rad for a checked γ, or the error giving the range.
+fn check_prandtl_meyer_angle(nu_rad: f64, gamma: f64) -> Result<f64, GasError> {
+    let nu = finite("Prandtl-Meyer angle (rad)", nu_rad)?;
     let nu_max = max_prandtl_meyer(gamma);
-    if !(0.0..nu_max).contains(&nu1) {
+    if !(0.0..nu_max).contains(&nu) {
         return Err(GasError::out_of_range(
             "Prandtl-Meyer angle (rad)",
-            nu1,
+            nu,
             format!("0 <= nu < nu_max = {nu_max}"),
         ));
     }
-    expansion_of_checked(m1, ((m1 - 1.0) * (m1 + 1.0)).sqrt(), nu1, turn, gamma)
+    Ok(nu)
 }
 
 /// The expansion of checked M1 >= 1 (x1 = √(M1²-1), ν1 = ν(M1)) by a turn >= 0.
@@ -959,11 +956,13 @@ fn expansion_of_checked(
         mach_from_prandtl_meyer(nu1 + turn, gamma, expansion_start(x1, turn, a))
     };
     let temperature_ratio = total_temperature_ratio(m1, gamma) / total_temperature_ratio(m2, gamma);
+    let pressure_ratio = pow_half_integer(temperature_ratio, gamma / (gamma - 1.0));
     Ok(Expansion {
         mach_downstream: m2,
-        pressure_ratio: pow_half_integer(temperature_ratio, gamma / (gamma - 1.0)),
+        pressure_ratio,
         temperature_ratio,
-        density_ratio: pow_half_integer(temperature_ratio, 1.0 / (gamma - 1.0)),
+        // ρ2/ρ1 = (T2/T1)^(1/(γ-1)) = (p2/p1)/(T2/T1) (perfect gas), one power fewer.
+        density_ratio: pressure_ratio / temperature_ratio,
         prandtl_meyer_downstream_rad: nu1 + turn,
     })
 }

@@ -803,12 +803,9 @@ impl ModeShapes {
     /// modal coordinate (the panel rule of generalized forces and panel velocities). Shapes must
     /// fit the mesh ([`ModeShapes::check`]).
     pub fn panel_displacement(&self, panel: &Panel, mode: usize) -> Vector3<f64> {
-        let phi = self.vertex_displacement.column(mode);
-        let idx = panel.vertex_indices();
-        let sum = idx.iter().fold(Vector3::zeros(), |acc, &v| {
-            acc + Vector3::new(phi[3 * v], phi[3 * v + 1], phi[3 * v + 2])
-        });
-        sum / idx.len() as f64
+        let n_rows = self.vertex_displacement.nrows();
+        let data = self.vertex_displacement.as_slice();
+        vertex_mean(&data[mode * n_rows..(mode + 1) * n_rows], panel)
     }
 
     /// Velocity of each panel centroid from modal velocities (mean of its vertices' Φ q̇), m/s,

@@ -767,9 +767,27 @@ pub fn prandtl_meyer(mach: f64, gamma: f64) -> Result<f64, GasError> {
     Ok(pm_of_x(x, pm_scale(gamma)))
 }
 
+/// The scale a = √((γ+1)/(γ-1)) and ν_max = π/2 (a - 1) of one γ, each a root and a division:
+/// computed once per expansion instead of in every helper.
+#[derive(Clone, Copy, Debug)]
+struct PrandtlMeyerScale {
+    a: f64,
+    nu_max: f64,
+}
+
+impl PrandtlMeyerScale {
+    fn new(gamma: f64) -> Self {
+        let a = pm_scale(gamma);
+        Self {
+            a,
+            nu_max: FRAC_PI_2 * (a - 1.0),
+        }
+    }
+}
+
 /// ν_max = π/2 (√((γ+1)/(γ-1)) - 1), rad: the turn from M = 1 to M = ∞ (Anderson MCF eq. 4.44, M → ∞).
 pub fn max_prandtl_meyer(gamma: f64) -> f64 {
-    FRAC_PI_2 * (pm_scale(gamma) - 1.0)
+    PrandtlMeyerScale::new(gamma).nu_max
 }
 
 /// M(ν) for ν in [0, ν_max) rad: Hall (1975) rational approximation as the start, then Halley's
@@ -777,11 +795,15 @@ pub fn max_prandtl_meyer(gamma: f64) -> f64 {
 /// if a step leaves the bracket) (Hall, Aeronautical J. 79, 1975, p. 417).
 pub fn inverse_prandtl_meyer(nu_rad: f64, gamma: f64) -> Result<f64, GasError> {
     let gamma = check_gamma(gamma)?;
-    let nu = check_prandtl_meyer_angle(nu_rad, gamma)?;
+    let nu = check_prandtl_meyer_angle(nu_rad, max_prandtl_meyer(gamma))?;
     if nu == 0.0 {
         return Ok(1.0);
     }
-    Ok(mach_from_prandtl_meyer(nu, gamma, None))
+    Ok(mach_from_prandtl_meyer(
+        nu,
+        PrandtlMeyerScale::new(gamma),
+        None,
+    ))
 }
 
 /// Hall's start x = √(M²-1) for ν in (0, ν_max) (exact coefficients for γ = 1.4; a fair start
@@ -803,9 +825,8 @@ fn hall_start(nu: f64, nu_max: f64, a: f64) -> f64 {
 
 /// M(ν) for a checked ν in (0, ν_max): Halley's method from `start` (x = √(M²-1)) or Hall's
 /// start, safeguarded Newton if a step leaves the bracket (0, (a²-1)/(ν_max - ν)).
-fn mach_from_prandtl_meyer(nu: f64, gamma: f64, start: Option<f64>) -> f64 {
-    let a = pm_scale(gamma);
-    let nu_max = max_prandtl_meyer(gamma);
+fn mach_from_prandtl_meyer(nu: f64, scale: PrandtlMeyerScale, start: Option<f64>) -> f64 {
+    let PrandtlMeyerScale { a, nu_max } = scale;
     let deficit = nu_max - nu;
     // ν_max - ν(x) < (a²-1)/x, so x = (a²-1)/deficit brackets the root from above.
     let hi = (a * a - 1.0) / deficit;
@@ -883,8 +904,9 @@ pub fn prandtl_meyer_expansion(
     gamma: f64,
 ) -> Result<Expansion, GasError> {
     let (m1, turn, gamma) = check_expansion(mach, turn_rad, gamma)?;
+    let scale = PrandtlMeyerScale::new(gamma);
     let x1 = ((m1 - 1.0) * (m1 + 1.0)).sqrt();
-    expansion_of_checked(m1, x1, pm_of_x(x1, pm_scale(gamma)), turn, gamma)
+    expansion_of_checked(m1, x1, pm_of_x(x1, scale.a), turn, scale, gamma)
 }
 
 /// [`prandtl_meyer_expansion`] of M >= 1 flow whose Prandtl-Meyer angle ν(M) is already known,
@@ -898,8 +920,10 @@ pub fn prandtl_meyer_expansion_from(
     gamma: f64,
 ) -> Result<Expansion, GasError> {
     let (m1, turn, gamma) = check_expansion(mach, turn_rad, gamma)?;
-    let nu1 = check_prandtl_meyer_angle(nu_rad, gamma)?;
-    expansion_of_checked(m1, ((m1 - 1.0) * (m1 + 1.0)).sqrt(), nu1, turn, gamma)
+    let scale = PrandtlMeyerScale::new(gamma);
+    let nu1 = check_prandtl_meyer_angle(nu_rad, scale.nu_max)?;
+    let x1 = ((m1 - 1.0) * (m1 + 1.0)).sqrt();
+    expansion_of_checked(m1, x1, nu1, turn, scale, gamma)
 }
 
 /// (M >= 1, turn >= 0, γ > 1) of an expansion, or the error naming the bad one.
@@ -917,10 +941,9 @@ fn check_expansion(mach: f64, turn_rad: f64, gamma: f64) -> Result<(f64, f64, f6
     Ok((m1, turn, gamma))
 }
 
-/// ν in [0, ν_max) rad for a checked γ, or the error giving the range.
-fn check_prandtl_meyer_angle(nu_rad: f64, gamma: f64) -> Result<f64, GasError> {
+/// ν in [0, ν_max) rad, or the error giving the range.
+fn check_prandtl_meyer_angle(nu_rad: f64, nu_max: f64) -> Result<f64, GasError> {
     let nu = finite("Prandtl-Meyer angle (rad)", nu_rad)?;
-    let nu_max = max_prandtl_meyer(gamma);
     if !(0.0..nu_max).contains(&nu) {
         return Err(GasError::out_of_range(
             "Prandtl-Meyer angle (rad)",
@@ -937,10 +960,10 @@ fn expansion_of_checked(
     x1: f64,
     nu1: f64,
     turn: f64,
+    scale: PrandtlMeyerScale,
     gamma: f64,
 ) -> Result<Expansion, GasError> {
-    let a = pm_scale(gamma);
-    let nu_max = max_prandtl_meyer(gamma);
+    let PrandtlMeyerScale { a, nu_max } = scale;
     let max_turn = nu_max - nu1;
     if turn >= max_turn || nu1 + turn >= nu_max {
         return Err(GasError::VacuumExpansion {
@@ -953,7 +976,7 @@ fn expansion_of_checked(
     let m2 = if turn == 0.0 {
         m1
     } else {
-        mach_from_prandtl_meyer(nu1 + turn, gamma, expansion_start(x1, turn, a))
+        mach_from_prandtl_meyer(nu1 + turn, scale, expansion_start(x1, turn, a))
     };
     let temperature_ratio = total_temperature_ratio(m1, gamma) / total_temperature_ratio(m2, gamma);
     let pressure_ratio = pow_half_integer(temperature_ratio, gamma / (gamma - 1.0));

@@ -1,14 +1,14 @@
 //! The main body region evaluated at the aeroelastic rate rather than at every Runge-Kutta stage:
 //! its loads (aero and skin friction on the deformed OML, the engine, and the monolithic model's
-//! surfaces) are published at an accepted state every `body_loads_dt_s` (default 1 ms, two
-//! 0.5 ms steps) and read by every stage in between by linear extrapolation in time from the
-//! last two publications.
+//! surfaces) are published at an accepted state every `body_loads_dt_s` (default 1 ms: every
+//! step at the paper's 1 ms) and read by every stage in between by linear extrapolation in
+//! time from the last two publications.
 //!
 //! This is the paper's partitioned exchange of region data at the aeroelastic rate (Klock &
 //! Cesnik §III.A, Table 3: 1 ms) applied to the one region whose evaluation is expensive and
-//! whose dynamics are slow (rigid body, beam modes up to 27 Hz): seven of the eight body
-//! evaluations of two 0.5 ms steps are spared. The lifting surfaces, whose Ritz vectors reach 525 Hz,
-//! are still evaluated at every stage. The extrapolation is the second-order
+//! whose dynamics are slow (rigid body, beam modes up to 27 Hz): three of the four body
+//! evaluations of a Runge-Kutta step are spared. The lifting surfaces, whose Ritz vectors reach
+//! hundreds of Hz, are still evaluated at every stage. The extrapolation is the second-order
 //! Adams-Bashforth-type predictor of explicit partitioned schemes (Farhat & Lesoinne 2000,
 //! Comput. Methods Appl. Mech. Engrg. 182: the "predictor" of the conventional serial
 //! staggered procedure), so the scheme stays second order in the body loads; over the first

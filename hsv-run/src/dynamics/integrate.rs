@@ -52,15 +52,7 @@ impl Rk4 {
         F: FnMut(f64, &DVector<f64>, &mut DVector<f64>) -> Result<(), E>,
         E: From<DynamicsError>,
     {
-        check_len(|| "integrated state".into(), self.len(), x.len())?;
-        if !(dt.is_finite() && dt > 0.0) {
-            return Err(DynamicsError::InvalidParameter {
-                quantity: "time step (s)".into(),
-                value: dt,
-                allowed: "finite and > 0",
-            }
-            .into());
-        }
+        check_step(self.len(), x, dt)?;
         let half = 0.5 * dt;
         f(t, x, &mut self.k1)?;
         self.stage.copy_from(x);
@@ -79,6 +71,21 @@ impl Rk4 {
         x.axpy(sixth, &self.k4, 1.0);
         check_finite(|| format!("state after the step from t = {t} s"), x.iter())?;
         Ok(())
+    }
+}
+
+/// A state of the workspace's length `n` and a finite, positive step, else the error naming
+/// which.
+fn check_step(n: usize, x: &DVector<f64>, dt: f64) -> Result<(), DynamicsError> {
+    check_len(|| "integrated state".into(), n, x.len())?;
+    if dt.is_finite() && dt > 0.0 {
+        Ok(())
+    } else {
+        Err(DynamicsError::InvalidParameter {
+            quantity: "time step (s)".into(),
+            value: dt,
+            allowed: "finite and > 0",
+        })
     }
 }
 
@@ -215,15 +222,7 @@ impl ExponentialRk4 {
         F: FnMut(f64, &DVector<f64>, &mut DVector<f64>) -> Result<(), E>,
         E: From<DynamicsError>,
     {
-        check_len(|| "integrated state".into(), self.len(), x.len())?;
-        if !(dt.is_finite() && dt > 0.0) {
-            return Err(DynamicsError::InvalidParameter {
-                quantity: "time step (s)".into(),
-                value: dt,
-                allowed: "finite and > 0",
-            }
-            .into());
-        }
+        check_step(self.len(), x, dt)?;
         if dt.to_bits() != self.step_s.to_bits() {
             self.propagators = self
                 .blocks

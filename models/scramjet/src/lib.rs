@@ -73,12 +73,29 @@
 //! terms: ramp drag 13.7 kN against 20.6 kN (1-d) and 21.5 kN (q1d) of aftbody thrust; the
 //! constant-area duct adds none (impulse conserved), so fuel thrust is aftbody thrust.
 //!
+//! **Against a published cycle (tests/heiser_pratt.rs).** Set to the idealisation of Heiser &
+//! Pratt's stream-thrust analysis (Hypersonic Airbreathing Propulsion, 1994, ch. 4: one
+//! perfect gas, no burner friction, fuel without axial momentum, isentropic diffuser and
+//! internal nozzle, exhaust fully expanded) at their reference M0 = 10, T0 ≈ 222 K,
+//! ψ = T3/T0 = 7, through settings and a section geometry only, both engines reproduce the
+//! published cycle's station values (T3, V3, p3, T4, V4, p4, T10, V10), specific thrust and
+//! specific impulse: with a constant-area burner `scramjet-1d` to 1e-6 and `scramjet-q1d`
+//! (`combustor_area_ratio` 1, c_f 0) to 1e-5, for an isentropic inlet (φ 0.5: F/ṁ0 455 N s/kg,
+//! I_sp 3189 s) and for Bolender & Doman's 6.2° ramp shock with the lip on it (η_c 0.989;
+//! φ 0.5: 427 N s/kg, 2990 s); with Heiser & Pratt's constant-pressure burner (A4/A3 from
+//! their relations, heat released linearly) `scramjet-q1d` within 0.24 % on T4, 0.42 % on p4
+//! and 0.03 % on F/ṁ0 and I_sp at φ 1 (847 N s/kg, 2968 s; bands 1 %, 2 %, 1 %). So the cycle
+//! arithmetic (capture, duct entry, diffuser, burner with fuel mass, nozzle, force accounting)
+//! is that of the published analysis; what it does not show is the sample engine's own
+//! losses: its mixed-out duct entry, shock inlet at Mach 6 and under-expanded plume.
+//!
 //! Use them for thrust, lift and moment of a started, unchoked, under-expanded engine and
 //! their trends in φ and α, to about a factor 1.5 in absolute thrust against Bolender &
-//! Doman. Not trustworthy: absolute thrust against a real engine (no published Heiser & Pratt
-//! worked cycle is reproduced; the sample's inlet barely compresses, combustor entry about
-//! Mach 4.9 and 314 K at Mach 6, where hydrogen would not ignite and no model checks
-//! ignition), thermal choking (φ ≳ 0.43 at Mach 6, 26 km: sonic exit at the limiting heat, a
+//! Doman. Not trustworthy: absolute thrust of the sample engine against a real engine
+//! (Heiser & Pratt's printed reference-case figures, with η_c = η_e = 0.9, burner friction,
+//! fuel momentum and γ 1.36/1.24, are outside what one-γ, loss-free components can be set
+//! to; the sample's inlet barely compresses, combustor entry about Mach 4.9 and 314 K at
+//! Mach 6, where hydrogen would not ignite and no model checks ignition), thermal choking (φ ≳ 0.43 at Mach 6, 26 km: sonic exit at the limiting heat, a
 //! real engine would unstart) and unstart (crude loads), over-expanded exhausts, the aftbody
 //! pressure distribution (1-D plume with a straight shear layer, not a method-of-characteristics
 //! solution), and the duct-entry losses (stream-thrust averaging is the fully mixed state:
@@ -325,8 +342,10 @@ hsv_core::register_model!(ModelDescriptor {
               momentum-conserving turn into the duct, isentropic diffuser, Rayleigh combustor \
               with choking detection, quasi-1-D plume aftbody bounded by a pressure-matched shear layer; on \
               spanwise strips with a quadratic fit. Trust: started, unchoked engines and their \
-              phi/alpha trends (0.5-0.7x Bolender & Doman's published slopes at Mach 8); not \
-              choked or unstarted engines, not absolute Isp",
+              phi/alpha trends (0.5-0.7x Bolender & Doman's published slopes at Mach 8); set to \
+              Heiser & Pratt's idealisation it reproduces their constant-area stream-thrust \
+              cycle (M0 10, psi 7) to 1e-6; not choked or unstarted engines, not the sample's \
+              absolute Isp",
     settings_doc: "spanwise_strips = 5                  # sections across the engine (>= 3)\n\
                    stoichiometric_fuel_air_ratio = 0.0291 # H2 (Heiser & Pratt 1994)\n\
                    fuel_heating_value_j_kg = 1.2e8      # H2 lower heating value (Heiser & Pratt 1994)\n\
@@ -336,9 +355,14 @@ hsv_core::register_model!(ModelDescriptor {
                    # Trustworthy (tests/cycle.rs, bolender_doman.rs): started, unchoked, under-expanded engines;\n\
                    #   force = Heiser & Pratt stream-thrust difference + aftbody (exact), mass and T0 conserved,\n\
                    #   dT/dphi 0.70x and dT/dalpha 0.73x Bolender & Doman's published fit at Mach 8.\n\
+                   # Published cycle (tests/heiser_pratt.rs): set to Heiser & Pratt's stream-thrust idealisation\n\
+                   #   (one gas, no friction, isentropic diffuser and nozzle, full expansion) at M0 10, psi 7 it\n\
+                   #   reproduces their constant-area cycle to 1e-6: station values, F/m0 and Isp (phi 0.5:\n\
+                   #   455 N s/kg, 3189 s; behind B&D's 6.2 deg ramp shock 427 N s/kg, 2990 s).\n\
                    # Not: thermal choking (phi above ~0.43 at Mach 6, 26 km), unstart, over-expanded exhaust,\n\
-                   #   absolute Isp (the sample inlet barely compresses: combustor entry ~Mach 4.9, 314 K;\n\
-                   #   ignition is not modelled), aftbody pressure distribution (1-D plume, not MOC)",
+                   #   the sample engine's absolute Isp (its mixed-out duct entry, Mach 6 inlet and plume losses\n\
+                   #   are not validated; combustor entry ~Mach 4.9, 314 K; ignition is not modelled), aftbody\n\
+                   #   pressure distribution (1-D plume, not MOC)",
     constructor: Constructor::Propulsion(build_1d),
 });
 
@@ -351,7 +375,9 @@ hsv_core::register_model!(ModelDescriptor {
               friction and mixing-limited heat release, quasi-1-D plume aftbody bounded by a \
               pressure-matched shear layer; on spanwise strips with a quadratic fit. Trust: \
               started, unchoked engines and their phi/alpha trends (0.5-0.7x Bolender & Doman's \
-              published slopes at Mach 8); not choked or unstarted engines, not absolute Isp",
+              published slopes at Mach 8); set to Heiser & Pratt's idealisation it reproduces \
+              their constant-area (1e-5) and constant-pressure (0.5 %) stream-thrust cycles; not \
+              choked or unstarted engines, not the sample's absolute Isp",
     settings_doc: "spanwise_strips = 5                  # sections across the engine (>= 3)\n\
                    stoichiometric_fuel_air_ratio = 0.0291 # H2 (Heiser & Pratt 1994)\n\
                    fuel_heating_value_j_kg = 1.2e8      # H2 lower heating value (Heiser & Pratt 1994)\n\
@@ -368,8 +394,13 @@ hsv_core::register_model!(ModelDescriptor {
                    #   force = Heiser & Pratt stream-thrust difference + aftbody (exact), mass and T0 conserved,\n\
                    #   dT/dphi 0.71x and dT/dalpha 0.64x Bolender & Doman's published fit at Mach 8. Its duct\n\
                    #   wall friction costs ~3.3 kN at Mach 6, 26 km: the whole difference to scramjet-1d there.\n\
+                   # Published cycle (tests/heiser_pratt.rs): with c_f = 0 and Heiser & Pratt's idealisation at\n\
+                   #   M0 10, psi 7 it reproduces their constant-area cycle (combustor_area_ratio = 1) to 1e-5 and,\n\
+                   #   with their A4/A3 and mixing_shape_parameter = 1, their constant-pressure cycle within 0.24 %\n\
+                   #   on T4, 0.42 % on p4 and 0.03 % on F/m0 and Isp (phi 1: 847 N s/kg, 2968 s).\n\
                    # Not: thermal choking (phi above ~0.43 at Mach 6, 26 km), unstart, over-expanded exhaust,\n\
-                   #   absolute Isp (the sample inlet barely compresses; ignition is not modelled), the cowl\n\
-                   #   wave pattern (it only decides start), aftbody pressure distribution (1-D plume, not MOC)",
+                   #   the sample engine's absolute Isp (inlet, duct-entry and plume losses not validated;\n\
+                   #   ignition is not modelled), the cowl wave pattern (it only decides start), aftbody\n\
+                   #   pressure distribution (1-D plume, not MOC)",
     constructor: Constructor::Propulsion(build_q1d),
 });

@@ -775,9 +775,22 @@ impl ModeShapes {
         debug_assert_eq!(modal_coordinates.len(), self.n_modes());
         if out.vertices.len() != base.vertices.len() || out.panels.len() != base.panels.len() {
             out.clone_from(base);
-        } else {
-            out.vertices.copy_from_slice(&base.vertices);
         }
+        self.displace_vertices(&base.vertices, modal_coordinates, &mut out.vertices);
+        out.update_geometry();
+    }
+
+    /// Displaced vertices base + Φ q into `out` (one per base vertex), without the panel
+    /// geometry: for a caller that moves them further (an elevon rotation) before computing it
+    /// once. Allocates nothing; extra rows, modes or coordinates are ignored.
+    pub fn displace_vertices(
+        &self,
+        base: &[Point3<f64>],
+        modal_coordinates: &DVector<f64>,
+        out: &mut [Point3<f64>],
+    ) {
+        debug_assert_eq!(out.len(), base.len());
+        out.copy_from_slice(base);
         let n_rows = self.vertex_displacement.nrows();
         let n_modes = self.n_modes().min(modal_coordinates.len());
         // Column-major storage: mode k is the contiguous slice [k n_rows, (k+1) n_rows), read
@@ -790,13 +803,12 @@ impl ModeShapes {
             if q == 0.0 {
                 continue;
             }
-            for (v, d) in out.vertices.iter_mut().zip(col.chunks_exact(3)) {
+            for (v, d) in out.iter_mut().zip(col.chunks_exact(3)) {
                 v.x += d[0] * q;
                 v.y += d[1] * q;
                 v.z += d[2] * q;
             }
         }
-        out.update_geometry();
     }
 
     /// Mode `mode`'s displacement at a panel: the mean of its vertices' displacement, m per unit

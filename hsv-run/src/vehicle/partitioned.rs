@@ -26,7 +26,7 @@ use hsv_core::aero::{AeroModel, AeroSolution, Loads, PanelMotion, integrate_pres
 pub use hsv_core::coupling::ElevonCommand;
 use hsv_core::coupling::{
     ModalProjection, deflect_lifting_surface, elevon_rotation_angle_rad, generalized_forces,
-    pivot_axis, rotation_about_axis,
+    pivot_axis, rotate_points, rotation_about_axis,
 };
 use hsv_core::flow::{FlightCondition, Freestream};
 use hsv_core::gas::PerfectGas;
@@ -34,7 +34,7 @@ use hsv_core::mesh::{ModeShapes, PanelMesh, RegionKind};
 use hsv_core::propulsion::{EngineInputs, PropulsionModel, PropulsionSolution};
 use hsv_core::region::RegionGeometry;
 use hsv_core::structure::{Capability, MassProperties, StructureModel};
-use hsv_core::vehicle::{LiftingSurfaceConfig, Side};
+use hsv_core::vehicle::{LiftingSurfaceConfig, Side, pivot_point};
 use nalgebra::{DVector, Point3, Vector3};
 use rayon::prelude::*;
 
@@ -304,6 +304,9 @@ struct Body {
 struct Surface {
     thermal: Option<SurfaceThermal>,
     friction: Option<RegionFriction>,
+    /// Skin friction about the pivot (body frame) evaluated at the open step's first stage, the
+    /// accepted state, and held by its other stages (see [`surface_region_loads`]).
+    held_friction: Option<Loads>,
     /// Pressure and friction loads about the pivot in the surface's own (undeflected) frame, from
     /// the last region evaluation: the applied load of force summation, fixed while the coupling
     /// iterates on q̈.
@@ -314,7 +317,8 @@ struct Surface {
     elevon_rotation: nalgebra::Rotation3<f64>,
     name: String,
     base: PanelMesh,
-    deformed: PanelMesh,
+    /// The base vertices displaced by the modes, before the elevon's rotation, m.
+    displaced_m: Vec<Point3<f64>>,
     deflected: PanelMesh,
     shapes: ModeShapes,
     projection: ModalProjection,
@@ -530,28 +534,39 @@ fn body_region_loads(
 
 /// One lifting surface's aero on its Ritz-deformed mesh rotated by its elevon, its
 /// generalized forces (aero and thermal) into `out`, and its skin friction about the pivot.
+///
+/// Inside an open step (`hold_friction`), the skin friction is evaluated at the step's first
+/// stage, the accepted state, and held by the others: friction reaches only the root loads, and
+/// it changes on the flight's time scale (the elevon ramps over 0.5 s), so holding it over one
+/// 1 ms step moves the state by O(Δt · dF/dt) while sparing three of its four evaluations.
+/// Outside a step (trim, linearization, flutter) and with `body_loads_dt_s = 0` (the every-stage
+/// reference) it is evaluated every time.
 fn surface_region_loads(
     s: &mut Surface,
     modes: &crate::dynamics::ModalState,
     elevon: &ElevonCommand,
     flight: &FlightCondition,
     time_s: f64,
+    hold_friction: bool,
     out: &mut DVector<f64>,
 ) -> Result<(), VehicleError> {
     let p_inf = flight.freestream.pressure_pa;
     let err = model_error(&s.name);
     let deflection = elevon.deflection_rad(s.side);
-    s.shapes.deform(&s.base, &modes.q, &mut s.deformed);
-    deflect_lifting_surface(
-        &s.deformed,
-        &s.planform,
-        s.side,
-        deflection,
-        &mut s.deflected,
-    )
-    .map_err(|e| err(ModelError::inconsistent("elevon", e.to_string())))?;
+    // Elastic displacement, then the elevon's rotation about the torque tube (what
+    // `deflect_lifting_surface` does), with the panel geometry computed once at the end.
     let rotation = rotation_about_axis(&pivot_axis(), elevon_rotation_angle_rad(deflection))
         .map_err(|e| err(ModelError::inconsistent("elevon", e.to_string())))?;
+    s.shapes
+        .displace_vertices(&s.base.vertices, &modes.q, &mut s.displaced_m);
+    rotate_points(
+        &s.displaced_m,
+        &pivot_point(&s.planform, s.side),
+        &rotation,
+        &mut s.deflected.vertices,
+    )
+    .map_err(|e| err(ModelError::inconsistent("elevon", e.to_string())))?;
+    s.deflected.update_geometry();
     s.shapes
         .panel_velocities(&s.base, &modes.q_dot, &mut s.velocities);
     for v in &mut s.velocities {
@@ -591,8 +606,9 @@ fn surface_region_loads(
     }
     // Pressure and skin friction on the deflected surface, about the pivot: the applied load of
     // the root loads' force summation, which works in the surface's own frame.
-    let friction = match &mut s.friction {
-        Some(f) => f
+    let friction = match (&mut s.friction, s.held_friction.filter(|_| hold_friction)) {
+        (Some(_), Some(held)) => held,
+        (Some(f), _) => f
             .loads(
                 &s.deflected,
                 flight,
@@ -602,8 +618,9 @@ fn surface_region_loads(
                 |r| r == RegionKind::LiftingSurface,
             )
             .map_err(&err)?,
-        None => Loads::default(),
+        (None, _) => Loads::default(),
     };
+    s.held_friction = hold_friction.then_some(friction);
     let applied = integrate_pressure(
         &s.deflected,
         &s.solution.pressure_pa,
@@ -635,13 +652,14 @@ fn surfaces_loads(
     elevon: &ElevonCommand,
     flight: &FlightCondition,
     time_s: f64,
+    hold_friction: bool,
 ) -> Result<(), VehicleError> {
     surfaces
         .par_iter_mut()
         .zip(forces.par_iter_mut())
         .zip(state.surface_modes.par_iter())
         .try_for_each(|((s, out), modes)| {
-            surface_region_loads(s, modes, elevon, flight, time_s, out)
+            surface_region_loads(s, modes, elevon, flight, time_s, hold_friction, out)
         })
 }
 
@@ -765,6 +783,7 @@ impl PartitionedVehicle {
                     surfaces.push(Surface {
                         thermal,
                         friction: set.friction.map(|m| RegionFriction::new(m, n_panels)),
+                        held_friction: None,
                         applied_surface_frame: Loads::default(),
                         applied_about_pivot: Loads::default(),
                         elevon_rotation: nalgebra::Rotation3::identity(),
@@ -772,7 +791,7 @@ impl PartitionedVehicle {
                         rigid: set.info.mesh.clone(),
                         history,
                         velocities: vec![Vector3::zeros(); set.info.mesh.panels.len()],
-                        deformed: set.info.mesh.clone(),
+                        displaced_m: set.info.mesh.vertices.clone(),
                         deflected: set.info.mesh.clone(),
                         base: set.info.mesh,
                         shapes,
@@ -940,6 +959,9 @@ impl PartitionedVehicle {
         if self.body_rate == BodyLoadRate::EveryStage {
             return Ok(());
         }
+        for s in &mut self.surfaces {
+            s.held_friction = None;
+        }
         if self
             .body_rate
             .is_due(time_s, self.body_history.latest_time_s())
@@ -1001,12 +1023,14 @@ impl PartitionedVehicle {
                 &controls.elevon,
                 flight,
                 self.time_s,
+                true,
             );
         }
         let cg = self.mass.center_of_mass_m;
         let reference_point_m = self.reference_point_m;
         let elevon = controls.elevon;
         let time_s = self.time_s;
+        let hold_friction = self.in_step;
         let body = &mut self.body;
         let engine = self.engine.as_mut();
         let engine_solution = &mut self.engine_solution;
@@ -1025,7 +1049,17 @@ impl PartitionedVehicle {
                     &reference_point_m,
                 )
             },
-            || surfaces_loads(surfaces, surface_forces, state, &elevon, flight, time_s),
+            || {
+                surfaces_loads(
+                    surfaces,
+                    surface_forces,
+                    state,
+                    &elevon,
+                    flight,
+                    time_s,
+                    hold_friction,
+                )
+            },
         );
         surfaces_done?;
         self.set_body_loads(body_loads?);

@@ -64,6 +64,7 @@ fn fly(
 ) -> Result<Case> {
     let mut vehicle = flexible_vehicle(loaded, registry, model, "hsv-run compare")?;
     vehicle.set_body_load_rate(super::simulate::body_load_rate(loaded)?);
+    vehicle.set_body_friction_rate(super::simulate::body_friction_rate(loaded)?);
     let (mach, altitude_m) = (loaded.config.flight.mach, loaded.config.flight.altitude_m);
     let request = TrimRequest {
         mach,

@@ -19,7 +19,7 @@ use crate::output::{
     write_vtk_mesh,
 };
 use crate::progress::Progress;
-use crate::vehicle::body_rate::BodyLoadRate;
+use crate::vehicle::body_rate::{BodyLoadRate, DEFAULT_BODY_FRICTION_DT_S};
 use crate::vehicle::flexible_vehicle_with;
 use crate::vehicle::partitioned::{ElevonCommand, FlightControls, HeatingRates, SurfaceModel};
 
@@ -145,6 +145,7 @@ fn heating_rates(loaded: &hsv_core::config::LoadedConfig) -> Result<HeatingRates
         "stiffness_interval_s",
         "initial_temperature_k",
         "body_loads_dt_s",
+        "body_friction_dt_s",
         "integrator",
     ];
     if let Some(key) = loaded
@@ -165,8 +166,36 @@ fn heating_rates(loaded: &hsv_core::config::LoadedConfig) -> Result<HeatingRates
 /// How often the main body region is evaluated: `[simulation] body_loads_dt_s` (s; default
 /// the paper's 1 ms aeroelastic rate; 0 evaluates it at every Runge-Kutta stage).
 pub(crate) fn body_load_rate(loaded: &hsv_core::config::LoadedConfig) -> Result<BodyLoadRate> {
-    let Some(value) = loaded.config.simulation.get("body_loads_dt_s") else {
-        return Ok(BodyLoadRate::default());
+    rate_setting(
+        loaded,
+        "body_loads_dt_s",
+        BodyLoadRate::default(),
+        "0: at every Runge-Kutta stage",
+    )
+}
+
+/// How often the body's skin friction is evaluated again: `[simulation] body_friction_dt_s`
+/// (s; default the paper's 10 ms aerothermal rate; 0 at every body evaluation).
+pub(crate) fn body_friction_rate(
+    loaded: &hsv_core::config::LoadedConfig,
+) -> Result<BodyLoadRate> {
+    rate_setting(
+        loaded,
+        "body_friction_dt_s",
+        BodyLoadRate::Interval(DEFAULT_BODY_FRICTION_DT_S),
+        "0: at every evaluation of the body",
+    )
+}
+
+/// A `[simulation]` interval `key` in seconds (0 meaning every evaluation), or `default`.
+fn rate_setting(
+    loaded: &hsv_core::config::LoadedConfig,
+    key: &str,
+    default: BodyLoadRate,
+    zero_means: &str,
+) -> Result<BodyLoadRate> {
+    let Some(value) = loaded.config.simulation.get(key) else {
+        return Ok(default);
     };
     value
         .as_float()
@@ -174,8 +203,8 @@ pub(crate) fn body_load_rate(loaded: &hsv_core::config::LoadedConfig) -> Result<
         .and_then(BodyLoadRate::from_interval_s)
         .with_context(|| {
             format!(
-                "{}: key `simulation.body_loads_dt_s` is {value}; expected a number of seconds \
-                 >= 0 (0: at every Runge-Kutta stage)",
+                "{}: key `simulation.{key}` is {value}; expected a number of seconds >= 0 \
+                 ({zero_means})",
                 loaded.file
             )
         })
@@ -251,6 +280,7 @@ pub fn run(args: SimulateArgs, registry: &Registry) -> Result<()> {
     let altitude_m = loaded.config.flight.altitude_m;
     let rates = heating_rates(&loaded)?;
     let body_rate = body_load_rate(&loaded)?;
+    let friction_rate = body_friction_rate(&loaded)?;
     let integrator = integrator(&loaded)?;
     let model = if args.monolithic {
         SurfaceModel::Monolithic {
@@ -263,6 +293,7 @@ pub fn run(args: SimulateArgs, registry: &Registry) -> Result<()> {
     let mut vehicle =
         flexible_vehicle_with(&loaded, &registry, model, heated, "the time simulation")?;
     vehicle.set_body_load_rate(body_rate);
+    vehicle.set_body_friction_rate(friction_rate);
     if !args.quiet {
         eprintln!("simulate: trimming the flexible vehicle at Mach {mach}, {altitude_m} m");
     }

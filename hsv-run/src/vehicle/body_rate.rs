@@ -13,10 +13,20 @@
 //! Comput. Methods Appl. Mech. Engrg. 182: the "predictor" of the conventional serial
 //! staggered procedure), so the scheme stays second order in the body loads; over the first
 //! step, with one publication, the loads are held.
+//!
+//! The body's skin friction, which comes from the aerothermal model (Eckert's reference
+//! temperature), is evaluated again only every `body_friction_dt_s` among these publications
+//! (default the paper's aerothermal rate, Table 3: 10 ms) and extrapolated linearly from its last
+//! two evaluations in between, the same predictor: it is a small,
+//! slowly varying part of the body's load (its edge states follow α and the dynamic pressure, on
+//! the flight's time scale), and on the 1304-panel body it cost as much as the engine.
 
 use hsv_core::aero::Loads;
 use nalgebra::{DVector, Vector3};
 use serde::{Deserialize, Serialize};
+
+/// The body's skin friction rate by default, s: the paper's aerothermal step (Table 3).
+pub const DEFAULT_BODY_FRICTION_DT_S: f64 = 0.01;
 
 /// How often the main body's region is evaluated.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
@@ -73,11 +83,43 @@ pub struct BodyRegionLoads {
     pub generalized: DVector<f64>,
 }
 
-/// The last two publications of the body region.
+/// The body's skin friction at its last evaluation: plain data, part of a restart file.
+#[derive(Debug, Clone, Copy, PartialEq, Default, Serialize, Deserialize)]
+pub struct PublishedFriction {
+    pub time_s: f64,
+    /// About the centre of mass, body axes, N and N m.
+    pub force_n: Vector3<f64>,
+    pub moment_nm: Vector3<f64>,
+}
+
+impl PublishedFriction {
+    pub fn new(time_s: f64, loads: &Loads) -> Self {
+        Self {
+            time_s,
+            force_n: loads.force_n,
+            moment_nm: loads.moment_nm,
+        }
+    }
+
+    pub fn loads(&self) -> Loads {
+        Loads {
+            force_n: self.force_n,
+            moment_nm: self.moment_nm,
+        }
+    }
+}
+
+/// The last two publications of the body region, and its held skin friction.
 #[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize)]
 pub struct BodyLoadHistory {
     pub latest: Option<BodyRegionLoads>,
     pub before: Option<BodyRegionLoads>,
+    /// The last two evaluations of the body's skin friction (absent in restart files written
+    /// before the friction had its own rate).
+    #[serde(default)]
+    pub friction: Option<PublishedFriction>,
+    #[serde(default)]
+    pub friction_before: Option<PublishedFriction>,
 }
 
 impl BodyLoadHistory {
@@ -90,6 +132,33 @@ impl BodyLoadHistory {
     pub fn clear(&mut self) {
         self.latest = None;
         self.before = None;
+        self.forget_friction();
+    }
+
+    /// Forgets the skin friction's evaluations.
+    pub fn forget_friction(&mut self) {
+        self.friction = None;
+        self.friction_before = None;
+    }
+
+    /// Publishes the body's skin friction evaluated at `time_s`.
+    pub fn publish_friction(&mut self, time_s: f64, loads: &Loads) {
+        self.friction_before = self.friction.take();
+        self.friction = Some(PublishedFriction::new(time_s, loads));
+    }
+
+    /// The skin friction at `time_s`, extrapolated linearly from its last two evaluations (held
+    /// with one), when `rate` says it is not due; None when it is.
+    pub fn friction_at(&self, time_s: f64, rate: &BodyLoadRate) -> Option<Loads> {
+        let f1 = self.friction.filter(|f| !rate.is_due(time_s, Some(f.time_s)))?;
+        let Some(f0) = self.friction_before.filter(|f0| f1.time_s > f0.time_s) else {
+            return Some(f1.loads());
+        };
+        let w = (time_s - f1.time_s) / (f1.time_s - f0.time_s);
+        Some(Loads {
+            force_n: f1.force_n + (f1.force_n - f0.force_n) * w,
+            moment_nm: f1.moment_nm + (f1.moment_nm - f0.moment_nm) * w,
+        })
     }
 
     /// Publishes the loads at `time_s`; the latest becomes the one before. Reuses the buffers

@@ -38,7 +38,9 @@ use hsv_core::vehicle::{LiftingSurfaceConfig, Side, pivot_point};
 use nalgebra::{DVector, Point3, Vector3};
 use rayon::prelude::*;
 
-use super::body_rate::{BodyLoadHistory, BodyLoadRate};
+use super::body_rate::{
+    BodyLoadHistory, BodyLoadRate, DEFAULT_BODY_FRICTION_DT_S,
+};
 use super::friction::RegionFriction;
 use super::{AnalysisNeeds, AssemblyError, RegionModelSet, RegionNeeds};
 use crate::dynamics::{
@@ -291,6 +293,10 @@ pub enum VehicleError {
 
 struct Body {
     friction: Option<RegionFriction>,
+    /// Skin friction about the centre of mass from the last evaluation of the friction law, and
+    /// whether the next body evaluation reuses it (its rate: module [`super::body_rate`]).
+    friction_loads: Loads,
+    reuse_friction: bool,
     base: PanelMesh,
     mesh: PanelMesh,
     shapes: ModeShapes,
@@ -371,6 +377,9 @@ pub struct PartitionedVehicle {
     /// step is open (between [`PartitionedVehicle::begin_step`] and `commit_step`): only then
     /// do derivatives read the published body loads.
     body_rate: BodyLoadRate,
+    /// How often the body's skin friction is re-evaluated among the body's publications in a
+    /// run (module [`super::body_rate`]); outside a run, at every evaluation.
+    body_friction_rate: BodyLoadRate,
     body_history: BodyLoadHistory,
     in_step: bool,
 }
@@ -486,9 +495,12 @@ fn body_region_loads(
     let main_body = |r: RegionKind| r == RegionKind::MainBody;
     let mut body_aero = integrate_pressure(&b.mesh, &b.solution.pressure_pa, p_inf, cg, main_body);
     if let Some(f) = &mut b.friction {
-        body_aero = body_aero
-            + f.loads(&b.mesh, flight, &b.solution, &motion, cg, main_body)
+        if !b.reuse_friction {
+            b.friction_loads = f
+                .loads(&b.mesh, flight, &b.solution, &motion, cg, main_body)
                 .map_err(&body_err)?;
+        }
+        body_aero = body_aero + b.friction_loads;
     }
     generalized_forces(
         &b.mesh,
@@ -729,6 +741,8 @@ impl PartitionedVehicle {
                     let n_panels = set.info.mesh.panels.len();
                     body = Some(Body {
                         friction: set.friction.map(|m| RegionFriction::new(m, n_panels)),
+                        friction_loads: Loads::default(),
+                        reuse_friction: false,
                         velocities: vec![Vector3::zeros(); set.info.mesh.panels.len()],
                         mesh: set.info.mesh.clone(),
                         base: set.info.mesh,
@@ -894,6 +908,7 @@ impl PartitionedVehicle {
             body_mode_names: body_modal_names,
             trim_modes: Vec::new(),
             body_rate: BodyLoadRate::default(),
+            body_friction_rate: BodyLoadRate::Interval(DEFAULT_BODY_FRICTION_DT_S),
             body_history: BodyLoadHistory::default(),
             in_step: false,
         })
@@ -941,6 +956,14 @@ impl PartitionedVehicle {
         self.body_rate
     }
 
+    /// How often, among the body region's publications, its skin friction is evaluated again
+    /// (`EveryStage`: at every publication); default the aerothermal rate
+    /// [`DEFAULT_BODY_FRICTION_DT_S`].
+    pub fn set_body_friction_rate(&mut self, rate: BodyLoadRate) {
+        self.body_friction_rate = rate;
+        self.body_history.forget_friction();
+    }
+
     /// Forgets the body region's publications (a run starting afresh).
     pub fn forget_body_loads(&mut self) {
         self.body_history.clear();
@@ -968,7 +991,20 @@ impl PartitionedVehicle {
         {
             let flight = self.flight(state)?;
             self.time_s = time_s;
-            self.body_loads_now(state, controls, &flight)?;
+            let held = self
+                .body_history
+                .friction_at(time_s, &self.body_friction_rate);
+            self.body.reuse_friction = held.is_some();
+            if let Some(f) = held {
+                self.body.friction_loads = f;
+            }
+            let evaluated = self.body_loads_now(state, controls, &flight);
+            self.body.reuse_friction = false;
+            evaluated?;
+            if held.is_none() && self.body.friction.is_some() {
+                self.body_history
+                    .publish_friction(time_s, &self.body.friction_loads);
+            }
             self.body_history.publish(
                 time_s,
                 &self.loads.body,

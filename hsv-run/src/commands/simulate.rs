@@ -176,9 +176,7 @@ pub(crate) fn body_load_rate(loaded: &hsv_core::config::LoadedConfig) -> Result<
 
 /// How often the body's skin friction is evaluated again: `[simulation] body_friction_dt_s`
 /// (s; default the paper's 10 ms aerothermal rate; 0 at every body evaluation).
-pub(crate) fn body_friction_rate(
-    loaded: &hsv_core::config::LoadedConfig,
-) -> Result<BodyLoadRate> {
+pub(crate) fn body_friction_rate(loaded: &hsv_core::config::LoadedConfig) -> Result<BodyLoadRate> {
     rate_setting(
         loaded,
         "body_friction_dt_s",

@@ -150,7 +150,9 @@ impl BodyLoadHistory {
     /// The skin friction at `time_s`, extrapolated linearly from its last two evaluations (held
     /// with one), when `rate` says it is not due; None when it is.
     pub fn friction_at(&self, time_s: f64, rate: &BodyLoadRate) -> Option<Loads> {
-        let f1 = self.friction.filter(|f| !rate.is_due(time_s, Some(f.time_s)))?;
+        let f1 = self
+            .friction
+            .filter(|f| !rate.is_due(time_s, Some(f.time_s)))?;
         let Some(f0) = self.friction_before.filter(|f0| f1.time_s > f0.time_s) else {
             return Some(f1.loads());
         };

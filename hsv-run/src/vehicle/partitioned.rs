@@ -38,9 +38,7 @@ use hsv_core::vehicle::{LiftingSurfaceConfig, Side, pivot_point};
 use nalgebra::{DVector, Point3, Vector3};
 use rayon::prelude::*;
 
-use super::body_rate::{
-    BodyLoadHistory, BodyLoadRate, DEFAULT_BODY_FRICTION_DT_S,
-};
+use super::body_rate::{BodyLoadHistory, BodyLoadRate, DEFAULT_BODY_FRICTION_DT_S};
 use super::friction::RegionFriction;
 use super::{AnalysisNeeds, AssemblyError, RegionModelSet, RegionNeeds};
 use crate::dynamics::{

@@ -157,9 +157,11 @@ fn halving_the_aeroelastic_step_leaves_the_doublet_response_unchanged() {
 #[test]
 fn the_body_region_at_a_coarser_rate_than_the_stages_leaves_the_doublet_response_unchanged() {
     // The body's loads published every 4 ms (two 2 ms steps, eight Runge-Kutta stages) and
-    // extrapolated linearly in between (second order, Farhat & Lesoinne 2000) against the body
-    // evaluated at every stage: the same bound as the step-halving test above (a hundredth of
-    // the response's 1e-2 scale), fixed before running it.
+    // extrapolated linearly in between (second order, Farhat & Lesoinne 2000), its skin friction
+    // evaluated every 10 ms among them (the default) and the surfaces' friction held over each
+    // step, against every region and friction law evaluated at every stage: the same bound as
+    // the step-halving test above (a hundredth of the response's 1e-2 scale), fixed before
+    // running it.
     let doublet = Inputs::paper_doublet();
     let every_stage = fly_at_rate(0.9, 0.002, BodyLoadRate::EveryStage, &doublet);
     let published = fly_at_rate(0.9, 0.002, BodyLoadRate::Interval(0.004), &doublet);

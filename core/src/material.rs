@@ -1,5 +1,7 @@
-//! Temperature-dependent isotropic structural materials: a property table per material,
-//! interpolated linearly in temperature, with the built-in Ti-6Al-4V table and its sources.
+//! Temperature-dependent isotropic materials: a property table per material, interpolated
+//! linearly in temperature, with the built-in Ti-6Al-4V table and its sources (one file: the
+//! table type, its validation and lookups are tested on that table; thermal-only insulators
+//! for protection layers are in `material/insulation.rs`).
 //!
 //! A [`Material`] holds temperature-independent constants (density, Poisson's ratio, melting
 //! point) and a table of rows `(T, E, α_sec, k, c_p)` in strictly increasing temperature. The
@@ -13,18 +15,26 @@
 //! table are errors naming the range, never extrapolations; the one continuation is the thermal
 //! strain below the floor, with the floor's α (see [`Material::thermal_strain`]).
 //!
+//! A material may have no mechanical rows at all (a thermal-protection insulator such as
+//! [`Material::vdi_l1400`]): it can be a conduction layer, and a structure model asking it for E
+//! gets [`MaterialError::NoMechanicalData`]. Its Poisson's ratio is then unused and may be NaN.
+//!
 //! A config gives a material by name (`material = "ti-6al-4v"`) or as a full table
 //! ([`MaterialSetting`]); see [`Material::by_name`] for the built-in names.
+
+mod insulation;
 
 use serde::{Deserialize, Serialize};
 
 use crate::error::ModelError;
 
+pub use insulation::VDI_L1400_DENSITY_KG_M3;
+
 /// Temperature from which secant expansion coefficients are measured, K (20 °C).
 pub const SECANT_REFERENCE_TEMPERATURE_K: f64 = 293.0;
 
 /// Built-in material names accepted by [`Material::by_name`].
-pub const BUILTIN_MATERIALS: &[&str] = &["ti-6al-4v"];
+pub const BUILTIN_MATERIALS: &[&str] = &["ti-6al-4v", "vdi-l1400"];
 
 /// One row of a material's property table.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
@@ -79,7 +89,8 @@ pub struct Material {
     pub name: String,
     /// Density, kg/m³ (temperature-independent: thermal expansion changes it by < 1 %).
     pub density_kg_m3: f64,
-    /// Poisson's ratio, in (-1, 0.5).
+    /// Poisson's ratio, in (-1, 0.5); unused (NaN in the built-in insulators) when the table
+    /// has no mechanical rows.
     pub poisson_ratio: f64,
     /// Melting (solidus) temperature, K; every table row must lie below it.
     pub melting_point_k: f64,
@@ -115,6 +126,12 @@ pub enum MaterialError {
     /// A material name that is not built in.
     #[error("unknown material `{name}`; built-in materials: {known}; or give a table")]
     UnknownName { name: String, known: String },
+    /// E or α asked of a thermal-only material (an insulator for conduction layers).
+    #[error(
+        "material {material} has no mechanical data (E, α): it can be a conduction layer, not a \
+         structure"
+    )]
+    NoMechanicalData { material: String },
 }
 
 impl MaterialError {
@@ -342,6 +359,7 @@ impl Material {
     pub fn by_name(name: &str) -> Result<Self, MaterialError> {
         match name.to_ascii_lowercase().as_str() {
             "ti-6al-4v" | "ti6al4v" | "ti-64" => Ok(Self::ti_6al_4v()),
+            "vdi-l1400" | "l1400" => Ok(Self::vdi_l1400()),
             _ => Err(MaterialError::UnknownName {
                 name: name.to_owned(),
                 known: BUILTIN_MATERIALS.join(", "),
@@ -370,8 +388,13 @@ impl Material {
         positive("density_kg_m3", self.density_kg_m3)?;
         positive("melting_point_k", self.melting_point_k)?;
         let nu = self.poisson_ratio;
-        if !(nu.is_finite() && nu > -1.0 && nu < 0.5) {
-            return Err(self.invalid("poisson_ratio", nu, "must be in (-1, 0.5)"));
+        let has_mechanical = self.table.iter().any(|r| r.youngs_modulus_pa.is_some());
+        if has_mechanical && !(nu.is_finite() && nu > -1.0 && nu < 0.5) {
+            return Err(self.invalid(
+                "poisson_ratio",
+                nu,
+                "must be in (-1, 0.5) (unused, and may be NaN, without mechanical rows)",
+            ));
         }
         if self.table.is_empty() {
             return Err(self.invalid("table rows", 0.0, "the table needs at least one row"));
@@ -490,7 +513,13 @@ impl Material {
     ///
     /// Allocation-free (binary search); an error names the range of the mechanical data.
     pub fn at(&self, temperature_k: f64) -> Result<MaterialProperties, MaterialError> {
-        let (a, b, w) = self.bracket(self.mechanical_rows(), "mechanical (E, α)", temperature_k)?;
+        let rows = self.mechanical_rows();
+        if rows.is_empty() {
+            return Err(MaterialError::NoMechanicalData {
+                material: self.name.clone(),
+            });
+        }
+        let (a, b, w) = self.bracket(rows, "mechanical (E, α)", temperature_k)?;
         let mix = |x: f64, y: f64| x + (y - x) * w;
         let mechanical = |r: MaterialPoint| {
             (

@@ -96,8 +96,11 @@ elements_spanwise = 8          # grid elements along the span
 structure_material = \"ti-6al-4v\" # structural material (name or full table)
 structure_sublayers = 2        # elements through the structure's thickness
 minimum_thickness_m = 0.002    # smallest structural thickness (sharp edges), m
-layers = []                    # outer (TPS) layers on both faces, outermost first:
-                               #   [{ thickness_m = 0.005, material = {...table...}, sublayers = 1 }]
+layers = []                    # outer (TPS) layers on both faces, outermost first, e.g.
+                               #   [{ thickness_m = 0.002, material = \"vdi-l1400\", sublayers = 2 }]
+                               #   (built-in thermal-only insulator, k and c_p 293-1673.15 K, VDI
+                               #   Heat Atlas) or a material table; k, c_p only: no E is asked of a
+                               #   layer. Their mass: ritz-plate non_structural_mass_kg_m2 = 2 Σ ρ t
 picard_tolerance_k = 1e-3      # Picard convergence: largest change per iteration, K
 max_picard_iterations = 30     # Picard iterations allowed per step";
 

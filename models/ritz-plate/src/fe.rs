@@ -182,6 +182,40 @@ pub fn bending_mass(quad: &Quad, density_kg_m3: f64) -> Mat12 {
     m
 }
 
+/// Consistent mass of a non-structural mass per unit area m (TPS layers, equipment) carried by
+/// the nodes: m ∫ N_i N_j dA on w, u and v (rows 0, 3, 6, 9 of the bending block here; the
+/// membrane block takes [`area_mass_membrane`]); no rotary inertia (the layers' own
+/// m (h/2 + t/2)² is left out, as thin-plate theory leaves out rotary inertia).
+pub fn area_mass_bending(quad: &Quad, mass_kg_m2: f64) -> Mat12 {
+    let mut m = Mat12::zeros();
+    for (i, j, nn) in area_mass_products(quad, mass_kg_m2) {
+        m[(3 * i, 3 * j)] += nn;
+    }
+    m
+}
+
+/// [`area_mass_bending`] on the membrane block (u, v).
+pub fn area_mass_membrane(quad: &Quad, mass_kg_m2: f64) -> Mat8 {
+    let mut m = Mat8::zeros();
+    for (i, j, nn) in area_mass_products(quad, mass_kg_m2) {
+        m[(2 * i, 2 * j)] += nn;
+        m[(2 * i + 1, 2 * j + 1)] += nn;
+    }
+    m
+}
+
+/// (i, j, m N_i N_j |J|) at every Gauss point: the terms of m ∫ N_i N_j dA.
+fn area_mass_products(quad: &Quad, mass_kg_m2: f64) -> Vec<(usize, usize, f64)> {
+    gauss_points()
+        .into_iter()
+        .flat_map(|(s, t)| {
+            let p = quad.point(s, t);
+            let w = p.det.abs() * mass_kg_m2;
+            (0..4).flat_map(move |i| (0..4).map(move |j| (i, j, p.n[i] * p.n[j] * w)))
+        })
+        .collect()
+}
+
 /// Membrane strain-displacement matrix B_m (3 × 8) at a point.
 fn membrane_b(p: &Point) -> SMatrix<f64, 3, 8> {
     let mut b = SMatrix::<f64, 3, 8>::zeros();

@@ -187,6 +187,12 @@ pub struct Settings {
     /// exactly; off by default (the paper's basis has the five load shapes).
     #[serde(default)]
     pub thermal_moment_shape: bool,
+    /// Non-structural mass per unit planform area the plate carries, kg/m² (≥ 0): thermal
+    /// protection layers of the conduction model, 2 Σ ρ_l t_l for layers on both faces. Added
+    /// to the mass matrices (no rotary inertia), the rigid-body mass and the mass properties;
+    /// stiffness is the structure's alone.
+    #[serde(default)]
+    pub non_structural_mass_kg_m2: f64,
 }
 
 impl Default for Settings {
@@ -202,6 +208,7 @@ impl Default for Settings {
             rectangular: None,
             root: RootChoice::Clamped,
             thermal_moment_shape: false,
+            non_structural_mass_kg_m2: 0.0,
         }
     }
 }
@@ -282,7 +289,8 @@ hsv_core::register_model!(ModelDescriptor {
                    damping_ratio = 0.02        # modal damping ratio of every mode\n\
                    planform = \"vehicle\"        # or \"rectangular\" with [models.ritz-plate.rectangular] chord_m, span_m, thickness_m\n\
                    root = \"clamped\"            # root nodes clamped to the torque tube; \"simply-supported\": all four edges of a rectangular plate (panel flutter)\n\
-                   thermal_moment_shape = false # add the uniform thermal-moment deflection to the basis",
+                   thermal_moment_shape = false # add the uniform thermal-moment deflection to the basis\n\
+                   non_structural_mass_kg_m2 = 0.0 # carried mass per planform area, kg/m² (TPS layers of [models.full-order]: 2 Σ ρ t, e.g. 3.16 for 2 mm of vdi-l1400 on both faces)",
     constructor: Constructor::Structure(construct),
 });
 
@@ -536,7 +544,18 @@ impl RitzPlate {
                 "[0, 1)",
             ));
         }
-        let plate = PlateModel::new(grid, material, supports).map_err(model_error)?;
+        let added = settings.non_structural_mass_kg_m2;
+        if !(added.is_finite() && added >= 0.0) {
+            return Err(ModelError::out_of_range(
+                NAME,
+                "non_structural_mass_kg_m2",
+                added,
+                "finite and >= 0 kg/m²",
+            ));
+        }
+        let plate = PlateModel::new(grid, material, supports)
+            .map_err(model_error)?
+            .with_non_structural_mass(added);
         let requested =
             n_modes + settings.static_shapes + usize::from(settings.thermal_moment_shape);
         if requested > plate.bending_map.n_equations / 4 {
@@ -1287,15 +1306,20 @@ impl RitzPlate {
 }
 
 impl MassDistribution for RitzPlate {
-    /// Node masses ρ ∫ N_i t dA at the mid-plane nodes (exact mass and first moment for the
-    /// bilinear thickness; inertia of the lumped masses, omitting each section's own ρ t³/12),
-    /// mirrored for the left surface.
+    /// Node masses ρ ∫ N_i t dA + m_ns ∫ N_i dA at the mid-plane nodes (exact mass and first
+    /// moment for the bilinear thickness; inertia of the lumped masses, omitting each section's
+    /// own ρ t³/12), mirrored for the left surface.
     fn mass_properties(&self) -> MassProperties {
         let grid = &self.plate.grid;
         let rho = self.plate.material.density_kg_m3;
+        let added = self.plate.non_structural_mass_kg_m2;
         let mirror = if self.side == grid.side { 1.0 } else { -1.0 };
         let at = |p: &Point3<f64>| Point3::new(p.x, mirror * p.y, p.z);
-        let masses = grid.node_volumes_m3.iter().map(|v| rho * v);
+        let masses = grid
+            .node_volumes_m3
+            .iter()
+            .zip(&grid.node_areas_m2)
+            .map(|(v, a)| rho * v + added * a);
         let mass_kg: f64 = masses.clone().sum();
         let first: Vector3<f64> = masses
             .clone()

@@ -254,6 +254,17 @@ impl ElementState {
     };
 }
 
+/// The element quads of `grid` (corner positions in the plane and thicknesses).
+fn element_quads(grid: &SurfaceGrid) -> Vec<Quad> {
+    grid.elements
+        .iter()
+        .map(|el| Quad {
+            xy: el.map(|n| [grid.positions_m[n].x, grid.positions_m[n].y]),
+            thickness_m: el.map(|n| grid.thickness_m[n]),
+        })
+        .collect()
+}
+
 /// The full-order plate (module docs).
 #[derive(Debug, Clone)]
 pub struct PlateModel {
@@ -274,6 +285,8 @@ pub struct PlateModel {
     pub bending_thermal: Vec<SVector<f64, 12>>,
     /// Geometric stiffness patterns (xx, yy, xy) on w.
     pub geometric: Vec<[Mat4; 3]>,
+    /// Non-structural mass per unit planform area in the mass matrices, kg/m² (TPS layers).
+    pub non_structural_mass_kg_m2: f64,
 }
 
 impl PlateModel {
@@ -287,14 +300,7 @@ impl PlateModel {
         let e_ref = material.youngs_modulus_pa(SECANT_REFERENCE_TEMPERATURE_K)?;
         let nu = material.poisson_ratio;
         let rho = material.density_kg_m3;
-        let quads: Vec<Quad> = grid
-            .elements
-            .iter()
-            .map(|el| Quad {
-                xy: el.map(|n| [grid.positions_m[n].x, grid.positions_m[n].y]),
-                thickness_m: el.map(|n| grid.thickness_m[n]),
-            })
-            .collect();
+        let quads = element_quads(&grid);
         let bending_map = DofMap::new(&grid, |n, d| supports.bending[n][d], BENDING_DOFS);
         let membrane_map = DofMap::new(&grid, |n, d| supports.membrane[n][d], MEMBRANE_DOFS);
         Ok(Self {
@@ -317,6 +323,7 @@ impl PlateModel {
                 .map(|q| fe::bending_thermal(q, e_ref, nu))
                 .collect(),
             geometric: quads.iter().map(fe::geometric_patterns).collect(),
+            non_structural_mass_kg_m2: 0.0,
             grid,
             material,
             supports,
@@ -324,6 +331,21 @@ impl PlateModel {
             membrane_map,
             reference_modulus_pa: e_ref,
         })
+    }
+
+    /// Adds a uniform non-structural mass per unit area (kg/m², ≥ 0) to the bending and
+    /// membrane mass matrices ([`fe::area_mass_bending`]); stiffness is unchanged, so a uniform
+    /// plate's frequencies scale by √(ρh / (ρh + m)) (Kirchhoff: ω ∝ √(D / (ρh)), Leissa, NASA
+    /// SP-160, 1969, eq. 4.1).
+    pub fn with_non_structural_mass(mut self, mass_kg_m2: f64) -> Self {
+        if mass_kg_m2 != 0.0 {
+            for (e, quad) in element_quads(&self.grid).iter().enumerate() {
+                self.bending_mass[e] += fe::area_mass_bending(quad, mass_kg_m2);
+                self.membrane_mass[e] += fe::area_mass_membrane(quad, mass_kg_m2);
+            }
+        }
+        self.non_structural_mass_kg_m2 += mass_kg_m2;
+        self
     }
 
     pub fn n_elements(&self) -> usize {

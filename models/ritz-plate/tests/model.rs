@@ -80,6 +80,46 @@ fn rectangular_planform_matches_the_cantilever_plate() {
     assert_relative_eq!(f[0], f1, max_relative = 0.02);
 }
 
+/// A uniform non-structural mass m (kg/m², e.g. thermal-protection layers) leaves the
+/// stiffness alone, so the cantilever plate's frequencies become Leissa's with ρh + m in place of
+/// ρh: f = λ/(2π a²) √(D/(ρh + m)) (Kirchhoff, NASA SP-160, 1969, eq. 4.1, λ₁ = 3.492), within
+/// the 2 % of the bare check; the first five frequencies shift by exactly √(ρh/(ρh + m)) to
+/// 1e-3 (Mindlin's rotary inertia, left out of the added mass, is O((h/a)²) = 1e-4 here); and
+/// the mass properties carry (ρh + m) a² (1e-10).
+#[test]
+fn non_structural_mass_lowers_the_frequencies_as_plate_theory_says() {
+    let plate = "planform = \"rectangular\"\nroot = \"clamped\"\nelements_chordwise = 16\n\
+                 elements_spanwise = 16\n";
+    let dims = "[rectangular]\nchord_m = 1.0\nspan_m = 1.0\nthickness_m = 0.01\n";
+    let added = 22.15;
+    let bare = build(&format!("{plate}{dims}")).expect("bare");
+    let loaded = build(&format!(
+        "{plate}non_structural_mass_kg_m2 = {added}\n{dims}"
+    ))
+    .expect("with added mass");
+    let ti = hsv_core::material::Material::ti_6al_4v();
+    let rho_h = ti.density_kg_m3 * 0.01;
+    let e = ti.youngs_modulus_pa(293.0).unwrap();
+    let d = e * 1e-6 / (12.0 * (1.0 - ti.poisson_ratio * ti.poisson_ratio));
+    let f1 = 3.492 / (2.0 * std::f64::consts::PI) * (d / (rho_h + added)).sqrt();
+    let (f_bare, f_loaded) = (
+        bare.natural_frequencies_hz().expect("bare"),
+        loaded.natural_frequencies_hz().expect("loaded"),
+    );
+    assert_relative_eq!(f_loaded[0], f1, max_relative = 0.02);
+    let scale = (rho_h / (rho_h + added)).sqrt();
+    for k in 0..5 {
+        assert_relative_eq!(f_loaded[k] / f_bare[k], scale, max_relative = 1e-3);
+    }
+    let mass = loaded.mass_properties().expect("mass").mass_properties();
+    assert_relative_eq!(mass.mass_kg, rho_h + added, max_relative = 1e-10);
+    let err = build(&format!("{plate}non_structural_mass_kg_m2 = -1.0\n{dims}"))
+        .err()
+        .expect("negative mass")
+        .to_string();
+    assert!(err.contains("non_structural_mass_kg_m2"), "{err}");
+}
+
 #[test]
 fn bad_settings_name_the_key() {
     let err = |text: &str| build(text).err().expect("must fail").to_string();

@@ -219,6 +219,10 @@ fn construct(ctx: &ModelContext<'_>) -> Result<Box<dyn StructureModel>, ModelErr
         .material
         .resolve()
         .map_err(|e| ctx.settings_error("material", e.to_string()))?;
+    // The plate's reference modulus (a thermal-only insulator such as `vdi-l1400` has none).
+    material
+        .youngs_modulus_pa(hsv_core::material::SECANT_REFERENCE_TEMPERATURE_K)
+        .map_err(|e| ctx.settings_error("material", e.to_string()))?;
     let (grid, side) = structural_grid(&settings, ctx)?;
     let model = match settings.root {
         RootChoice::Clamped => RitzPlate::new(grid, material, &settings)?,

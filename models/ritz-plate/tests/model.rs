@@ -135,6 +135,11 @@ fn bad_settings_name_the_key() {
         e.contains("models.ritz-plate.material") && e.contains("ti-6al-4v"),
         "{e}"
     );
+    let e = err("material = \"vdi-l1400\"\n");
+    assert!(
+        e.contains("models.ritz-plate.material") && e.contains("no mechanical data"),
+        "{e}"
+    );
     let e = err("elements_chordwise = 1\n");
     assert!(e.contains("elements_chordwise"), "{e}");
     let e = err(&format!("{SMALL}damping_ratio = -0.1\n"));

@@ -154,6 +154,8 @@ struct SurfaceThermal {
     conduction_time_s: f64,
     flux_time_s: f64,
     stiffness_time_s: f64,
+    /// Set when the stiffness was updated and the vehicle's modal matrices must follow.
+    stiffness_changed: bool,
 }
 
 /// One heated surface's thermal state for a restart file.
@@ -455,6 +457,7 @@ fn surface_thermal(
         conduction_time_s: 0.0,
         flux_time_s: f64::NEG_INFINITY,
         stiffness_time_s: 0.0,
+        stiffness_changed: false,
     })
 }
 
@@ -484,62 +487,85 @@ fn body_region_loads(
     b.shapes.deform(&b.base, &state.body_modes.q, &mut b.mesh);
     b.shapes
         .panel_velocities(&b.base, &state.body_modes.q_dot, &mut b.velocities);
-    let motion = PanelMotion {
-        elastic_velocity_m_s: Some(&b.velocities),
-    };
-    b.aero
-        .evaluate(&b.mesh, flight, &motion, &mut b.solution)
-        .map_err(&body_err)?;
-    let main_body = |r: RegionKind| r == RegionKind::MainBody;
-    let mut body_aero = integrate_pressure(&b.mesh, &b.solution.pressure_pa, p_inf, cg, main_body);
-    if let Some(f) = &mut b.friction {
-        if !b.reuse_friction {
-            b.friction_loads = f
-                .loads(&b.mesh, flight, &b.solution, &motion, cg, main_body)
+    // The body's aero and its engine both read the deformed OML and nothing of each other:
+    // side by side.
+    let Body {
+        friction,
+        friction_loads,
+        reuse_friction,
+        mesh,
+        shapes,
+        aero,
+        velocities,
+        solution,
+        generalized,
+        engine_generalized,
+        ..
+    } = b;
+    let (mesh, shapes) = (&*mesh, &*shapes);
+    let (body_aero, engine_loads) = rayon::join(
+        || -> Result<Loads, VehicleError> {
+            let motion = PanelMotion {
+                elastic_velocity_m_s: Some(velocities),
+            };
+            aero.evaluate(mesh, flight, &motion, solution)
                 .map_err(&body_err)?;
-        }
-        body_aero = body_aero + b.friction_loads;
-    }
-    generalized_forces(
-        &b.mesh,
-        &b.shapes,
-        &b.solution.pressure_pa,
-        p_inf,
-        main_body,
-        &mut b.generalized,
-    )
-    .map_err(|e| body_err(ModelError::inconsistent("coupling", e.to_string())))?;
-    // Engine on the deformed underside; its moment comes about the reference point.
-    let engine_err = model_error("propulsion");
-    engine
-        .evaluate(
-            &EngineInputs {
-                flight,
-                body: &b.mesh,
-                fuel_equivalence_ratio: controls.fuel_equivalence_ratio,
-            },
-            engine_solution,
-        )
-        .map_err(&engine_err)?;
-    let e = engine_solution.loads;
-    let engine_loads = Loads {
-        force_n: e.force_n,
-        moment_nm: e.moment_nm + (reference_point_m - cg).cross(&e.force_n),
-    };
-    if engine_solution.panel_pressure_pa.len() == b.mesh.panels.len() {
-        generalized_forces(
-            &b.mesh,
-            &b.shapes,
-            &engine_solution.panel_pressure_pa,
-            p_inf,
-            |r| r == RegionKind::Propulsion,
-            &mut b.engine_generalized,
-        )
-        .map_err(|e| engine_err(ModelError::inconsistent("coupling", e.to_string())))?;
-    } else {
-        b.engine_generalized.iter_mut().for_each(|q| *q = 0.0);
-    }
-    Ok((body_aero, engine_loads))
+            let main_body = |r: RegionKind| r == RegionKind::MainBody;
+            let mut body_aero =
+                integrate_pressure(mesh, &solution.pressure_pa, p_inf, cg, main_body);
+            if let Some(f) = friction {
+                if !*reuse_friction {
+                    *friction_loads = f
+                        .loads(mesh, flight, solution, &motion, cg, main_body)
+                        .map_err(&body_err)?;
+                }
+                body_aero = body_aero + *friction_loads;
+            }
+            generalized_forces(
+                mesh,
+                shapes,
+                &solution.pressure_pa,
+                p_inf,
+                main_body,
+                generalized,
+            )
+            .map_err(|e| body_err(ModelError::inconsistent("coupling", e.to_string())))?;
+            Ok(body_aero)
+        },
+        || -> Result<Loads, VehicleError> {
+            // Engine on the deformed underside; its moment comes about the reference point.
+            let engine_err = model_error("propulsion");
+            engine
+                .evaluate(
+                    &EngineInputs {
+                        flight,
+                        body: mesh,
+                        fuel_equivalence_ratio: controls.fuel_equivalence_ratio,
+                    },
+                    engine_solution,
+                )
+                .map_err(&engine_err)?;
+            let e = engine_solution.loads;
+            if engine_solution.panel_pressure_pa.len() == mesh.panels.len() {
+                generalized_forces(
+                    mesh,
+                    shapes,
+                    &engine_solution.panel_pressure_pa,
+                    p_inf,
+                    |r| r == RegionKind::Propulsion,
+                    engine_generalized,
+                )
+                .map_err(|e| engine_err(ModelError::inconsistent("coupling", e.to_string())))?;
+            } else {
+                engine_generalized.iter_mut().for_each(|q| *q = 0.0);
+            }
+            Ok(Loads {
+                force_n: e.force_n,
+                moment_nm: e.moment_nm + (reference_point_m - cg).cross(&e.force_n),
+            })
+        },
+    );
+    Ok((body_aero?, engine_loads?))
 }
 
 /// One lifting surface's aero on its Ritz-deformed mesh rotated by its elevon, its
@@ -650,6 +676,78 @@ fn surface_region_loads(
         .and_then(|t| t.thermal_generalized_forces());
     for (k, q) in out.iter_mut().enumerate() {
         *q = s.generalized[k] + thermal.map_or(0.0, |t| t[k]);
+    }
+    Ok(())
+}
+
+/// One surface's heating up to `time_s`: heat flux at its rate, conduction steps, and the
+/// stiffness from the temperature field at its rate (flagged for the vehicle's modal matrices).
+fn heat_surface(
+    s: &mut Surface,
+    flight: &FlightCondition,
+    time_s: f64,
+    rates: &HeatingRates,
+) -> Result<(), VehicleError> {
+    let Some(t) = &mut s.thermal else {
+        return Ok(());
+    };
+    let err = model_error(&s.name);
+    let mut stepped = false;
+    while time_s - t.conduction_time_s > 1e-9 * rates.conduction_s {
+        if t.conduction_time_s - t.flux_time_s >= rates.heat_flux_s - 1e-12 {
+            t.conduction.surface_temperatures(&t.state, &mut t.wall_k);
+            t.heat_flux
+                .heat_flux(
+                    &s.deflected,
+                    flight,
+                    &s.solution,
+                    &t.wall_k,
+                    &mut t.flux_w_m2,
+                )
+                .map_err(&err)?;
+            t.flux_time_s = t.conduction_time_s;
+        }
+        let dt = rates.conduction_s.min(time_s - t.conduction_time_s);
+        t.trial.copy_from(&t.state);
+        t.conduction
+            .step(&mut t.trial, &t.flux_w_m2, dt)
+            .map_err(&err)?;
+        std::mem::swap(&mut t.state, &mut t.trial);
+        t.conduction_time_s += dt;
+        stepped = true;
+    }
+    if stepped && time_s - t.stiffness_time_s >= rates.stiffness_s - 1e-12 {
+        t.conduction.node_temperatures(&t.state, &mut t.node_k);
+        t.conduction
+            .node_temperature_differences(&t.state, &mut t.node_difference_k);
+        match &t.transfer {
+            Some(transfer) => {
+                let to_err = |e: hsv_core::coupling::CouplingError| {
+                    err(ModelError::inconsistent(
+                        "temperature transfer",
+                        e.to_string(),
+                    ))
+                };
+                transfer
+                    .apply(&t.node_k, &mut t.structure_k)
+                    .map_err(to_err)?;
+                transfer
+                    .apply(&t.node_difference_k, &mut t.structure_difference_k)
+                    .map_err(to_err)?;
+            }
+            None => {
+                t.structure_k.copy_from_slice(&t.node_k);
+                t.structure_difference_k
+                    .copy_from_slice(&t.node_difference_k);
+            }
+        }
+        if let Some(thermal) = s.structure.thermal_stiffness_mut() {
+            thermal
+                .set_temperature_field(&t.structure_k, &t.structure_difference_k)
+                .map_err(&err)?;
+        }
+        t.stiffness_changed = true;
+        t.stiffness_time_s = time_s;
     }
     Ok(())
 }
@@ -1228,68 +1326,16 @@ impl PartitionedVehicle {
         time_s: f64,
     ) -> Result<(), VehicleError> {
         let rates = self.heating;
+        // Each surface heats on its own (heat flux, conduction, its stiffness): side by side.
+        self.surfaces
+            .par_iter_mut()
+            .try_for_each(|s| heat_surface(s, flight, time_s, &rates))?;
         for (i, s) in self.surfaces.iter_mut().enumerate() {
-            let Some(t) = &mut s.thermal else {
-                continue;
-            };
-            let err = model_error(&s.name);
-            let mut stepped = false;
-            while time_s - t.conduction_time_s > 1e-9 * rates.conduction_s {
-                if t.conduction_time_s - t.flux_time_s >= rates.heat_flux_s - 1e-12 {
-                    t.conduction.surface_temperatures(&t.state, &mut t.wall_k);
-                    t.heat_flux
-                        .heat_flux(
-                            &s.deflected,
-                            flight,
-                            &s.solution,
-                            &t.wall_k,
-                            &mut t.flux_w_m2,
-                        )
-                        .map_err(&err)?;
-                    t.flux_time_s = t.conduction_time_s;
-                }
-                let dt = rates.conduction_s.min(time_s - t.conduction_time_s);
-                t.trial.copy_from(&t.state);
-                t.conduction
-                    .step(&mut t.trial, &t.flux_w_m2, dt)
-                    .map_err(&err)?;
-                std::mem::swap(&mut t.state, &mut t.trial);
-                t.conduction_time_s += dt;
-                stepped = true;
-            }
-            if stepped && time_s - t.stiffness_time_s >= rates.stiffness_s - 1e-12 {
-                t.conduction.node_temperatures(&t.state, &mut t.node_k);
-                t.conduction
-                    .node_temperature_differences(&t.state, &mut t.node_difference_k);
-                match &t.transfer {
-                    Some(transfer) => {
-                        let to_err = |e: hsv_core::coupling::CouplingError| {
-                            err(ModelError::inconsistent(
-                                "temperature transfer",
-                                e.to_string(),
-                            ))
-                        };
-                        transfer
-                            .apply(&t.node_k, &mut t.structure_k)
-                            .map_err(to_err)?;
-                        transfer
-                            .apply(&t.node_difference_k, &mut t.structure_difference_k)
-                            .map_err(to_err)?;
-                    }
-                    None => {
-                        t.structure_k.copy_from_slice(&t.node_k);
-                        t.structure_difference_k
-                            .copy_from_slice(&t.node_difference_k);
-                    }
-                }
-                if let Some(thermal) = s.structure.thermal_stiffness_mut() {
-                    thermal
-                        .set_temperature_field(&t.structure_k, &t.structure_difference_k)
-                        .map_err(&err)?;
-                }
+            if let Some(t) = &mut s.thermal
+                && std::mem::take(&mut t.stiffness_changed)
+            {
                 self.dynamics
                     .set_surface_matrices(i, s.structure.modal_model())?;
-                t.stiffness_time_s = time_s;
             }
         }
         Ok(())

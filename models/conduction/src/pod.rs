@@ -227,20 +227,41 @@ fn add_scaled(dst: &mut DMatrix<f64>, a: f64, src: &DMatrix<f64>) {
     }
 }
 
-/// The lower triangle (diagonal included) of `dst += a src` for square matrices: the entries
-/// a symmetric matrix's Cholesky factorization reads, half the work of [`add_scaled`] and the
-/// same operations on those entries.
-fn add_scaled_lower(dst: &mut DMatrix<f64>, a: f64, src: &DMatrix<f64>) {
-    let n = dst.nrows();
-    let columns = dst
-        .as_mut_slice()
-        .chunks_exact_mut(n.max(1))
-        .zip(src.as_slice().chunks_exact(n.max(1)));
-    for (b, (d, s)) in columns.enumerate() {
-        for (d, s) in d[b..].iter_mut().zip(&s[b..]) {
-            *d += a * s;
+/// The lower triangle (diagonal included) of a symmetric r × r matrix, column by column: the
+/// entries a Cholesky factorization reads, r(r+1)/2 of them.
+fn packed_lower(m: &DMatrix<f64>) -> DVector<f64> {
+    let r = m.nrows();
+    DVector::from_iterator(
+        r * (r + 1) / 2,
+        (0..r).flat_map(|b| (b..r).map(move |a| m[(a, b)])),
+    )
+}
+
+/// The matrix whose column j is `matrices[j]` stored by [`packed_lower`].
+fn packed_columns(matrices: &[DMatrix<f64>]) -> DMatrix<f64> {
+    let r = matrices.first().map_or(0, |m| m.nrows());
+    let mut out = DMatrix::zeros(r * (r + 1) / 2, matrices.len());
+    for (j, m) in matrices.iter().enumerate() {
+        out.set_column(j, &packed_lower(m));
+    }
+    out
+}
+
+/// y = α S x for a symmetric S stored by [`packed_lower`].
+fn packed_symmetric_mul(alpha: f64, packed: &DVector<f64>, x: &DVector<f64>, y: &mut DVector<f64>) {
+    let r = x.len();
+    y.fill(0.0);
+    let mut idx = 0;
+    for b in 0..r {
+        y[b] += packed[idx] * x[b];
+        idx += 1;
+        for a in b + 1..r {
+            y[a] += packed[idx] * x[b];
+            y[b] += packed[idx] * x[a];
+            idx += 1;
         }
     }
+    *y *= alpha;
 }
 
 /// Modified Gram-Schmidt on the columns, in place.
@@ -404,10 +425,13 @@ pub struct Pod {
     plate: SurfaceGrid,
     basis: PodBasis,
     r: usize,
-    k0: DMatrix<f64>,
-    k1: Vec<DMatrix<f64>>,
-    c0: DMatrix<f64>,
-    c1: Vec<DMatrix<f64>>,
+    /// K(T) = K0 + Σ_j a_j K1_j and C(T) = C0 + Σ_j a_j C1_j, each stored by [`packed_lower`]:
+    /// K0 and C0 as vectors, K1 and C1 as matrices whose column j is K1_j (C1_j), so forming
+    /// K(T) or C(T) is one matrix-vector product over contiguous memory.
+    k0: DVector<f64>,
+    k1: DMatrix<f64>,
+    c0: DVector<f64>,
+    c1: DMatrix<f64>,
     /// Reduced load per unit panel flux: column p = Σ_a w_a A_p Φ(dof_a, :)ᵀ.
     load_map: DMatrix<f64>,
     /// Column p: panel p's wall temperature per coefficient.
@@ -425,10 +449,9 @@ pub struct Pod {
     // Scratch.
     surface_k: Vec<f64>,
     matrix: BandedMatrix,
-    /// C(T) of the current Picard iterate; only its lower triangle is kept up to date.
-    capacity: DMatrix<f64>,
-    /// K(T) of the current Picard iterate; only its lower triangle is kept up to date.
-    conduction: DMatrix<f64>,
+    /// C(T) and K(T) of the current Picard iterate ([`packed_lower`]).
+    capacity: DVector<f64>,
+    conduction: DVector<f64>,
     load: DVector<f64>,
     midpoint: DVector<f64>,
     iterate: DVector<f64>,
@@ -552,8 +575,8 @@ impl Pod {
         Ok(Self {
             difference_map,
             matrix: BandedMatrix::zeros(r, r.saturating_sub(1)),
-            capacity: DMatrix::zeros(r, r),
-            conduction: DMatrix::zeros(r, r),
+            capacity: DVector::zeros(r * (r + 1) / 2),
+            conduction: DVector::zeros(r * (r + 1) / 2),
             load: DVector::zeros(r),
             midpoint: DVector::zeros(r),
             iterate: DVector::zeros(r),
@@ -563,10 +586,10 @@ impl Pod {
             settings,
             basis,
             r,
-            k0,
-            k1,
-            c0,
-            c1,
+            k0: packed_lower(&k0),
+            k1: packed_columns(&k1),
+            c0: packed_lower(&c0),
+            c1: packed_columns(&c1),
             surface_k: vec![0.0; n_panels],
             basis_file: "(a basis in memory)".to_owned(),
             cache: None,
@@ -703,19 +726,19 @@ impl ConductionModel for Pod {
             self.midpoint.copy_from(state);
             self.midpoint += &self.iterate;
             self.midpoint *= 0.5;
-            self.capacity.copy_from(&self.c0);
-            self.conduction.copy_from(&self.k0);
             // C(T) and K(T) are symmetric: only their lower triangles are formed and read (the
             // system matrix's Cholesky factorization and the symmetric product C(T) a).
-            for j in 0..r {
-                add_scaled_lower(&mut self.capacity, self.midpoint[j], &self.c1[j]);
-                add_scaled_lower(&mut self.conduction, self.iterate[j], &self.k1[j]);
-            }
+            self.capacity.copy_from(&self.c0);
+            self.capacity.gemv(1.0, &self.c1, &self.midpoint, 1.0);
+            self.conduction.copy_from(&self.k0);
+            self.conduction.gemv(1.0, &self.k1, &self.iterate, 1.0);
             self.matrix.clear();
-            for a in 0..r {
-                for b in 0..=a {
-                    let v = self.capacity[(a, b)] / dt_s + self.conduction[(a, b)];
+            let mut idx = 0;
+            for b in 0..r {
+                for a in b..r {
+                    let v = self.capacity[idx] / dt_s + self.conduction[idx];
                     self.matrix.add(a, b, v);
+                    idx += 1;
                 }
             }
             self.matrix.factorize().map_err(|e| {
@@ -728,7 +751,7 @@ impl ConductionModel for Pod {
                     ),
                 )
             })?;
-            self.rhs.sygemv(1.0 / dt_s, &self.capacity, state, 0.0);
+            packed_symmetric_mul(1.0 / dt_s, &self.capacity, state, &mut self.rhs);
             self.rhs += &self.load;
             self.matrix.solve_in_place(self.rhs.as_mut_slice());
             let mut change = 0.0;

@@ -312,6 +312,18 @@ pub fn mach_from_area_ratio(
     gamma: f64,
     branch: FlowBranch,
 ) -> Result<f64, GasError> {
+    mach_from_area_ratio_near(area_ratio, gamma, branch, None)
+}
+
+/// [`mach_from_area_ratio`] with Newton started at `mach_guess` when it lies inside the branch's
+/// bracket: for a march through slowly changing areas (a nozzle's stations), where the last
+/// station's Mach number is a start a few iterations from the root.
+pub fn mach_from_area_ratio_near(
+    area_ratio: f64,
+    gamma: f64,
+    branch: FlowBranch,
+    mach_guess: Option<f64>,
+) -> Result<f64, GasError> {
     let gamma = check_gamma(gamma)?;
     let target = finite("area ratio A/A*", area_ratio)?;
     if target < 1.0 {
@@ -341,14 +353,17 @@ pub fn mach_from_area_ratio(
         FlowBranch::Subsonic => {
             // A/A* > (1/M) (1 + (γ-1)/2)^(-exponent), so M_lo = (1 + (γ-1)/2)^(-exponent) / target.
             let ln_lo = -exponent * (1.0 + half_gm1).ln() - ln_target;
-            let guess = ln_lo.max((1.0 - near_sonic).max(f64::MIN_POSITIVE).ln());
+            let guess = mach_guess.map_or_else(
+                || ln_lo.max((1.0 - near_sonic).max(f64::MIN_POSITIVE).ln()),
+                f64::ln,
+            );
             solve_bracketed(residual, ln_lo, 0.0, guess, false, f_tolerance)
         }
         FlowBranch::Supersonic => {
             // A/A* > K M^(2/(γ-1)) with K = ((γ-1)/(γ+1))^exponent.
             let ln_k = exponent * ((gamma - 1.0) / (gamma + 1.0)).ln();
             let ln_hi = (half_gm1 * (ln_target - ln_k)).max(near_sonic.ln_1p());
-            let guess = ln_hi.min(near_sonic.ln_1p());
+            let guess = mach_guess.map_or_else(|| ln_hi.min(near_sonic.ln_1p()), f64::ln);
             solve_bracketed(residual, 0.0, ln_hi, guess, true, f_tolerance)
         }
     };

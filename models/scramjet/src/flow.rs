@@ -3,7 +3,7 @@
 
 use hsv_core::gas::{
     self, FlowBranch, GasError, PerfectGas, ShockBranch, area_mach_ratio, inverse_prandtl_meyer,
-    mach_from_area_ratio, prandtl_meyer, prandtl_meyer_expansion, total_pressure_ratio,
+    mach_from_area_ratio_near, prandtl_meyer, prandtl_meyer_expansion, total_pressure_ratio,
     total_temperature_ratio,
 };
 
@@ -145,13 +145,25 @@ pub fn supersonic_area_change(
     a2: f64,
     gas: &PerfectGas,
 ) -> Result<Option<FlowState>, GasError> {
+    supersonic_area_change_near(state, a1, a2, gas, None)
+}
+
+/// [`supersonic_area_change`] with the area-Mach inversion started at `mach_guess` (a nearby
+/// station's Mach number, when marching through slowly changing areas).
+pub fn supersonic_area_change_near(
+    state: &FlowState,
+    a1: f64,
+    a2: f64,
+    gas: &PerfectGas,
+    mach_guess: Option<f64>,
+) -> Result<Option<FlowState>, GasError> {
     let ratio = a2 / a1 * area_mach_ratio(state.mach, gas.gamma);
     // A sonic (choked) state keeps A/A* = 1 up to rounding.
     if !ratio.is_finite() || ratio < 1.0 - 1e-9 {
         return Ok(None);
     }
     let ratio = ratio.max(1.0);
-    let mach = mach_from_area_ratio(ratio, gas.gamma, FlowBranch::Supersonic)?;
+    let mach = mach_from_area_ratio_near(ratio, gas.gamma, FlowBranch::Supersonic, mach_guess)?;
     Ok(Some(state.isentropic_to_mach(mach, gas)))
 }
 

@@ -593,8 +593,13 @@ fn surface_region_loads(
     // `deflect_lifting_surface` does), with the panel geometry computed once at the end.
     let rotation = rotation_about_axis(&pivot_axis(), elevon_rotation_angle_rad(deflection))
         .map_err(|e| err(ModelError::inconsistent("elevon", e.to_string())))?;
-    s.shapes
-        .displace_vertices(&s.base.vertices, &modes.q, &mut s.displaced_m);
+    s.shapes.displace_with_velocities(
+        &s.base,
+        &modes.q,
+        &modes.q_dot,
+        &mut s.displaced_m,
+        &mut s.velocities,
+    );
     rotate_points(
         &s.displaced_m,
         &pivot_point(&s.planform, s.side),
@@ -603,8 +608,6 @@ fn surface_region_loads(
     )
     .map_err(|e| err(ModelError::inconsistent("elevon", e.to_string())))?;
     s.deflected.update_geometry();
-    s.shapes
-        .panel_velocities(&s.base, &modes.q_dot, &mut s.velocities);
     for v in &mut s.velocities {
         *v = rotation * *v;
     }

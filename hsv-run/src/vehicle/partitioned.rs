@@ -484,9 +484,15 @@ fn body_region_loads(
 ) -> Result<(Loads, Loads), VehicleError> {
     let p_inf = flight.freestream.pressure_pa;
     let body_err = model_error("main_body");
-    b.shapes.deform(&b.base, &state.body_modes.q, &mut b.mesh);
-    b.shapes
-        .panel_velocities(&b.base, &state.body_modes.q_dot, &mut b.velocities);
+    let modes = &state.body_modes;
+    b.shapes.displace_with_velocities(
+        &b.base,
+        &modes.q,
+        &modes.q_dot,
+        &mut b.mesh.vertices,
+        &mut b.velocities,
+    );
+    b.mesh.update_geometry();
     // The body's aero and its engine both read the deformed OML and nothing of each other:
     // side by side.
     let Body {

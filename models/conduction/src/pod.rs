@@ -411,7 +411,8 @@ heat_flux = \"eckert\"           # heat-flux model of the snapshot runs (any reg
 aero = \"shock-expansion\"       # aero model giving the edge states
 mach = [5.0, 5.5, 6.0]         # one full-order run per Mach number
 altitude_m = 10000.0           # m (paper: 10 km)
-alpha_deg = 0.0
+alpha_deg = [-4.0, 0.0, 4.0]   # deg, a number or a list: one run per Mach number and angle (zero
+                               #   alone gives a mirror-symmetric basis: no through-thickness difference)
 duration_s = 100.0             # s in the flow per run (paper: up to 100 s)
 dt_s = 0.1                     # conduction step, s
 snapshots_per_run = 100

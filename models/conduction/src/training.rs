@@ -27,8 +27,12 @@ pub struct Training {
     pub mach: Vec<f64>,
     /// Geometric altitude, m.
     pub altitude_m: f64,
-    /// Angle of attack, deg.
-    pub alpha_deg: f64,
+    /// Angles of attack, deg (a number or a list): one snapshot run per Mach number and angle.
+    /// At zero incidence the symmetric section heats symmetrically, so a basis trained there
+    /// alone spans only mirror-symmetric fields (no through-thickness difference, no thermal
+    /// moment); angles either side of zero give it the asymmetric ones.
+    #[serde(deserialize_with = "one_or_many")]
+    pub alpha_deg: Vec<f64>,
     /// Time in the flow of each run, s.
     pub duration_s: f64,
     /// Conduction step, s.
@@ -48,7 +52,10 @@ impl Default for Training {
             mach: vec![5.0, 5.5, 6.0],
             // Paper §IV.D: the surface heats at 10 km.
             altitude_m: 10_000.0,
-            alpha_deg: 0.0,
+            // Our choice: either side of zero, about the trimmed surface's incidence (body
+            // α 1.7° with the elevon at -5.6°), and cool enough that 100 s at Mach 6 stays
+            // inside the titanium's thermal data.
+            alpha_deg: vec![-4.0, 0.0, 4.0],
             // Paper: up to 100 s in the flow.
             duration_s: 100.0,
             dt_s: 0.1,
@@ -56,6 +63,21 @@ impl Default for Training {
             initial_k: 293.0,
         }
     }
+}
+
+/// A number or a list of numbers, as a list.
+fn one_or_many<'de, D: serde::Deserializer<'de>>(deserializer: D) -> Result<Vec<f64>, D::Error> {
+    #[derive(serde::Deserialize)]
+    #[serde(untagged)]
+    enum OneOrMany {
+        One(f64),
+        Many(Vec<f64>),
+    }
+    use serde::Deserialize;
+    Ok(match OneOrMany::deserialize(deserializer)? {
+        OneOrMany::One(a) => vec![a],
+        OneOrMany::Many(a) => a,
+    })
 }
 
 impl Training {
@@ -82,11 +104,26 @@ impl Training {
         if self.mach.is_empty() {
             return Some(("training.mach".to_owned(), 0.0, "at least one Mach number"));
         }
-        if !self.altitude_m.is_finite() || !self.alpha_deg.is_finite() {
+        if !self.altitude_m.is_finite() {
+            return Some(("training.altitude_m".to_owned(), self.altitude_m, "finite"));
+        }
+        if let Some((i, &a)) = self
+            .alpha_deg
+            .iter()
+            .enumerate()
+            .find(|(_, a)| !(a.is_finite() && a.abs() < 90.0))
+        {
             return Some((
-                "training.altitude_m".to_owned(),
-                self.altitude_m,
-                "finite (and a finite alpha_deg)",
+                format!("training.alpha_deg[{i}]"),
+                a,
+                "finite, |alpha| < 90",
+            ));
+        }
+        if self.alpha_deg.is_empty() {
+            return Some((
+                "training.alpha_deg".to_owned(),
+                0.0,
+                "at least one angle of attack",
             ));
         }
         let steps = self.duration_s / self.dt_s;
@@ -150,9 +187,13 @@ pub fn train_basis(
     let every = (steps / training.snapshots_per_run).max(1);
     let mut snapshots: Vec<DVector<f64>> = Vec::new();
     let mut edge = AeroSolution::default();
-    for &mach in &training.mach {
+    let conditions = training
+        .mach
+        .iter()
+        .flat_map(|&m| training.alpha_deg.iter().map(move |&a| (m, a)));
+    for (mach, alpha_deg) in conditions {
         let freestream = Freestream::standard(mach, training.altitude_m, ctx.region.gas)?;
-        let flight = FlightCondition::steady(freestream, training.alpha_deg.to_radians(), 0.0);
+        let flight = FlightCondition::steady(freestream, alpha_deg.to_radians(), 0.0);
         aero.evaluate(mesh, &flight, &PanelMotion::default(), &mut edge)?;
         let run = crate::pod::collect_snapshots(
             full,
@@ -163,7 +204,10 @@ pub fn train_basis(
             |wall, q| heat.heat_flux(mesh, &flight, &edge, wall, q),
         )
         .map_err(|e| {
-            ModelError::inconsistent(NAME, format!("full-order snapshot run at Mach {mach}: {e}"))
+            ModelError::inconsistent(
+                NAME,
+                format!("full-order snapshot run at Mach {mach}, alpha {alpha_deg} deg: {e}"),
+            )
         })?;
         snapshots.extend(run);
     }

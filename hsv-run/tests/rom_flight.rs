@@ -13,6 +13,9 @@ mod common;
 use hsv_run::analysis::simulate::{InputTable, Inputs, RunSettings, Sample, simulate};
 use hsv_run::vehicle::partitioned::SurfaceModel;
 
+/// A recorded quantity of a sample.
+type Quantity = fn(&Sample) -> f64;
+
 fn fly(text: &str) -> Vec<Sample> {
     let loaded = common::parse(text);
     let (mut vehicle, mut state, controls) =
@@ -59,8 +62,8 @@ fn the_convolution_rom_flies_the_elevon_ramp_as_its_source_does() {
     );
     assert_ne!(rom, source, "the lifting surfaces fly the ROM");
     let (a, b) = (fly(&source), fly(&rom));
-    let change = |s: &[Sample], f: fn(&Sample) -> f64| f(&s[s.len() - 1]) - f(&s[0]);
-    let quantities: [(&str, fn(&Sample) -> f64); 3] = [
+    let change = |s: &[Sample], f: Quantity| f(&s[s.len() - 1]) - f(&s[0]);
+    let quantities: [(&str, Quantity); 3] = [
         ("pitch_deg", |s| s.pitch_deg),
         ("q_deg_s", |s| s.q_deg_s),
         ("altitude_m", |s| s.altitude_m),

@@ -190,6 +190,14 @@ impl Integrator {
             _ => None,
         }
     }
+
+    /// The `[simulation] integrator` spelling of this method.
+    pub fn name(&self) -> &'static str {
+        match self {
+            Self::ExponentialRk4 => Self::NAMES[0],
+            Self::Rk4 => Self::NAMES[1],
+        }
+    }
 }
 
 /// Step size and length of a run.

@@ -208,6 +208,14 @@ fn rate_setting(
         })
 }
 
+/// A rate as the `[simulation]` key writes it: seconds, 0 for every evaluation.
+fn rate_seconds(rate: BodyLoadRate) -> f64 {
+    match rate {
+        BodyLoadRate::EveryStage => 0.0,
+        BodyLoadRate::Interval(s) => s,
+    }
+}
+
 /// The integrator: `[simulation] integrator` (`exponential-rk4`, the default, or `rk4`).
 pub(crate) fn integrator(loaded: &hsv_core::config::LoadedConfig) -> Result<Integrator> {
     let Some(value) = loaded.config.simulation.get("integrator") else {
@@ -477,6 +485,10 @@ pub fn run(args: SimulateArgs, registry: &Registry) -> Result<()> {
         "min_altitude_m": samples.iter().map(|s| s.altitude_m).fold(f64::INFINITY, f64::min),
         "max_coupling_iterations": samples.iter().map(|s| s.coupling_iterations).max(),
         "wall_time_s": wall_time_s,
+        "threads": rayon::current_num_threads(),
+        "integrator": integrator.name(),
+        "body_loads_dt_s": rate_seconds(body_rate),
+        "body_friction_dt_s": rate_seconds(friction_rate),
         "warnings": warnings,
     });
     let written = folder.write_summary(summary, &status)?;

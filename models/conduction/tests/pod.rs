@@ -364,7 +364,10 @@ fn a_training_table_trains_reuses_and_retrains_the_basis() {
     assert_eq!(model.n_states(), 6);
     let saved = PodBasis::load(&path).expect("saved");
     assert!(!saved.fingerprint.is_empty());
-    assert_eq!(saved.n_snapshots, 10, "5 snapshots from each of 2 runs");
+    assert_eq!(
+        saved.n_snapshots, 30,
+        "5 snapshots from each of 6 runs: 2 Mach numbers at the default -4, 0, 4 deg"
+    );
     assert_eq!(
         saved.training.as_ref().map(|t| t.mach.clone()),
         Some(vec![5.0, 6.0])
@@ -382,5 +385,23 @@ fn a_training_table_trains_reuses_and_retrains_the_basis() {
     bad.insert("modes".into(), toml::Value::Integer(4));
     let err = build(&bad).err().expect("refused").to_string();
     assert!(err.contains("models.pod.training.mach[0]"), "{err}");
+    // One angle as a number: one run per Mach number; an angle out of range names its index.
+    let mut one_angle = settings("5.0, 6.0");
+    let training = one_angle["training"].as_table().cloned().unwrap();
+    let with_alpha = |alpha: toml::Value| {
+        let mut t = training.clone();
+        t.insert("alpha_deg".into(), alpha);
+        t
+    };
+    one_angle.insert(
+        "training".into(),
+        toml::Value::Table(with_alpha(2.0.into())),
+    );
+    build(&one_angle).expect("trains at one angle");
+    assert_eq!(PodBasis::load(&path).unwrap().n_snapshots, 10);
+    let bad_angle = toml::Value::Array(vec![0.0.into(), 95.0.into()]);
+    one_angle.insert("training".into(), toml::Value::Table(with_alpha(bad_angle)));
+    let err = build(&one_angle).err().expect("refused").to_string();
+    assert!(err.contains("models.pod.training.alpha_deg[1]"), "{err}");
     let _ = std::fs::remove_dir_all(&dir);
 }

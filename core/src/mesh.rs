@@ -791,15 +791,13 @@ impl ModeShapes {
     ) {
         debug_assert_eq!(out.len(), base.len());
         out.copy_from_slice(base);
-        let n_rows = self.vertex_displacement.nrows();
         let n_modes = self.n_modes().min(modal_coordinates.len());
-        // Column-major storage: mode k is the contiguous slice [k n_rows, (k+1) n_rows), read
-        // three rows (one vertex) at a time.
-        let columns = self
-            .vertex_displacement
-            .as_slice()
-            .chunks_exact(n_rows.max(1));
-        for (col, &q) in columns.zip(modal_coordinates.iter()).take(n_modes) {
+        // Each mode column read three rows (one vertex) at a time.
+        for (col, &q) in self
+            .mode_columns()
+            .zip(modal_coordinates.iter())
+            .take(n_modes)
+        {
             if q == 0.0 {
                 continue;
             }
@@ -838,15 +836,9 @@ impl ModeShapes {
             .n_modes()
             .min(modal_coordinates.len())
             .min(modal_velocities.len());
-        VERTEX_SCRATCH.with_borrow_mut(|vertex_velocity| {
-            let n_rows = self.vertex_displacement.nrows();
-            vertex_velocity.clear();
-            vertex_velocity.resize(n_rows, 0.0);
-            let columns = self
-                .vertex_displacement
-                .as_slice()
-                .chunks_exact(n_rows.max(1));
-            for ((column, &q), &q_dot) in columns
+        self.with_vertex_scratch(|vertex_velocity| {
+            for ((column, &q), &q_dot) in self
+                .mode_columns()
                 .zip(modal_coordinates.iter())
                 .zip(modal_velocities.iter())
                 .take(n_modes)
@@ -868,9 +860,25 @@ impl ModeShapes {
                     }
                 }
             }
-            for (panel, v_out) in mesh.panels.iter().zip(velocities_out.iter_mut()) {
-                *v_out = vertex_mean(vertex_velocity, panel);
-            }
+            panel_means(mesh, vertex_velocity, velocities_out);
+        });
+    }
+
+    /// Mode k's vertex displacements (x, y, z interleaved): column-major storage makes each the
+    /// contiguous slice [k n_rows, (k+1) n_rows).
+    fn mode_columns(&self) -> std::slice::ChunksExact<'_, f64> {
+        let n_rows = self.vertex_displacement.nrows();
+        self.vertex_displacement
+            .as_slice()
+            .chunks_exact(n_rows.max(1))
+    }
+
+    /// Runs `f` on this thread's vertex buffer, zeroed to one entry per row of the shapes.
+    fn with_vertex_scratch(&self, f: impl FnOnce(&mut [f64])) {
+        VERTEX_SCRATCH.with_borrow_mut(|buffer| {
+            buffer.clear();
+            buffer.resize(self.vertex_displacement.nrows(), 0.0);
+            f(buffer)
         });
     }
 
@@ -891,16 +899,12 @@ impl ModeShapes {
         debug_assert_eq!(out.len(), mesh.panels.len());
         debug_assert_eq!(modal_velocities.len(), self.n_modes());
         let n_modes = self.n_modes().min(modal_velocities.len());
-        VERTEX_SCRATCH.with_borrow_mut(|vertex_velocity| {
-            let n_rows = self.vertex_displacement.nrows();
-            vertex_velocity.clear();
-            vertex_velocity.resize(n_rows, 0.0);
-            // Column-major storage: mode k is the contiguous slice [k n_rows, (k+1) n_rows).
-            let columns = self
-                .vertex_displacement
-                .as_slice()
-                .chunks_exact(n_rows.max(1));
-            for (column, &q_dot) in columns.zip(modal_velocities.iter()).take(n_modes) {
+        self.with_vertex_scratch(|vertex_velocity| {
+            for (column, &q_dot) in self
+                .mode_columns()
+                .zip(modal_velocities.iter())
+                .take(n_modes)
+            {
                 if q_dot == 0.0 {
                     continue;
                 }
@@ -908,10 +912,15 @@ impl ModeShapes {
                     *v += phi * q_dot;
                 }
             }
-            for (panel, v_out) in mesh.panels.iter().zip(out.iter_mut()) {
-                *v_out = vertex_mean(vertex_velocity, panel);
-            }
+            panel_means(mesh, vertex_velocity, out);
         });
+    }
+}
+
+/// Each panel's mean of a per-vertex field (x, y, z interleaved) into `out` (one per panel).
+fn panel_means(mesh: &PanelMesh, field: &[f64], out: &mut [Vector3<f64>]) {
+    for (panel, v_out) in mesh.panels.iter().zip(out.iter_mut()) {
+        *v_out = vertex_mean(field, panel);
     }
 }
 

@@ -12,58 +12,14 @@
 //! full-order model's largest |ΔT| at every structural node; the zero-incidence basis below
 //! 1e-6 K.
 
-use hsv_core::flow::{FlightCondition, Freestream};
-use hsv_run::analysis::heating::{HeatingModels, HeatingSteps, SurfaceHeating};
-
-/// The sample right surface with a POD basis trained in `dir` from 10 s full-order runs at
-/// Mach 4, 4.5 and 5 and the angles `alpha_deg`.
-fn region(dir: &std::path::Path, alpha_deg: &[f64]) -> hsv_core::region::RegionInfo {
-    let mut region = hsv_core::testing::sample_region("right_surface").clone();
-    let mut pod = region.model_settings("pod");
-    let basis = dir.join("pod-basis-{region}.json");
-    pod.table.insert(
-        "basis_file".into(),
-        toml::Value::String(basis.display().to_string()),
-    );
-    let mut training = pod
-        .table
-        .get("training")
-        .and_then(|t| t.as_table())
-        .cloned()
-        .unwrap_or_default();
-    let floats = |v: &[f64]| toml::Value::Array(v.iter().map(|&x| toml::Value::Float(x)).collect());
-    training.insert("mach".into(), floats(&[4.0, 4.5, 5.0]));
-    training.insert("duration_s".into(), toml::Value::Float(10.0));
-    training.insert("alpha_deg".into(), floats(alpha_deg));
-    pod.table
-        .insert("training".into(), toml::Value::Table(training));
-    region.settings.insert("pod".into(), pod);
-    region
-}
+mod common;
 
 /// Lower-minus-upper structure temperature at every node after 10 s at Mach 5, α = 4°, K.
 fn through_thickness_difference(
     region: &hsv_core::region::RegionInfo,
     conduction: &str,
 ) -> Vec<f64> {
-    let registry = hsv_run::registry().expect("registry");
-    let freestream = Freestream::standard(5.0, 10_000.0, region.gas).expect("freestream");
-    let mut heating = SurfaceHeating::new(
-        region.clone(),
-        &registry,
-        HeatingModels {
-            aero: "shock-expansion".to_owned(),
-            heat_flux: "eckert".to_owned(),
-            conduction: conduction.to_owned(),
-        },
-        FlightCondition::steady(freestream, 4f64.to_radians(), 0.0),
-        HeatingSteps {
-            dt_s: 0.1,
-            flux_every: 1,
-            initial_k: 293.0,
-        },
-    )
-    .expect("heating run");
+    let mut heating = common::surface_heating(region, conduction, 5.0, 4.0);
     for _ in 0..100 {
         heating.advance(0.1).expect("heating step");
     }
@@ -71,6 +27,12 @@ fn through_thickness_difference(
     let mut difference = vec![0.0; model.n_nodes()];
     model.node_temperature_differences(heating.state(), &mut difference);
     difference
+}
+
+/// The sample right surface with a POD basis trained in `dir` from 10 s full-order runs at
+/// Mach 4, 4.5 and 5 and the angles `alpha_deg`.
+fn region(dir: &std::path::Path, alpha_deg: &[f64]) -> hsv_core::region::RegionInfo {
+    common::surface_with_pod_training(dir, &[4.0, 4.5, 5.0], 10.0, alpha_deg)
 }
 
 #[test]

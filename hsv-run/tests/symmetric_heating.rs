@@ -10,10 +10,10 @@
 //! 1e-6 K, chosen before running (rounding over 100 steps is ~1e-10 K; sending the tip face's
 //! heat to the lower face gave a difference of several K at the tip).
 
-use hsv_core::flow::{FlightCondition, Freestream};
+mod common;
+
 use hsv_core::mesh::PanelMesh;
 use hsv_core::surface_grid::GridEdge;
-use hsv_run::analysis::heating::{HeatingModels, HeatingSteps, SurfaceHeating};
 
 const TOLERANCE_K: f64 = 1e-6;
 
@@ -55,51 +55,14 @@ fn assert_mirror_symmetric(v: &[f64], pairs: &[(usize, usize)], relative: f64, w
 }
 
 /// The sample right surface with the POD basis trained in `dir` from 10 s full-order runs
-/// at Mach 4, 4.5 and 5 (the `heat` command's default snapshot conditions).
+/// at Mach 4, 4.5 and 5 (the `heat` command's default snapshot conditions) at zero incidence.
 fn region(dir: &std::path::Path) -> hsv_core::region::RegionInfo {
-    let mut region = hsv_core::testing::sample_region("right_surface").clone();
-    let mut pod = region.model_settings("pod");
-    let basis = dir.join("pod-basis-{region}.json");
-    pod.table.insert(
-        "basis_file".into(),
-        toml::Value::String(basis.display().to_string()),
-    );
-    let mut training = pod
-        .table
-        .get("training")
-        .and_then(|t| t.as_table())
-        .cloned()
-        .unwrap_or_default();
-    let mach = [4.0, 4.5, 5.0].map(toml::Value::Float).to_vec();
-    training.insert("mach".into(), toml::Value::Array(mach));
-    training.insert("duration_s".into(), toml::Value::Float(10.0));
-    training.insert("alpha_deg".into(), toml::Value::Float(0.0));
-    pod.table
-        .insert("training".into(), toml::Value::Table(training));
-    region.settings.insert("pod".into(), pod);
-    region
+    common::surface_with_pod_training(dir, &[4.0, 4.5, 5.0], 10.0, &[0.0])
 }
 
 /// Heats for 10 s with `conduction` and checks the symmetry; returns the largest rise, K.
 fn heat_symmetrically(region: &hsv_core::region::RegionInfo, conduction: &str) -> f64 {
-    let registry = hsv_run::registry().expect("registry");
-    let freestream = Freestream::standard(5.0, 10_000.0, region.gas).expect("freestream");
-    let mut heating = SurfaceHeating::new(
-        region.clone(),
-        &registry,
-        HeatingModels {
-            aero: "shock-expansion".to_owned(),
-            heat_flux: "eckert".to_owned(),
-            conduction: conduction.to_owned(),
-        },
-        FlightCondition::steady(freestream, 0.0, 0.0),
-        HeatingSteps {
-            dt_s: 0.1,
-            flux_every: 1,
-            initial_k: 293.0,
-        },
-    )
-    .expect("heating run");
+    let mut heating = common::surface_heating(region, conduction, 5.0, 0.0);
     // The input: on the uniform initial wall the flux is mirror symmetric.
     let pairs = mirror_pairs(&region.mesh);
     heating.advance(0.1).expect("heating step");

@@ -64,3 +64,64 @@ pub fn trimmed(
         .expect("equilibrium");
     (vehicle, state, controls)
 }
+
+/// The sample right surface with its `pod` basis cached in `dir`, trained from `duration_s`
+/// full-order runs at 10 km at the Mach numbers `mach` and the angles `alpha_deg`.
+pub fn surface_with_pod_training(
+    dir: &std::path::Path,
+    mach: &[f64],
+    duration_s: f64,
+    alpha_deg: &[f64],
+) -> hsv_core::region::RegionInfo {
+    let mut region = hsv_core::testing::sample_region("right_surface").clone();
+    let mut pod = region.model_settings("pod");
+    let basis = dir.join("pod-basis-{region}.json");
+    pod.table.insert(
+        "basis_file".into(),
+        toml::Value::String(basis.display().to_string()),
+    );
+    let mut training = pod
+        .table
+        .get("training")
+        .and_then(|t| t.as_table())
+        .cloned()
+        .unwrap_or_default();
+    let floats = |v: &[f64]| toml::Value::Array(v.iter().map(|&x| toml::Value::Float(x)).collect());
+    training.insert("mach".into(), floats(mach));
+    training.insert("duration_s".into(), toml::Value::Float(duration_s));
+    training.insert("alpha_deg".into(), floats(alpha_deg));
+    pod.table
+        .insert("training".into(), toml::Value::Table(training));
+    region.settings.insert("pod".into(), pod);
+    region
+}
+
+/// `region` about to heat from 293 K in 0.1 s steps (heat flux every step) with `conduction`,
+/// on `shock-expansion` edge states and `eckert` heat flux at Mach `mach`, 10 km, `alpha_deg`.
+pub fn surface_heating(
+    region: &hsv_core::region::RegionInfo,
+    conduction: &str,
+    mach: f64,
+    alpha_deg: f64,
+) -> hsv_run::analysis::heating::SurfaceHeating {
+    use hsv_run::analysis::heating::{HeatingModels, HeatingSteps, SurfaceHeating};
+    let registry = hsv_run::registry().expect("registry");
+    let freestream =
+        hsv_core::flow::Freestream::standard(mach, 10_000.0, region.gas).expect("freestream");
+    SurfaceHeating::new(
+        region.clone(),
+        &registry,
+        HeatingModels {
+            aero: "shock-expansion".to_owned(),
+            heat_flux: "eckert".to_owned(),
+            conduction: conduction.to_owned(),
+        },
+        hsv_core::flow::FlightCondition::steady(freestream, alpha_deg.to_radians(), 0.0),
+        HeatingSteps {
+            dt_s: 0.1,
+            flux_every: 1,
+            initial_k: 293.0,
+        },
+    )
+    .expect("heating run")
+}

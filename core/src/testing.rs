@@ -67,3 +67,31 @@ unsafe impl std::alloc::GlobalAlloc for CountingAllocator {
 pub fn allocations() -> usize {
     ALLOCATIONS.with(std::cell::Cell::get)
 }
+
+/// Pairs (upper panel, lower panel) of a lifting-surface mesh whose centroids coincide in the
+/// planform: the mirror images about its mid-plane, for symmetry checks. Panels with a nearly
+/// vertical normal (|n_z| > 0.5) only. Panics when a lower panel has no mirror (the mesh is
+/// not symmetric, so no symmetry check on it could pass).
+pub fn mirror_panel_pairs(mesh: &crate::mesh::PanelMesh) -> Vec<(usize, usize)> {
+    let faces = |sign: f64| -> Vec<usize> {
+        (0..mesh.panels.len())
+            .filter(|&i| sign * mesh.panels[i].normal.z > 0.5)
+            .collect()
+    };
+    let lower = faces(1.0);
+    let pairs: Vec<(usize, usize)> = faces(-1.0)
+        .into_iter()
+        .filter_map(|u| {
+            let c = mesh.panels[u].centroid;
+            lower
+                .iter()
+                .find(|&&l| {
+                    let d = mesh.panels[l].centroid - c;
+                    d.x.hypot(d.y) < 1e-9
+                })
+                .map(|&l| (u, l))
+        })
+        .collect();
+    assert_eq!(pairs.len(), lower.len(), "every lower panel has its mirror");
+    pairs
+}

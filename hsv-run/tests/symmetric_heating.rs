@@ -12,35 +12,9 @@
 
 mod common;
 
-use hsv_core::mesh::PanelMesh;
 use hsv_core::surface_grid::GridEdge;
 
 const TOLERANCE_K: f64 = 1e-6;
-
-/// Pairs (upper panel, lower panel) with the same centroid in the planform.
-fn mirror_pairs(mesh: &PanelMesh) -> Vec<(usize, usize)> {
-    let faces = |sign: f64| -> Vec<usize> {
-        (0..mesh.panels.len())
-            .filter(|&i| sign * mesh.panels[i].normal.z > 0.5)
-            .collect()
-    };
-    let lower = faces(1.0);
-    let pairs: Vec<(usize, usize)> = faces(-1.0)
-        .into_iter()
-        .filter_map(|u| {
-            let c = mesh.panels[u].centroid;
-            lower
-                .iter()
-                .find(|&&l| {
-                    let d = mesh.panels[l].centroid - c;
-                    d.x.hypot(d.y) < 1e-9
-                })
-                .map(|&l| (u, l))
-        })
-        .collect();
-    assert_eq!(pairs.len(), lower.len(), "every lower panel has its mirror");
-    pairs
-}
 
 /// |v_upper − v_lower| ≤ `relative` |v_upper| on every mirror pair.
 fn assert_mirror_symmetric(v: &[f64], pairs: &[(usize, usize)], relative: f64, what: &str) {
@@ -64,7 +38,7 @@ fn region(dir: &std::path::Path) -> hsv_core::region::RegionInfo {
 fn heat_symmetrically(region: &hsv_core::region::RegionInfo, conduction: &str) -> f64 {
     let mut heating = common::surface_heating(region, conduction, 5.0, 0.0);
     // The input: on the uniform initial wall the flux is mirror symmetric.
-    let pairs = mirror_pairs(&region.mesh);
+    let pairs = hsv_core::testing::mirror_panel_pairs(&region.mesh);
     heating.advance(0.1).expect("heating step");
     assert_mirror_symmetric(heating.heat_flux_w_m2(), &pairs, 1e-10, conduction);
     for _ in 1..100 {

@@ -14,93 +14,20 @@
 //!   and nothing else does: the nodal loads sum to it (first law; tolerance 1e-12 relative,
 //!   rounding of a few hundred additions).
 
+mod common;
+
 use std::sync::OnceLock;
 
-use hsv_core::config::LoadedConfig;
+use common::{convective, full_order, lifting, mesh, running_lengths};
 use hsv_core::mesh::{PanelMesh, RegionKind};
-use hsv_core::surface_grid::{GridEdge, SurfaceGrid};
+use hsv_core::surface_grid::GridEdge;
 use hsv_core::thermal::ConductionModel;
-use hsv_core::vehicle::{LiftingSurfaceConfig, Side, lifting_surface_mesh};
-use hsv_model_conduction::{
-    FullOrder, FullOrderSettings, Pod, PodBasis, PodSettings, collect_snapshots,
-};
+use hsv_model_conduction::{FullOrderSettings, Pod, PodBasis, PodSettings, collect_snapshots};
 use nalgebra::DVector;
 
-const SIGMA: f64 = 5.670_374_419e-8;
 const DT: f64 = 0.5;
 /// A priori bound on a through-thickness difference that symmetry makes zero, K.
 const SYMMETRY_TOLERANCE_K: f64 = 1e-6;
-
-fn lifting() -> LiftingSurfaceConfig {
-    LoadedConfig::sample().unwrap().config.lifting_surface
-}
-
-fn mesh() -> PanelMesh {
-    lifting_surface_mesh(&lifting(), Side::Right).unwrap()
-}
-
-fn full_order() -> FullOrder {
-    let cfg = lifting();
-    let settings = FullOrderSettings::default();
-    let grid = SurfaceGrid::lifting_surface(
-        &cfg,
-        Side::Right,
-        settings.elements_chordwise,
-        settings.elements_spanwise,
-    )
-    .unwrap();
-    FullOrder::new(&grid, &mesh(), settings).unwrap()
-}
-
-/// Running length of each panel centroid from the leading edge, m (at least 1 cm): a function
-/// of (x, y) only, so a panel and its mirror image get the same value.
-fn running_lengths(mesh: &PanelMesh, cfg: &LiftingSurfaceConfig) -> Vec<f64> {
-    let tan = cfg.leading_edge_sweep_deg.to_radians().tan();
-    let root_le = cfg.pivot_aft_of_nose_m - cfg.pivot_root_chord_fraction * cfg.root_chord_m;
-    mesh.panels
-        .iter()
-        .map(|p| {
-            let eta = ((p.centroid.y - cfg.root_y_m) / cfg.span_m).clamp(0.0, 1.0);
-            (-p.centroid.x - (root_le + eta * cfg.span_m * tan)).max(0.01)
-        })
-        .collect()
-}
-
-/// Laminar flat-plate convection, q = h_ref (1 m / x)^½ (T_aw − T_w) − 0.8 σ T_w⁴ (Anderson,
-/// Hypersonic and High-Temperature Gas Dynamics, §6.9), on every panel alike: symmetric
-/// whenever the wall temperatures are.
-fn convective(x: &[f64], t_aw: f64, h_ref: f64) -> impl FnMut(&[f64], &mut [f64]) + '_ {
-    move |wall: &[f64], q: &mut [f64]| {
-        for i in 0..q.len() {
-            q[i] = h_ref / x[i].sqrt() * (t_aw - wall[i]) - 0.8 * SIGMA * wall[i].powi(4);
-        }
-    }
-}
-
-/// Pairs (upper panel, lower panel) with the same centroid in the planform.
-fn mirror_pairs(mesh: &PanelMesh) -> Vec<(usize, usize)> {
-    let faces = |sign: f64| -> Vec<usize> {
-        (0..mesh.panels.len())
-            .filter(|&i| sign * mesh.panels[i].normal.z > 0.5)
-            .collect()
-    };
-    let lower = faces(1.0);
-    let pairs: Vec<(usize, usize)> = faces(-1.0)
-        .into_iter()
-        .filter_map(|u| {
-            let c = mesh.panels[u].centroid;
-            lower
-                .iter()
-                .find(|&&l| {
-                    let d = mesh.panels[l].centroid - c;
-                    d.x.hypot(d.y) < 1e-9
-                })
-                .map(|&l| (u, l))
-        })
-        .collect();
-    assert_eq!(pairs.len(), lower.len(), "every lower panel has its mirror");
-    pairs
-}
 
 /// Indices of the panels whose normal lies in the mid-plane (the tip face).
 fn side_panels(mesh: &PanelMesh) -> Vec<usize> {
@@ -145,7 +72,7 @@ fn a_symmetric_flux_loads_the_grid_symmetrically() {
     let wall = vec![293.0; mesh.panels.len()];
     let mut q = vec![0.0; mesh.panels.len()];
     convective(&x, 900.0, 120.0)(&wall, &mut q);
-    for (u, l) in mirror_pairs(&mesh) {
+    for (u, l) in hsv_core::testing::mirror_panel_pairs(&mesh) {
         assert!(
             (q[u] - q[l]).abs() <= 1e-10 * q[u].abs(),
             "{} vs {}",
@@ -218,7 +145,7 @@ fn full_order_keeps_a_symmetric_surface_symmetric() {
             );
         }
     }
-    for (u, l) in mirror_pairs(&mesh) {
+    for (u, l) in hsv_core::testing::mirror_panel_pairs(&mesh) {
         assert!((wall[u] - wall[l]).abs() < SYMMETRY_TOLERANCE_K);
     }
 }
@@ -272,7 +199,7 @@ fn pod_keeps_a_symmetric_surface_symmetric() {
     println!("rise {rise:.1} K, largest |dT| {worst:.3e} K at node {node}, tip {tip:.3e} K");
     assert!(rise > 100.0, "rise {rise} K");
     assert!(worst < SYMMETRY_TOLERANCE_K, "{worst} K at node {node}");
-    for (u, l) in mirror_pairs(&mesh) {
+    for (u, l) in hsv_core::testing::mirror_panel_pairs(&mesh) {
         assert!((wall[u] - wall[l]).abs() < SYMMETRY_TOLERANCE_K);
     }
 }

@@ -7,70 +7,27 @@
 //! check is a fourth condition between them, not in the snapshots. T_aw stays below 923 K,
 //! where the Ti-6Al-4V c_p is linear and k nearly so (the model's line fits).
 
+mod common;
+
 use std::sync::OnceLock;
 
+use common::{convective, full_order, lifting, mesh, running_lengths};
 use hsv_core::config::LoadedConfig;
 use hsv_core::mesh::PanelMesh;
 use hsv_core::registry::{ModelContext, Registry};
-use hsv_core::surface_grid::SurfaceGrid;
 use hsv_core::thermal::ConductionModel;
-use hsv_core::vehicle::{LiftingSurfaceConfig, Side, lifting_surface_mesh};
-use hsv_model_conduction::{
-    FullOrder, FullOrderSettings, Pod, PodBasis, PodSettings, collect_snapshots,
-};
+use hsv_model_conduction::{FullOrderSettings, Pod, PodBasis, PodSettings, collect_snapshots};
 use nalgebra::DVector;
 
-const SIGMA: f64 = 5.670_374_419e-8;
 const DT: f64 = 0.5;
 const STEPS: usize = 120;
-
-fn lifting() -> LiftingSurfaceConfig {
-    LoadedConfig::sample().unwrap().config.lifting_surface
-}
-
-fn full_order() -> FullOrder {
-    let cfg = lifting();
-    let settings = FullOrderSettings::default();
-    let grid = SurfaceGrid::lifting_surface(
-        &cfg,
-        Side::Right,
-        settings.elements_chordwise,
-        settings.elements_spanwise,
-    )
-    .unwrap();
-    let mesh = lifting_surface_mesh(&cfg, Side::Right).unwrap();
-    FullOrder::new(&grid, &mesh, settings).unwrap()
-}
-
-/// Running length of each panel centroid from the leading edge, m (at least 1 cm).
-fn running_lengths(mesh: &PanelMesh, cfg: &LiftingSurfaceConfig) -> Vec<f64> {
-    let tan = cfg.leading_edge_sweep_deg.to_radians().tan();
-    let root_le = cfg.pivot_aft_of_nose_m - cfg.pivot_root_chord_fraction * cfg.root_chord_m;
-    mesh.panels
-        .iter()
-        .map(|p| {
-            let eta = ((p.centroid.y - cfg.root_y_m) / cfg.span_m).clamp(0.0, 1.0);
-            (-p.centroid.x - (root_le + eta * cfg.span_m * tan)).max(0.01)
-        })
-        .collect()
-}
-
-/// q = h(x)(T_aw − T_w) − 0.8 σ T_w⁴ per panel.
-fn convective(x: &[f64], t_aw: f64, h_ref: f64) -> impl FnMut(&[f64], &mut [f64]) + '_ {
-    move |wall: &[f64], q: &mut [f64]| {
-        for i in 0..q.len() {
-            let h = h_ref / x[i].sqrt();
-            q[i] = h * (t_aw - wall[i]) - 0.8 * SIGMA * wall[i].powi(4);
-        }
-    }
-}
 
 /// Snapshots of three conditions, every step of 0.5 s for 60 s (360 snapshots).
 fn snapshots() -> &'static Vec<DVector<f64>> {
     static SNAPSHOTS: OnceLock<Vec<DVector<f64>>> = OnceLock::new();
     SNAPSHOTS.get_or_init(|| {
         let cfg = lifting();
-        let x = running_lengths(&lifting_surface_mesh(&cfg, Side::Right).unwrap(), &cfg);
+        let x = running_lengths(&mesh(), &cfg);
         let mut model = full_order();
         let mut all = Vec::new();
         for (t_aw, h_ref) in [(900.0, 50.0), (700.0, 120.0), (800.0, 80.0)] {
@@ -126,7 +83,7 @@ fn thirty_two_modes_capture_the_snapshot_energy() {
 #[test]
 fn pod_reproduces_the_full_order_model_off_the_snapshots() {
     let cfg = lifting();
-    let mesh = lifting_surface_mesh(&cfg, Side::Right).unwrap();
+    let mesh = mesh();
     let x = running_lengths(&mesh, &cfg);
     let mut full = full_order();
     let mut pod = Pod::new(&full, basis(32), PodSettings::default()).unwrap();

@@ -156,10 +156,10 @@ impl BodyLoadHistory {
         let Some(f0) = self.friction_before.filter(|f0| f1.time_s > f0.time_s) else {
             return Some(f1.loads());
         };
-        let w = (time_s - f1.time_s) / (f1.time_s - f0.time_s);
+        let w = predictor_weight(time_s, f0.time_s, f1.time_s);
         Some(Loads {
-            force_n: f1.force_n + (f1.force_n - f0.force_n) * w,
-            moment_nm: f1.moment_nm + (f1.moment_nm - f0.moment_nm) * w,
+            force_n: predict(&f0.force_n, &f1.force_n, w),
+            moment_nm: predict(&f0.moment_nm, &f1.moment_nm, w),
         })
     }
 
@@ -204,16 +204,15 @@ impl BodyLoadHistory {
         };
         let w = match &self.before {
             Some(l0) if l1.time_s > l0.time_s && l0.generalized.len() == l1.generalized.len() => {
-                (time_s - l1.time_s) / (l1.time_s - l0.time_s)
+                predictor_weight(time_s, l0.time_s, l1.time_s)
             }
             _ => 0.0,
         };
         let l0 = self.before.as_ref().filter(|_| w != 0.0).unwrap_or(l1);
-        let line = |a: &Vector3<f64>, b: &Vector3<f64>| b + (b - a) * w;
-        total.force_n = line(&l0.force_n, &l1.force_n);
-        total.moment_nm = line(&l0.moment_nm, &l1.moment_nm);
-        aero.force_n = line(&l0.aero_force_n, &l1.aero_force_n);
-        aero.moment_nm = line(&l0.aero_moment_nm, &l1.aero_moment_nm);
+        total.force_n = predict(&l0.force_n, &l1.force_n, w);
+        total.moment_nm = predict(&l0.moment_nm, &l1.moment_nm, w);
+        aero.force_n = predict(&l0.aero_force_n, &l1.aero_force_n, w);
+        aero.moment_nm = predict(&l0.aero_moment_nm, &l1.aero_moment_nm, w);
         for ((q, a), b) in generalized
             .iter_mut()
             .zip(l0.generalized.iter())
@@ -223,6 +222,17 @@ impl BodyLoadHistory {
         }
         true
     }
+}
+
+/// w = (t − t₁)/(t₁ − t₀): how far past the latest of two publications at t₀ < t₁ time `t` is,
+/// in units of their spacing.
+fn predictor_weight(time_s: f64, t0: f64, t1: f64) -> f64 {
+    (time_s - t1) / (t1 - t0)
+}
+
+/// L₁ + w (L₁ − L₀): the linear predictor of the module docs from L₀ = `a`, L₁ = `b`.
+fn predict(a: &Vector3<f64>, b: &Vector3<f64>, w: f64) -> Vector3<f64> {
+    b + (b - a) * w
 }
 
 #[cfg(test)]
@@ -258,6 +268,29 @@ mod tests {
             assert!((aero.moment_nm.z + 0.5 * f(t)).abs() < 1e-12);
             assert!((q[1] - f(t)).abs() < 1e-12);
         }
+    }
+
+    /// The friction predictor is exact for a friction linear in time, and steps aside (None)
+    /// when the friction is due again.
+    #[test]
+    fn friction_linear_in_time_is_extrapolated_until_it_is_due() {
+        let mut h = BodyLoadHistory::default();
+        let rate = BodyLoadRate::Interval(0.01);
+        let f = |t: f64| 2.0 + 5.0 * t;
+        assert!(h.friction_at(0.0, &rate).is_none(), "nothing published");
+        h.publish_friction(0.0, &loads(f(0.0)));
+        assert_eq!(
+            h.friction_at(0.004, &rate),
+            Some(loads(f(0.0))),
+            "one: held"
+        );
+        h.publish_friction(0.01, &loads(f(0.01)));
+        for t in [0.011, 0.015, 0.019] {
+            let read = h.friction_at(t, &rate).expect("not due");
+            assert!((read.force_n.x - f(t)).abs() < 1e-12);
+            assert!((read.moment_nm.z + f(t)).abs() < 1e-12);
+        }
+        assert!(h.friction_at(0.02, &rate).is_none(), "due at 10 ms");
     }
 
     #[test]

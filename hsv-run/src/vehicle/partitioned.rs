@@ -293,10 +293,11 @@ pub enum VehicleError {
 
 struct Body {
     friction: Option<RegionFriction>,
-    /// Skin friction about the centre of mass from the last evaluation of the friction law, and
-    /// whether the next body evaluation reuses it (its rate: module [`super::body_rate`]).
+    /// Skin friction about the centre of mass of the last body evaluation, and the value the
+    /// next evaluation takes instead of evaluating the friction law (set by `begin_step` between
+    /// the friction's evaluations: module [`super::body_rate`]), as the surfaces' `held_friction`.
     friction_loads: Loads,
-    reuse_friction: bool,
+    held_friction: Option<Loads>,
     base: PanelMesh,
     mesh: PanelMesh,
     shapes: ModeShapes,
@@ -498,7 +499,7 @@ fn body_region_loads(
     let Body {
         friction,
         friction_loads,
-        reuse_friction,
+        held_friction,
         mesh,
         shapes,
         aero,
@@ -520,11 +521,12 @@ fn body_region_loads(
             let mut body_aero =
                 integrate_pressure(mesh, &solution.pressure_pa, p_inf, cg, main_body);
             if let Some(f) = friction {
-                if !*reuse_friction {
-                    *friction_loads = f
+                *friction_loads = match held_friction {
+                    Some(held) => *held,
+                    None => f
                         .loads(mesh, flight, solution, &motion, cg, main_body)
-                        .map_err(&body_err)?;
-                }
+                        .map_err(&body_err)?,
+                };
                 body_aero = body_aero + *friction_loads;
             }
             generalized_forces(
@@ -847,7 +849,7 @@ impl PartitionedVehicle {
                     body = Some(Body {
                         friction: set.friction.map(|m| RegionFriction::new(m, n_panels)),
                         friction_loads: Loads::default(),
-                        reuse_friction: false,
+                        held_friction: None,
                         velocities: vec![Vector3::zeros(); set.info.mesh.panels.len()],
                         mesh: set.info.mesh.clone(),
                         base: set.info.mesh,
@@ -1096,15 +1098,11 @@ impl PartitionedVehicle {
         {
             let flight = self.flight(state)?;
             self.time_s = time_s;
-            let held = self
+            self.body.held_friction = self
                 .body_history
                 .friction_at(time_s, &self.body_friction_rate);
-            self.body.reuse_friction = held.is_some();
-            if let Some(f) = held {
-                self.body.friction_loads = f;
-            }
             let evaluated = self.body_loads_now(state, controls, &flight);
-            self.body.reuse_friction = false;
+            let held = self.body.held_friction.take();
             evaluated?;
             if held.is_none() && self.body.friction.is_some() {
                 self.body_history

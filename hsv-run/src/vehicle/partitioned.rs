@@ -510,7 +510,7 @@ fn body_region_loads(
         ..
     } = b;
     let (mesh, shapes) = (&*mesh, &*shapes);
-    let (body_aero, engine_loads) = rayon::join(
+    let (body_aero, engine_loads) = join(
         || -> Result<Loads, VehicleError> {
             let motion = PanelMotion {
                 elastic_velocity_m_s: Some(velocities),
@@ -773,13 +773,44 @@ fn surfaces_loads(
     time_s: f64,
     hold_friction: bool,
 ) -> Result<(), VehicleError> {
-    surfaces
-        .par_iter_mut()
-        .zip(forces.par_iter_mut())
-        .zip(state.surface_modes.par_iter())
-        .try_for_each(|((s, out), modes)| {
-            surface_region_loads(s, modes, elevon, flight, time_s, hold_friction, out)
-        })
+    let each =
+        |((s, out), modes): (
+            (&mut Surface, &mut DVector<f64>),
+            &crate::dynamics::ModalState,
+        )| { surface_region_loads(s, modes, elevon, flight, time_s, hold_friction, out) };
+    if side_by_side() {
+        surfaces
+            .par_iter_mut()
+            .zip(forces.par_iter_mut())
+            .zip(state.surface_modes.par_iter())
+            .try_for_each(each)
+    } else {
+        surfaces
+            .iter_mut()
+            .zip(forces.iter_mut())
+            .zip(state.surface_modes.iter())
+            .try_for_each(each)
+    }
+}
+
+/// Whether regions are evaluated side by side: only on a rayon worker thread (the simulation
+/// loop runs on one). Called from outside the pool (trim, linearization, flutter), every
+/// parallel section would hand its work to the pool and sleep on a latch, which cost 12 % of a
+/// one-core run for two surface evaluations of about 70 µs each.
+fn side_by_side() -> bool {
+    rayon::current_thread_index().is_some()
+}
+
+/// `a` and `b` side by side when [`side_by_side`], one after the other otherwise.
+fn join<RA: Send, RB: Send>(
+    a: impl FnOnce() -> RA + Send,
+    b: impl FnOnce() -> RB + Send,
+) -> (RA, RB) {
+    if side_by_side() {
+        rayon::join(a, b)
+    } else {
+        (a(), b())
+    }
 }
 
 impl PartitionedVehicle {
@@ -1175,7 +1206,7 @@ impl PartitionedVehicle {
         let engine_solution = &mut self.engine_solution;
         let surfaces = &mut self.surfaces;
         let surface_forces = &mut self.loads.surface_generalized_forces;
-        let (body_loads, surfaces_done) = rayon::join(
+        let (body_loads, surfaces_done) = join(
             || {
                 body_region_loads(
                     body,
@@ -1334,9 +1365,12 @@ impl PartitionedVehicle {
     ) -> Result<(), VehicleError> {
         let rates = self.heating;
         // Each surface heats on its own (heat flux, conduction, its stiffness): side by side.
-        self.surfaces
-            .par_iter_mut()
-            .try_for_each(|s| heat_surface(s, flight, time_s, &rates))?;
+        let heat = |s: &mut Surface| heat_surface(s, flight, time_s, &rates);
+        if side_by_side() {
+            self.surfaces.par_iter_mut().try_for_each(heat)?;
+        } else {
+            self.surfaces.iter_mut().try_for_each(heat)?;
+        }
         for (i, s) in self.surfaces.iter_mut().enumerate() {
             if let Some(t) = &mut s.thermal
                 && std::mem::take(&mut t.stiffness_changed)

@@ -617,3 +617,53 @@ fn repeated_evaluations_reuse_buffers() {
     assert_eq!(out, first);
     assert_eq!(out.pressure_pa.capacity(), capacity);
 }
+
+/// Pitch damping of a thin flat plate at zero incidence, pitching about its mid-chord: first-order
+/// piston theory (Lighthill 1953; Ashley & Zartarian, "Piston theory — a new aerodynamic tool for
+/// the aeroelastician", J. Aeronaut. Sci. 23(12), 1956, the pitching flat plate of their §3) gives
+/// each side p = p∞(1 + γ w/a∞), so the pressure jump is 2 ρ∞ a∞ w with w = q (x - x_p), and
+/// ∂M/∂q = -2 ρ∞ a∞ b ∫(x - x_p)² dx = -ρ∞ a∞ b c³ / 6. At zero incidence the shock-expansion
+/// base state is the freestream, so `shock-expansion-piston` must reproduce it; the midpoint rule
+/// on 20 panels per side integrates (x - x_p)² to 1 - 1/20² = 0.25 % below the exact value and the
+/// central difference in q cancels the second-order term. Tolerance 10 % (the issue's band, set
+/// before the run); this is the body's pitch damping source (the main body runs this model).
+#[test]
+fn flat_plate_pitch_damping_matches_piston_theory() {
+    let panels = 20;
+    let chord = 1.0;
+    let points: Vec<(f64, f64)> = (0..=panels)
+        .map(|i| (-chord * f64::from(i) / f64::from(panels), 0.0))
+        .collect();
+    let mesh = section(&points, &points);
+    let pivot = Point3::new(-0.5 * chord, 0.0, 0.0);
+    for mach in [3.0, 6.0] {
+        let mut flight = condition(mach, 0.0);
+        flight.rotation_center_m = pivot;
+        let moment = |q: f64, flight: &mut FlightCondition| {
+            flight.angular_velocity_rad_s = Vector3::new(0.0, q, 0.0);
+            let out = evaluate(&mut ShockExpansionPiston::new(), &mesh, flight);
+            integrate_pressure(
+                &mesh,
+                &out.pressure_pa,
+                flight.freestream.pressure_pa,
+                &pivot,
+                |_| true,
+            )
+            .moment_nm
+            .y
+        };
+        let q = 0.05;
+        let m_q = (moment(q, &mut flight) - moment(-q, &mut flight)) / (2.0 * q);
+        let fs = flight.freestream;
+        let closed_form = -fs.density_kg_m3 * fs.speed_of_sound_m_s * chord.powi(3) / 6.0;
+        assert!(
+            (m_q / closed_form - 1.0).abs() <= 0.10,
+            "M {mach}: dM/dq {m_q} N m s against piston theory {closed_form}"
+        );
+        // The steady model gives none: the reason the body runs the piston model.
+        flight.angular_velocity_rad_s = Vector3::new(0.0, q, 0.0);
+        let steady = evaluate(&mut ShockExpansion::new(), &mesh, &flight);
+        let m = integrate_pressure(&mesh, &steady.pressure_pa, fs.pressure_pa, &pivot, |_| true);
+        assert_eq!(m.moment_nm.y, 0.0);
+    }
+}

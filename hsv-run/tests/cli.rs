@@ -133,12 +133,14 @@ fn unknown_config_keys_name_file_and_key_path() {
     let path = dir.join("bad-model-setting.toml");
     std::fs::write(
         &path,
-        format!("{sample}\n[models.shock-expansion]\nfoo = 1\n"),
+        // The main body's aero model (the sample's `shock-expansion-piston` since the body's
+        // pressures include its motion): a setting it does not know is refused.
+        format!("{sample}\n[models.shock-expansion-piston]\nfoo = 1\n"),
     )
     .unwrap();
     expect_error(
         &["aero", "--config", path.to_str().unwrap()],
-        &["models.shock-expansion", "foo"],
+        &["models.shock-expansion-piston", "foo"],
     );
 }
 

@@ -55,9 +55,11 @@ fn the_convolution_rom_flies_the_elevon_ramp_as_its_source_does() {
     let source = common::coarse_text();
     let rom = format!(
         "{}\n[models.convolution-rom]\ncache_file = \"\"\n",
-        source.replace(
-            "aero = \"shock-expansion-piston\"",
-            "aero = \"convolution-rom\"",
+        // The surfaces only: the main body runs `shock-expansion-piston` too.
+        source.replacen(
+            "[regions.lifting_surfaces]\naero = \"shock-expansion-piston\"",
+            "[regions.lifting_surfaces]\naero = \"convolution-rom\"",
+            1,
         )
     );
     assert_ne!(rom, source, "the lifting surfaces fly the ROM");

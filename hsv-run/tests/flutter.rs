@@ -469,7 +469,7 @@ fn ranges_that_never_or_always_flutter_are_reported_as_such() {
     };
     let below = run(1.5, 4.0);
     match below.boundary {
-        FlutterBoundary::NeverFlutters { max_real_per_s, .. } => {
+        FlutterBoundary::StableInRange { max_real_per_s, .. } => {
             assert!(max_real_per_s <= 1e-6, "{max_real_per_s}")
         }
         other => panic!("expected no flutter below, got {other:?}"),
@@ -477,7 +477,7 @@ fn ranges_that_never_or_always_flutter_are_reported_as_such() {
     assert!(below.critical_mach.is_none() && below.lambda.is_none());
     let above = run(8.0, 12.0);
     match above.boundary {
-        FlutterBoundary::FluttersEverywhere { max_real_per_s, .. } => {
+        FlutterBoundary::UnstableAtLowest { max_real_per_s, .. } => {
             assert!(max_real_per_s > 0.0)
         }
         other => panic!("expected flutter everywhere above, got {other:?}"),

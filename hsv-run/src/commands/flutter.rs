@@ -6,12 +6,15 @@
 //! At each Mach number of the grid (`--mach-range A:B` in steps of `--mach-step`) the right
 //! lifting surface starts at 293 K and heats in that flow; at each time of `--times-s` its
 //! linear state matrix is identified around its equilibrium and its eigenvalues decide
-//! stability. The flutter Mach number at each time is found by Brent's method between the
-//! grid points that bracket the crossing. Defaults: 10 km, Mach 2 to 40 in steps of 1 (the
-//! sample's solid 5 % titanium wedge flutters cold at Mach 33.8, above the paper's 16.1 for a
-//! surface it does not size), times 0, 1, 2, 5, 10, 20, ..., 100 s (the boundary falls fastest
-//! in the first seconds), full-order conduction (no POD training), the direct state derivative
-//! with the paper's forward difference compared at every grid point.
+//! stability. At each time the flutter Mach number (an oscillatory pair crosses, reported with
+//! its frequency and the mode it grows from) and, apart from it, the divergence Mach number (a
+//! real root crosses: static divergence or thermal buckling in the flow) are each found by
+//! Brent's method between the grid points that bracket that kind's crossing. Defaults: 10 km,
+//! Mach 2 to 40 in steps of 1 (the range holds the sample surface's cold crossing, whose
+//! thickness is calibrated to the paper's 16.1: see `configs/sample-hsv.toml`), times 0, 1, 2,
+//! 5, 10, 20, ..., 100 s (the boundary falls fastest in the first seconds), full-order
+//! conduction (no POD training), the direct state derivative with the paper's forward
+//! difference compared at every grid point.
 
 use std::path::Path;
 
@@ -22,6 +25,7 @@ use hsv_core::registry::{ModelContext, Registry};
 use serde_json::json;
 
 use super::{ConfigArg, JsonFlag, OutArgs, load_config};
+use crate::analysis::flutter::Instability;
 use crate::analysis::flutter::panel::{SimplySupportedPanel, mach_grid, panel_flutter};
 use crate::analysis::flutter::sweep::{
     FlutterBoundary, FlutterMap, FlutterModels, FlutterPoint, FlutterSetup, PointStatus,
@@ -283,8 +287,11 @@ fn summary(setup: &FlutterSetup, map: &FlutterMap) -> serde_json::Value {
     let boundaries: Vec<_> = map
         .times_s
         .iter()
-        .zip(&map.boundaries)
-        .map(|(t, b)| json!({"time_s": t, "flutter_mach": b.mach(), "boundary": b}))
+        .zip(map.boundaries.iter().zip(&map.divergence))
+        .map(|(t, (f, d))| {
+            json!({"time_s": t, "flutter_mach": f.mach(), "flutter": f,
+                   "divergence_mach": d.mach(), "divergence": d})
+        })
         .collect();
     let limits: Vec<_> = map
         .points
@@ -308,6 +315,8 @@ fn summary(setup: &FlutterSetup, map: &FlutterMap) -> serde_json::Value {
         "conduction_dt_s": setup.heating.dt_s,
         "flutter_mach_first_time": first,
         "flutter_mach_last_time": last,
+        "divergence_mach_first_time": map.divergence.first().and_then(FlutterBoundary::mach),
+        "divergence_mach_last_time": map.divergence.last().and_then(FlutterBoundary::mach),
         "flutter_margin_loss": match (first, last) {
             (Some(a), Some(b)) if a > 0.0 => Some(1.0 - b / a),
             _ => None,
@@ -318,7 +327,7 @@ fn summary(setup: &FlutterSetup, map: &FlutterMap) -> serde_json::Value {
         "max_critical_root_difference_forward_vs_direct": difference.map(|d| d.1),
         "wall_time_s": map.wall_time_s,
         "paper": {"cold_flutter_mach": 16.1, "flutter_mach_after_100_s": 3.5,
-                  "note": "Klock & Cesnik §IV.D, Fig. 16: their surface; ours is the sample planform"},
+                  "note": "Klock & Cesnik §IV.D, Fig. 16: first-mode flutter of their surface; ours is the sample planform"},
     })
 }
 
@@ -340,48 +349,26 @@ fn print_table(setup: &FlutterSetup, map: &FlutterMap, folder: &Path) -> Result<
         map.times_s.len(),
         map.wall_time_s
     )?;
-    outln!("{:>8}  {:>12}  {}", "t (s)", "flutter M", "boundary")?;
-    for (t, b) in map.times_s.iter().zip(&map.boundaries) {
-        let text = match b {
-            FlutterBoundary::Crossing {
-                mach,
-                frequency_hz,
-                evaluations,
-                ..
-            } if *frequency_hz == 0.0 => format!(
-                "{mach:>12.3}  divergence (a real root crosses: the heated surface buckles in the flow; {evaluations} Brent evaluations)"
-            ),
-            FlutterBoundary::Crossing {
-                mach,
-                frequency_hz,
-                evaluations,
-                ..
-            } => format!(
-                "{mach:>12.3}  crossing ({frequency_hz:.2} Hz root; {evaluations} Brent evaluations)"
-            ),
-            FlutterBoundary::NeverFlutters {
-                max_real_per_s,
-                at_mach,
-                least_damping_ratio,
-                limited_by,
-            } => format!(
-                "{:>12}  no flutter in the range (largest real part {max_real_per_s:.4} /s at Mach {at_mach}, least damping ratio {least_damping_ratio:.4}){}",
-                "-",
-                limited_by
-                    .as_ref()
-                    .map_or_else(String::new, |l| format!("; analysable only below {l}"))
-            ),
-            FlutterBoundary::FluttersEverywhere {
-                lowest_mach,
-                max_real_per_s,
-                least_damping_ratio,
-            } => format!(
-                "{:>12}  already unstable at Mach {lowest_mach} (largest real part {max_real_per_s:.4} /s, damping ratio {least_damping_ratio:.4})",
-                "-"
-            ),
-            FlutterBoundary::Unresolved { reason } => format!("{:>12}  unresolved: {reason}", "-"),
-        };
-        outln!("{t:>8.1}  {text}")?;
+    outln!(
+        "{:>8}  {:>12}  {}",
+        "t (s)",
+        "flutter M",
+        "flutter (oscillatory pair) | divergence (real root)"
+    )?;
+    for ((t, f), d) in map.times_s.iter().zip(&map.boundaries).zip(&map.divergence) {
+        outln!(
+            "{t:>8.1}  {:>12}  {}",
+            f.mach()
+                .map_or_else(|| "-".to_owned(), |m| format!("{m:.3}")),
+            describe(f, Instability::Flutter)
+        )?;
+        outln!(
+            "{:>8}  {:>12}  {}",
+            "",
+            d.mach()
+                .map_or_else(|| "-".to_owned(), |m| format!("div {m:.3}")),
+            describe(d, Instability::Divergence)
+        )?;
     }
     for p in map.points.iter().flatten() {
         if !p.status.is_analysed() {
@@ -402,6 +389,57 @@ fn print_table(setup: &FlutterSetup, map: &FlutterMap, folder: &Path) -> Result<
     Ok(())
 }
 
+/// One line on a flutter or divergence boundary.
+pub(super) fn describe(b: &FlutterBoundary, kind: Instability) -> String {
+    let what = kind.name();
+    match b {
+        FlutterBoundary::Crossing {
+            mach,
+            frequency_hz,
+            evaluations,
+            grows_from,
+            ..
+        } => {
+            let origin = grows_from.map_or_else(
+                || "mode not tracked".to_owned(),
+                |g| {
+                    format!(
+                        "grows from mode {} ({:.2} Hz at Mach {})",
+                        g.mode, g.frequency_hz, g.mach
+                    )
+                },
+            );
+            match kind {
+                Instability::Flutter => format!(
+                    "flutter at Mach {mach:.3}: {frequency_hz:.2} Hz, {origin}; {evaluations} Brent evaluations"
+                ),
+                Instability::Divergence => format!(
+                    "divergence at Mach {mach:.3}: a real root crosses, {origin}; {evaluations} Brent evaluations"
+                ),
+            }
+        }
+        FlutterBoundary::StableInRange {
+            max_real_per_s,
+            at_mach,
+            least_damping_ratio,
+            limited_by,
+        } => format!(
+            "no {what} in the range (largest real part of its roots {max_real_per_s:.4} /s at Mach {at_mach}, least damping ratio {least_damping_ratio:.4}){}",
+            limited_by
+                .as_ref()
+                .map_or_else(String::new, |l| format!("; analysable only below {l}"))
+        ),
+        FlutterBoundary::UnstableAtLowest {
+            lowest_mach,
+            max_real_per_s,
+            least_damping_ratio,
+        } => format!(
+            "{what} already at Mach {lowest_mach} (largest real part {max_real_per_s:.4} /s, damping ratio {least_damping_ratio:.4})"
+        ),
+        FlutterBoundary::Unresolved { reason } => format!("{what} unresolved: {reason}"),
+    }
+}
+
 /// The lowest grid Mach number of `row` that could not be analysed (melting, past the
 /// material data, failed): above it the row says nothing about flutter.
 fn limit_mach(row: &[FlutterPoint]) -> Option<f64> {
@@ -411,29 +449,56 @@ fn limit_mach(row: &[FlutterPoint]) -> Option<f64> {
         .reduce(f64::min)
 }
 
-/// Fig. 16: the instability Mach number versus time (flutter_mach.csv; a critical frequency
-/// of 0 is divergence), the limit of the analysable range versus time (flutter_limits.csv),
-/// and both in flutter_mach.png.
-fn write_flutter_mach(folder: &mut RunFolder, map: &FlutterMap) -> Result<()> {
-    let mut crossings: [Vec<f64>; 3] = Default::default();
-    for (t, b) in map.times_s.iter().zip(&map.boundaries) {
+/// The crossings of `boundaries` as columns: time (s), Mach number, frequency (Hz), the mode
+/// it grows from (0: not tracked) and that mode's frequency (Hz).
+fn crossing_columns(times_s: &[f64], boundaries: &[FlutterBoundary]) -> [Vec<f64>; 5] {
+    let mut cols: [Vec<f64>; 5] = Default::default();
+    for (t, b) in times_s.iter().zip(boundaries) {
         if let FlutterBoundary::Crossing {
-            mach, frequency_hz, ..
+            mach,
+            frequency_hz,
+            grows_from,
+            ..
         } = b
         {
-            for (c, v) in crossings.iter_mut().zip([*t, *mach, *frequency_hz]) {
+            let (mode, from_hz) =
+                grows_from.map_or((0.0, 0.0), |g| (g.mode as f64, g.frequency_hz));
+            for (c, v) in cols
+                .iter_mut()
+                .zip([*t, *mach, *frequency_hz, mode, from_hz])
+            {
                 c.push(v);
             }
         }
     }
-    let [t_f, m_f, f_f] = crossings;
-    let path = folder.join("flutter_mach.csv");
-    output::write_csv(
-        &path,
-        &["time_s", "flutter_mach", "critical_frequency_hz"],
-        &[&t_f, &m_f, &f_f],
-    )?;
-    folder.record(path);
+    cols
+}
+
+/// Fig. 16: the flutter Mach number versus time (flutter_mach.csv), the divergence Mach number
+/// apart from it (divergence_mach.csv), the limit of the analysable range versus time
+/// (flutter_limits.csv), and all three in flutter_mach.png.
+fn write_flutter_mach(folder: &mut RunFolder, map: &FlutterMap) -> Result<()> {
+    let flutter = crossing_columns(&map.times_s, &map.boundaries);
+    let divergence = crossing_columns(&map.times_s, &map.divergence);
+    for (name, kind, cols) in [
+        ("flutter_mach.csv", "flutter", &flutter),
+        ("divergence_mach.csv", "divergence", &divergence),
+    ] {
+        let path = folder.join(name);
+        let refs: Vec<&[f64]> = cols.iter().map(Vec::as_slice).collect();
+        output::write_csv(
+            &path,
+            &[
+                "time_s",
+                &format!("{kind}_mach"),
+                "frequency_hz",
+                "grows_from_mode",
+                "grows_from_frequency_hz",
+            ],
+            &refs,
+        )?;
+        folder.record(path);
+    }
     let (t_l, m_l): (Vec<f64>, Vec<f64>) = map
         .times_s
         .iter()
@@ -448,12 +513,17 @@ fn write_flutter_mach(folder: &mut RunFolder, map: &FlutterMap) -> Result<()> {
     )?;
     folder.record(path);
     let mut series = Vec::new();
-    if !t_f.is_empty() {
-        series.push(Series {
-            label: "flutter or divergence Mach".to_owned(),
-            x: t_f,
-            y: m_f,
-        });
+    for (label, cols) in [
+        ("flutter Mach (oscillatory pair crosses)", &flutter),
+        ("divergence Mach (real root crosses)", &divergence),
+    ] {
+        if !cols[0].is_empty() {
+            series.push(Series {
+                label: label.to_owned(),
+                x: cols[0].clone(),
+                y: cols[1].clone(),
+            });
+        }
     }
     if !t_l.is_empty() {
         series.push(Series {
@@ -469,7 +539,7 @@ fn write_flutter_mach(folder: &mut RunFolder, map: &FlutterMap) -> Result<()> {
     output::write_line_plots_png(
         &path,
         &[LinePlot {
-            title: "Flutter Mach number versus time in flow".to_owned(),
+            title: "Flutter and divergence Mach numbers versus time in flow".to_owned(),
             x_label: "time in flow (s)".to_owned(),
             y_label: "Mach number".to_owned(),
             series,
@@ -484,36 +554,64 @@ fn write_flutter_mach(folder: &mut RunFolder, map: &FlutterMap) -> Result<()> {
 /// CSVs and PNGs of Figs. 14-16.
 fn write_outputs(folder: &mut RunFolder, map: &FlutterMap) -> Result<()> {
     write_flutter_mach(folder, map)?;
-    // Fig. 15: root loci of the tracked modes over Mach and time.
-    let mut cols: [Vec<f64>; 7] = Default::default();
+    // Fig. 15: every root of every grid point (with its tracked mode) and of every point the
+    // boundary searches evaluated (search 1: flutter, 2: divergence; mode 0: not tracked), the
+    // largest-σ root of each point flagged critical.
+    let mut cols: [Vec<f64>; 9] = Default::default();
+    let mut push_point = |p: &FlutterPoint, search: f64, modes: &[Option<usize>]| {
+        let critical = p
+            .roots
+            .iter()
+            .enumerate()
+            .max_by(|a, b| a.1.real_per_s.total_cmp(&b.1.real_per_s))
+            .map(|(i, _)| i);
+        for (j, r) in p.roots.iter().enumerate() {
+            let mode = modes
+                .iter()
+                .position(|m| *m == Some(j))
+                .map_or(0.0, |k| (k + 1) as f64);
+            for (c, v) in cols.iter_mut().zip([
+                p.time_s,
+                p.mach,
+                search,
+                mode,
+                if critical == Some(j) { 1.0 } else { 0.0 },
+                r.real_per_s,
+                r.imag_rad_s,
+                r.frequency_hz,
+                r.damping_ratio,
+            ]) {
+                c.push(v);
+            }
+        }
+    };
     let mut loci = Vec::new();
     for (ti, row) in map.points.iter().enumerate() {
         let mut x = Vec::new();
         let mut y = Vec::new();
         for (mi, p) in row.iter().enumerate() {
-            let Some(tracked) = map.tracked.get(ti).and_then(|r| r.get(mi)) else {
-                continue;
-            };
-            for (mode, root) in tracked.iter().enumerate() {
-                let Some(r) = root.and_then(|j| p.roots.get(j)) else {
-                    continue;
-                };
-                for (c, v) in cols.iter_mut().zip([
-                    p.time_s,
-                    p.mach,
-                    (mode + 1) as f64,
-                    r.real_per_s,
-                    r.imag_rad_s,
-                    r.frequency_hz,
-                    r.damping_ratio,
-                ]) {
-                    c.push(v);
-                }
-                if mode == 0 {
-                    x.push(r.real_per_s);
-                    y.push(r.frequency_hz);
-                }
+            let tracked = map
+                .tracked
+                .get(ti)
+                .and_then(|r| r.get(mi))
+                .map_or(&[][..], Vec::as_slice);
+            push_point(p, 0.0, tracked);
+            if let Some(r) = tracked
+                .first()
+                .copied()
+                .flatten()
+                .and_then(|j| p.roots.get(j))
+            {
+                x.push(r.real_per_s);
+                y.push(r.frequency_hz);
             }
+        }
+        for s in map.searched.get(ti).into_iter().flatten() {
+            let search = match s.instability {
+                Instability::Flutter => 1.0,
+                Instability::Divergence => 2.0,
+            };
+            push_point(&s.point, search, &[]);
         }
         if !x.is_empty() {
             loci.push(Series {
@@ -530,7 +628,9 @@ fn write_outputs(folder: &mut RunFolder, map: &FlutterMap) -> Result<()> {
         &[
             "time_s",
             "mach",
+            "search",
             "mode",
+            "critical",
             "real_per_s",
             "imag_rad_s",
             "frequency_hz",

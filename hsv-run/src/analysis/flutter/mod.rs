@@ -1,7 +1,8 @@
 //! Flutter of a lifting surface (paper §IV.D, Eqs. 4-8, Figs. 14-16): the surface alone in the
 //! flow with its root fixed, a linear state matrix identified around its equilibrium, its
-//! eigenvalues, and the flutter Mach number where the largest real part crosses zero, versus
-//! time in the flow as the surface heats.
+//! eigenvalues, and versus time in the flow as the surface heats the flutter Mach number (an
+//! oscillatory pair crosses zero real part) and, apart from it, the divergence Mach number (a
+//! real root crosses: static divergence or thermal buckling in the flow).
 //!
 //! - [`surface`]: the Ritz equations M q̈ + C q̇ + K q = Q_aero(q, q̇) + Q_T of one surface with
 //!   the aero of a named model on the deformed mesh, its static equilibrium and the identified
@@ -27,7 +28,7 @@ use hsv_core::linalg::EigenError;
 use crate::dynamics::DynamicsError;
 use crate::vehicle::{AssemblyError, RegionError};
 
-pub use stability::{FlutterRoot, Stability, brent_root, mac, stability};
+pub use stability::{FlutterRoot, Instability, Stability, brent_root, mac, stability};
 pub use surface::{DerivativeMethod, Equilibrium, Identification, SurfaceDynamics, SurfaceOptions};
 
 /// Why a flutter point could not be computed; each names the quantity and what was expected.

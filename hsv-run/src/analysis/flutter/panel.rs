@@ -27,7 +27,7 @@ use hsv_core::structure::StructureModel;
 use nalgebra::{DVector, Point3};
 use serde::Serialize;
 
-use super::stability::{Stability, brent_root, stability};
+use super::stability::{Instability, Stability, brent_root, stability};
 use super::surface::{DerivativeMethod, SurfaceDynamics, SurfaceOptions};
 use super::sweep::FlutterBoundary;
 use super::{FlutterError, check_positive};
@@ -268,20 +268,22 @@ pub fn panel_flutter(
         .iter()
         .map(|&m| evaluate(m))
         .collect::<Result<_, _>>()?;
-    let boundary = if grid[0].is_unstable() {
-        FlutterBoundary::FluttersEverywhere {
+    // Flutter only: an oscillatory pair's margin (a real root of a buckled panel is divergence).
+    let margin = |s: &Stability| {
+        s.margin_per_s(Instability::Flutter)
+            .unwrap_or(-s.growth_threshold_per_s)
+    };
+    let boundary = if margin(&grid[0]) > 0.0 {
+        FlutterBoundary::UnstableAtLowest {
             lowest_mach: machs[0],
             max_real_per_s: grid[0].max_real_per_s,
             least_damping_ratio: grid[0].least_damping_ratio(),
         }
-    } else if let Some(i) = (1..grid.len()).find(|&i| grid[i].is_unstable()) {
+    } else if let Some(i) = (1..grid.len()).find(|&i| margin(&grid[i]) > 0.0) {
         let search = brent_root(
-            |m| evaluate(m).map(|s| s.growth_margin_per_s()),
+            |m| evaluate(m).map(|s| margin(&s)),
             (machs[i - 1], machs[i]),
-            (
-                grid[i - 1].growth_margin_per_s(),
-                grid[i].growth_margin_per_s(),
-            ),
+            (margin(&grid[i - 1]), margin(&grid[i])),
             1e-6 * machs[i],
             80,
         )?;
@@ -290,7 +292,10 @@ pub fn panel_flutter(
             mach: search.root,
             bracket: search.bracket,
             evaluations: search.evaluations,
-            frequency_hz: above.roots[above.critical].frequency_hz,
+            frequency_hz: above
+                .critical_of(Instability::Flutter)
+                .map_or(0.0, |k| above.roots[k].frequency_hz),
+            grows_from: None,
         }
     } else {
         let (k, worst) = grid
@@ -298,7 +303,7 @@ pub fn panel_flutter(
             .enumerate()
             .max_by(|a, b| a.1.max_real_per_s.total_cmp(&b.1.max_real_per_s))
             .map_or((0, f64::NEG_INFINITY), |(k, s)| (k, s.max_real_per_s));
-        FlutterBoundary::NeverFlutters {
+        FlutterBoundary::StableInRange {
             max_real_per_s: worst,
             at_mach: machs[k],
             least_damping_ratio: grid

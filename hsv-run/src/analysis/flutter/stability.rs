@@ -9,6 +9,12 @@
 //! any physical damping (a 1 % damped 1 Hz mode has σ = −0.06 /s, and ‖A‖_F of a 15-mode
 //! surface is about the largest ω², 1e6-1e8 /s²).
 //!
+//! **Flutter and divergence.** A growing oscillatory pair (ω > 0) is flutter; a growing real
+//! root (ω = 0: the Schur form's 1 × 1 blocks, whose imaginary part the solver returns as
+//! exactly zero) is static divergence, or thermal buckling when the heated structure alone has
+//! lost its stiffness. [`Instability`] names the two, and each has its own margin, so that a
+//! boundary of one is never reported under the other's name.
+//!
 //! **Tracking.** Roots are matched to reference roots by the modal assurance criterion of
 //! their displacement parts, MAC(a, b) = |aᴴ b|² / ((aᴴ a)(bᴴ b)) (Allemang & Brown, "A
 //! correlation coefficient for modal vector analysis", 1st IMAC, 1982), greedily from the best
@@ -35,6 +41,41 @@ pub struct FlutterRoot {
     pub shape: DVector<Complex<f64>>,
 }
 
+impl FlutterRoot {
+    /// Whether this is a real root (ω = 0, module docs): one that crosses is divergence.
+    pub fn is_real(&self) -> bool {
+        self.imag_rad_s == 0.0
+    }
+}
+
+/// The two ways a root of A crosses into the right half plane (module docs).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum Instability {
+    /// An oscillatory pair crosses: flutter.
+    Flutter,
+    /// A real root crosses: static divergence, or thermal buckling in the flow.
+    Divergence,
+}
+
+impl Instability {
+    /// Whether `root` is of this kind.
+    pub fn admits(self, root: &FlutterRoot) -> bool {
+        match self {
+            Instability::Flutter => !root.is_real(),
+            Instability::Divergence => root.is_real(),
+        }
+    }
+
+    /// `flutter` or `divergence`.
+    pub fn name(self) -> &'static str {
+        match self {
+            Instability::Flutter => "flutter",
+            Instability::Divergence => "divergence",
+        }
+    }
+}
+
 /// Roots of one state matrix.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Stability {
@@ -57,6 +98,23 @@ impl Stability {
     /// Whether a root grows.
     pub fn is_unstable(&self) -> bool {
         self.growth_margin_per_s() > 0.0
+    }
+
+    /// Index in `roots` of the root of kind `kind` with the largest σ, if A has one.
+    pub fn critical_of(&self, kind: Instability) -> Option<usize> {
+        self.roots
+            .iter()
+            .enumerate()
+            .filter(|(_, r)| kind.admits(r))
+            .max_by(|a, b| a.1.real_per_s.total_cmp(&b.1.real_per_s))
+            .map(|(i, _)| i)
+    }
+
+    /// The largest σ of the roots of kind `kind` minus the growth threshold, 1/s (positive:
+    /// that kind of instability); `None` when A has no root of that kind.
+    pub fn margin_per_s(&self, kind: Instability) -> Option<f64> {
+        self.critical_of(kind)
+            .map(|i| self.roots[i].real_per_s - self.growth_threshold_per_s)
     }
 
     /// The least damping ratio over all roots.
@@ -287,5 +345,42 @@ mod tests {
         assert!((r.damping_ratio - zeta).abs() < 1e-12, "{r:?}");
         assert!((r.imag_rad_s - omega * (1.0 - zeta * zeta).sqrt()).abs() < 1e-10);
         assert!(!s.is_unstable());
+    }
+
+    /// A damped oscillator beside a statically divergent coordinate (ẍ = +k x, λ = ±√k):
+    /// the growing real root √k is divergence, the damped pair is not flutter; each margin
+    /// sees only its own kind.
+    #[test]
+    fn real_root_is_divergence_and_pair_is_not_flutter() {
+        let (omega, zeta, k) = (10.0, 0.05, 4.0);
+        let a = DMatrix::from_row_slice(
+            4,
+            4,
+            &[
+                0.0,
+                0.0,
+                1.0,
+                0.0, //
+                0.0,
+                0.0,
+                0.0,
+                1.0, //
+                -omega * omega,
+                0.0,
+                -2.0 * zeta * omega,
+                0.0, //
+                0.0,
+                k,
+                0.0,
+                0.0,
+            ],
+        );
+        let s = stability(&a).expect("stability");
+        let divergence = s.margin_per_s(Instability::Divergence).expect("real roots");
+        let flutter = s.margin_per_s(Instability::Flutter).expect("a pair");
+        assert!((divergence + s.growth_threshold_per_s - 2.0).abs() < 1e-10);
+        assert!((flutter + s.growth_threshold_per_s + zeta * omega).abs() < 1e-10);
+        let critical = &s.roots[s.critical_of(Instability::Divergence).expect("root")];
+        assert!(critical.is_real());
     }
 }

@@ -63,7 +63,7 @@ impl FlutterAtTime {
             FlutterBoundary::Crossing {
                 mach, frequency_hz, ..
             } => format!("flutter at Mach {mach:.4} ({frequency_hz:.2} Hz)"),
-            FlutterBoundary::NeverFlutters {
+            FlutterBoundary::StableInRange {
                 max_real_per_s,
                 at_mach,
                 least_damping_ratio,
@@ -75,7 +75,7 @@ impl FlutterAtTime {
                     .as_ref()
                     .map_or_else(String::new, |l| format!(", not analysable {l}"))
             ),
-            FlutterBoundary::FluttersEverywhere {
+            FlutterBoundary::UnstableAtLowest {
                 lowest_mach,
                 max_real_per_s,
                 ..
@@ -156,7 +156,7 @@ pub(super) fn flutter_case(
             FlutterBoundary::Crossing { mach, .. } => {
                 out.values.insert(flutter_mach_key(time_s), *mach);
             }
-            FlutterBoundary::NeverFlutters {
+            FlutterBoundary::StableInRange {
                 max_real_per_s,
                 least_damping_ratio,
                 ..
@@ -183,7 +183,7 @@ pub(super) fn flutter_deviation(
     case: &CaseResult,
     reference: &CaseResult,
 ) -> (BTreeMap<String, f64>, Option<f64>) {
-    use FlutterBoundary::{Crossing, FluttersEverywhere, NeverFlutters};
+    use FlutterBoundary::{Crossing, StableInRange, UnstableAtLowest};
     let mut deviations = BTreeMap::new();
     if case.flutter.len() != reference.flutter.len() {
         return (deviations, None);
@@ -196,8 +196,8 @@ pub(super) fn flutter_deviation(
                 deviations.insert(flutter_mach_key(c.time_s), d);
                 error = error.max(d / m_ref);
             }
-            (NeverFlutters { .. }, NeverFlutters { .. })
-            | (FluttersEverywhere { .. }, FluttersEverywhere { .. }) => {}
+            (StableInRange { .. }, StableInRange { .. })
+            | (UnstableAtLowest { .. }, UnstableAtLowest { .. }) => {}
             _ => return (deviations, None),
         }
     }
@@ -230,11 +230,12 @@ mod tests {
             bracket: (mach - 0.5, mach + 0.5),
             evaluations: 5,
             frequency_hz: 20.0,
+            grows_from: None,
         }
     }
 
     fn stable() -> FlutterBoundary {
-        FlutterBoundary::NeverFlutters {
+        FlutterBoundary::StableInRange {
             max_real_per_s: -0.5,
             at_mach: 20.0,
             least_damping_ratio: 0.01,

@@ -123,21 +123,28 @@ pub fn design_model(full: &LinearModel, axis: &Axis) -> Result<LinearDesignModel
     })
 }
 
-/// The rows of the full model's C that measure `axis`'s design states, and its input columns.
-pub fn measurement_map(
+/// The full linear model's state matrix closed by `laws`: A − Σ B_u K C_z, each law's design
+/// states z read through the rows of C that measure them (so the structural dynamics the
+/// design residualized stay in the loop).
+pub fn closed_loop_matrix(
     full: &LinearModel,
-    axis: &Axis,
-) -> Result<(DMatrix<f64>, Vec<usize>), String> {
-    let y: Vec<usize> = axis
-        .outputs
-        .iter()
-        .map(|(o, _)| index_of(&full.output_names, o, "output"))
-        .collect::<Result<_, _>>()?;
-    let c = DMatrix::from_fn(y.len(), full.c.ncols(), |i, j| full.c[(y[i], j)]);
-    let u = axis
-        .inputs
-        .iter()
-        .map(|s| index_of(&full.input_names, s, "input"))
-        .collect::<Result<_, _>>()?;
-    Ok((c, u))
+    laws: &[hsv_core::control::StateFeedback],
+) -> Result<DMatrix<f64>, String> {
+    let mut a = full.a.clone();
+    for law in laws {
+        let y: Vec<usize> = law
+            .state_names
+            .iter()
+            .map(|n| index_of(&full.output_names, n, "output"))
+            .collect::<Result<_, _>>()?;
+        let u: Vec<usize> = law
+            .input_names
+            .iter()
+            .map(|n| index_of(&full.input_names, n, "input"))
+            .collect::<Result<_, _>>()?;
+        let c = DMatrix::from_fn(y.len(), full.c.ncols(), |i, j| full.c[(y[i], j)]);
+        let b = DMatrix::from_fn(full.b.nrows(), u.len(), |i, j| full.b[(i, u[j])]);
+        a -= b * &law.k * c;
+    }
+    Ok(a)
 }

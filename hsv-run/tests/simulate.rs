@@ -378,8 +378,8 @@ fn a_gliding_rigid_vehicle_loses_kinetic_and_potential_energy_to_the_work_of_its
     simulate(
         &mut vehicle,
         &mut state,
-        &controls,
-        &glide,
+        &mut hsv_run::control::ControlLoop::schedule(glide.clone(), &controls, settings.dt_s)
+            .expect("schedule"),
         &settings,
         |_, s, v| {
             let loads = v.body_loads();
@@ -443,8 +443,12 @@ fn the_time_loop_allocates_nothing_once_its_buffers_exist() {
         simulate(
             &mut vehicle,
             &mut state,
-            &controls,
-            &Inputs::paper_doublet(),
+            &mut hsv_run::control::ControlLoop::schedule(
+                Inputs::paper_doublet(),
+                &controls,
+                settings.dt_s,
+            )
+            .expect("schedule"),
             &settings,
             |_, _, _| {
                 if n < counts.len() {

@@ -163,7 +163,7 @@ pub fn solve_care(
         let mut candidate = DMatrix::from_column_slice(n, n, vec_x.as_slice());
         candidate = (&candidate + candidate.transpose()) * 0.5;
         let candidate_residual = care_residual(a, &g, &q_sym, &candidate);
-        if !(candidate_residual < residual) {
+        if candidate_residual.partial_cmp(&residual) != Some(std::cmp::Ordering::Less) {
             break;
         }
         x = candidate;

@@ -90,8 +90,12 @@ fn jobs(c: &mut Criterion) {
                 let steps = simulate(
                     &mut fresh,
                     &mut state,
-                    &controls,
-                    &inputs,
+                    &mut hsv_run::control::ControlLoop::schedule(
+                        inputs.clone(),
+                        &controls,
+                        settings.dt_s,
+                    )
+                    .expect("schedule"),
                     &settings,
                     |_, _, _| true,
                 )

@@ -166,6 +166,10 @@ pub struct HsvConfig {
     /// `[simulation]`: settings of `hsv-run simulate` (its inputs), checked by the runner.
     #[serde(default)]
     pub simulation: toml::Table,
+    /// `[control]`: the controller flying `hsv-run simulate` (its name, sample rate, actuators),
+    /// checked by the runner; the controller's own settings are `[models.<name>]`.
+    #[serde(default)]
+    pub control: toml::Table,
     /// `[trade]`: the fidelity trade study of `hsv-run trade` (job, varied models), checked by
     /// the runner.
     #[serde(default)]

@@ -19,6 +19,7 @@ pub mod testing;
 pub mod vehicle;
 
 pub mod aero;
+pub mod control;
 pub mod data;
 pub mod error;
 pub mod flow;

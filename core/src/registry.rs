@@ -12,6 +12,7 @@ use std::sync::Arc;
 use serde::de::DeserializeOwned;
 
 use crate::aero::AeroModel;
+use crate::control::{ControlContext, Controller, ControllerConstructor};
 use crate::error::ModelError;
 use crate::propulsion::PropulsionModel;
 use crate::region::{ModelSettings, RegionInfo};
@@ -26,6 +27,7 @@ pub enum Family {
     Thermal,
     Structure,
     Propulsion,
+    Control,
 }
 
 /// What a model does; thermal models split into heat flux at the wall and conduction inside.
@@ -37,6 +39,8 @@ pub enum Role {
     Conduction,
     Structure,
     Propulsion,
+    /// A controller (`hsv_core::control::Controller`): measured outputs in, commands out.
+    Control,
 }
 
 impl Role {
@@ -46,6 +50,7 @@ impl Role {
             Role::HeatFlux | Role::Conduction => Family::Thermal,
             Role::Structure => Family::Structure,
             Role::Propulsion => Family::Propulsion,
+            Role::Control => Family::Control,
         }
     }
 
@@ -56,6 +61,7 @@ impl Role {
             Role::Conduction => "conduction",
             Role::Structure => "structure",
             Role::Propulsion => "propulsion",
+            Role::Control => "control",
         }
     }
 }
@@ -73,6 +79,7 @@ impl fmt::Display for Family {
             Family::Thermal => "thermal",
             Family::Structure => "structure",
             Family::Propulsion => "propulsion",
+            Family::Control => "control",
         })
     }
 }
@@ -171,6 +178,7 @@ pub enum Constructor {
     Conduction(ConductionConstructor),
     Structure(StructureConstructor),
     Propulsion(PropulsionConstructor),
+    Control(ControllerConstructor),
 }
 
 impl Constructor {
@@ -181,6 +189,7 @@ impl Constructor {
             Constructor::Conduction(_) => Role::Conduction,
             Constructor::Structure(_) => Role::Structure,
             Constructor::Propulsion(_) => Role::Propulsion,
+            Constructor::Control(_) => Role::Control,
         }
     }
 }
@@ -223,6 +232,7 @@ pub enum Factory {
     Conduction(SharedConstructor<dyn ConductionModel>),
     Structure(SharedConstructor<dyn StructureModel>),
     Propulsion(SharedConstructor<dyn PropulsionModel>),
+    Control(ControllerConstructor),
 }
 
 impl Factory {
@@ -233,6 +243,7 @@ impl Factory {
             Factory::Conduction(_) => Role::Conduction,
             Factory::Structure(_) => Role::Structure,
             Factory::Propulsion(_) => Role::Propulsion,
+            Factory::Control(_) => Role::Control,
         }
     }
 }
@@ -245,6 +256,7 @@ impl From<Constructor> for Factory {
             Constructor::Conduction(f) => Factory::Conduction(Arc::new(f)),
             Constructor::Structure(f) => Factory::Structure(Arc::new(f)),
             Constructor::Propulsion(f) => Factory::Propulsion(Arc::new(f)),
+            Constructor::Control(f) => Factory::Control(f),
         }
     }
 }
@@ -466,6 +478,21 @@ impl Registry {
         match M::constructor(&entry.factory) {
             Some(build) => Ok(build(context)?),
             None => Err(wrong_role(name, entry.role(), M::ROLE)),
+        }
+    }
+}
+
+impl Registry {
+    /// Builds controller `name` (role `control`) for the run described by `context`.
+    pub fn create_controller(
+        &self,
+        name: &str,
+        context: &ControlContext<'_>,
+    ) -> Result<Box<dyn Controller>, RegistryError> {
+        let entry = self.entry_for(name, Role::Control)?;
+        match &entry.factory {
+            Factory::Control(build) => Ok(build(context)?),
+            _ => Err(wrong_role(name, entry.role(), Role::Control)),
         }
     }
 }

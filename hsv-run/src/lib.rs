@@ -5,6 +5,7 @@
 pub mod aero_job;
 pub mod analysis;
 pub mod commands;
+pub mod control;
 pub mod dynamics;
 pub mod linked;
 pub mod output;

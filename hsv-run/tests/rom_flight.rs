@@ -38,8 +38,8 @@ fn fly(text: &str) -> Vec<Sample> {
     simulate(
         &mut vehicle,
         &mut state,
-        &controls,
-        &inputs,
+        &mut hsv_run::control::ControlLoop::schedule(inputs.clone(), &controls, settings.dt_s)
+            .expect("schedule"),
         &settings,
         |s, _, _| {
             samples.push(s.clone());

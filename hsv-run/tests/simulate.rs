@@ -53,8 +53,8 @@ fn fly_full(
     simulate(
         &mut vehicle,
         &mut state,
-        &controls,
-        inputs,
+        &mut hsv_run::control::ControlLoop::schedule(inputs.clone(), &controls, settings.dt_s)
+            .expect("schedule"),
         &settings,
         |s, _, _| {
             samples.push(s.clone());
@@ -277,8 +277,8 @@ fn a_run_resumed_from_its_restart_file_continues_bit_for_bit() {
     simulate(
         &mut whole,
         &mut whole_state,
-        &controls,
-        &inputs,
+        &mut hsv_run::control::ControlLoop::schedule(inputs.clone(), &controls, settings(0).dt_s)
+            .expect("schedule"),
         &settings(0),
         |_, _, _| true,
     )
@@ -289,8 +289,8 @@ fn a_run_resumed_from_its_restart_file_continues_bit_for_bit() {
     simulate(
         &mut first,
         &mut state,
-        &controls,
-        &inputs,
+        &mut hsv_run::control::ControlLoop::schedule(inputs.clone(), &controls, settings(0).dt_s)
+            .expect("schedule"),
         &settings(0),
         |s, state, v| {
             if (s.time_s - 0.102).abs() < 1e-12 {
@@ -312,8 +312,8 @@ fn a_run_resumed_from_its_restart_file_continues_bit_for_bit() {
     simulate(
         &mut resumed,
         &mut resumed_state,
-        &controls,
-        &inputs,
+        &mut hsv_run::control::ControlLoop::schedule(inputs.clone(), &controls, settings(0).dt_s)
+            .expect("schedule"),
         &settings(51),
         |_, _, _| true,
     )
@@ -378,8 +378,8 @@ fn a_gliding_rigid_vehicle_loses_kinetic_and_potential_energy_to_the_work_of_its
     simulate(
         &mut vehicle,
         &mut state,
-        &controls,
-        &glide,
+        &mut hsv_run::control::ControlLoop::schedule(glide.clone(), &controls, settings.dt_s)
+            .expect("schedule"),
         &settings,
         |_, s, v| {
             let loads = v.body_loads();
@@ -443,8 +443,12 @@ fn the_time_loop_allocates_nothing_once_its_buffers_exist() {
         simulate(
             &mut vehicle,
             &mut state,
-            &controls,
-            &Inputs::paper_doublet(),
+            &mut hsv_run::control::ControlLoop::schedule(
+                Inputs::paper_doublet(),
+                &controls,
+                settings.dt_s,
+            )
+            .expect("schedule"),
             &settings,
             |_, _, _| {
                 if n < counts.len() {

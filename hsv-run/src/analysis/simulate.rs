@@ -7,6 +7,7 @@
 
 use nalgebra::DVector;
 
+use crate::control::ControlLoop;
 use crate::dynamics::{AttitudeCoordinates, ExponentialRk4, VehicleState};
 use crate::vehicle::partitioned::{
     ElevonCommand, FlightControls, PartitionedVehicle, VehicleError,
@@ -115,6 +116,41 @@ impl Inputs {
         }
     }
 
+    /// The paper's doublet overlaid by the tables of `table` (a `[simulation.inputs]` table at
+    /// `key` in `file`).
+    pub fn from_table(table: &toml::Table, file: &str, key: &str) -> Result<Self, InputError> {
+        let mut merged = Inputs::paper_doublet();
+        for (name, value) in table {
+            let path = format!("{key}.{name}");
+            let fail = |message: String| InputError {
+                key: path.clone(),
+                message: format!("{file}: {message}"),
+            };
+            let t: InputTable = hsv_core::config::parse_table(
+                value
+                    .as_table()
+                    .ok_or_else(|| fail("must be a table".to_owned()))?,
+                file,
+                &path,
+            )
+            .map_err(|e| fail(e.to_string()))?;
+            match name.as_str() {
+                "symmetric_elevon_deg" => merged.symmetric_elevon_deg = t,
+                "differential_elevon_deg" => merged.differential_elevon_deg = t,
+                "fuel_equivalence_ratio" => merged.fuel_equivalence_ratio = t,
+                _ => {
+                    return Err(fail(
+                        "unknown; expected symmetric_elevon_deg, differential_elevon_deg or \
+                         fuel_equivalence_ratio"
+                            .to_owned(),
+                    ));
+                }
+            }
+        }
+        merged.check(key)?;
+        Ok(merged)
+    }
+
     pub fn check(&self, key: &str) -> Result<(), InputError> {
         self.symmetric_elevon_deg
             .check(&format!("{key}.symmetric_elevon_deg"))?;
@@ -158,6 +194,18 @@ pub struct Sample {
     pub r_deg_s: f64,
     pub elevon_deg: f64,
     pub fuel_equivalence_ratio: f64,
+    /// Differential elevon actuator position, deg.
+    pub differential_elevon_deg: f64,
+    /// The controller's commands (elevon_deg and fuel_equivalence_ratio above are the actuator
+    /// positions the vehicle flies with; equal without actuators).
+    pub command_elevon_deg: f64,
+    pub command_differential_elevon_deg: f64,
+    pub command_fuel_equivalence_ratio: f64,
+    /// Which actuator limits bit over the step that ended at this sample.
+    pub elevon_position_saturated: bool,
+    pub elevon_rate_saturated: bool,
+    pub phi_position_saturated: bool,
+    pub phi_rate_saturated: bool,
     pub coupling_iterations: usize,
     pub coupling_residual: f64,
     /// Lowest, highest and mean structure temperature over the heated surfaces, K (NaN when no
@@ -232,20 +280,18 @@ pub struct SimulationError {
 pub fn simulate(
     vehicle: &mut PartitionedVehicle,
     state: &mut VehicleState,
-    trim: &FlightControls,
-    inputs: &Inputs,
+    control: &mut ControlLoop,
     settings: &RunSettings,
     observe: impl FnMut(&Sample, &VehicleState, &mut PartitionedVehicle) -> bool + Send,
 ) -> Result<usize, SimulationError> {
-    rayon::scope(|_| march(vehicle, state, trim, inputs, settings, observe))
+    rayon::scope(|_| march(vehicle, state, control, settings, observe))
 }
 
 /// The time loop of [`simulate`], on the calling thread.
 fn march(
     vehicle: &mut PartitionedVehicle,
     state: &mut VehicleState,
-    trim: &FlightControls,
-    inputs: &Inputs,
+    control: &mut ControlLoop,
     settings: &RunSettings,
     mut observe: impl FnMut(&Sample, &VehicleState, &mut PartitionedVehicle) -> bool,
 ) -> Result<usize, SimulationError> {
@@ -267,7 +313,11 @@ fn march(
     let plan = crate::steps::time_steps(settings.duration_s, settings.dt_s)
         .map_err(|e| wrap(0.0)(VehicleError::Input(e.to_string())))?;
     let steps = plan.steps;
-    let record = |vehicle: &mut PartitionedVehicle, state: &VehicleState, t: f64| {
+    let record = |vehicle: &mut PartitionedVehicle,
+                  control: &mut ControlLoop,
+                  state: &VehicleState,
+                  t: f64|
+     -> Result<Sample, VehicleError> {
         let (lo, hi, mean) = vehicle
             .heated_surface_range()
             .map_or((f64::NAN, f64::NAN, f64::NAN), |t| {
@@ -276,11 +326,11 @@ fn march(
         let rigid = &state.rigid;
         let (airspeed, alpha, beta) = rigid.air_data(&nalgebra::Vector3::zeros());
         let (roll, pitch, yaw) = rigid.euler_angles();
-        let c = inputs.controls(trim, t);
+        let c = control.record(t)?;
         let w = rigid.angular_velocity_body_rad_s;
         let v = rigid.velocity_body_m_s;
         let report = vehicle.coupling_report();
-        Sample {
+        Ok(Sample {
             time_s: t,
             north_m: rigid.position_ned_m.x,
             altitude_m: rigid.altitude_m(),
@@ -296,20 +346,25 @@ fn march(
             p_deg_s: w.x.to_degrees(),
             q_deg_s: w.y.to_degrees(),
             r_deg_s: w.z.to_degrees(),
-            elevon_deg: c.elevon.symmetric_rad.to_degrees(),
-            fuel_equivalence_ratio: c.fuel_equivalence_ratio,
+            elevon_deg: c.position.symmetric_elevon_rad.to_degrees(),
+            fuel_equivalence_ratio: c.position.fuel_equivalence_ratio,
+            differential_elevon_deg: c.position.differential_elevon_rad.to_degrees(),
+            command_elevon_deg: c.command.symmetric_elevon_rad.to_degrees(),
+            command_differential_elevon_deg: c.command.differential_elevon_rad.to_degrees(),
+            command_fuel_equivalence_ratio: c.command.fuel_equivalence_ratio,
+            elevon_position_saturated: c.saturation.elevon_position,
+            elevon_rate_saturated: c.saturation.elevon_rate,
+            phi_position_saturated: c.saturation.phi_position,
+            phi_rate_saturated: c.saturation.phi_rate,
             coupling_iterations: report.iterations,
             coupling_residual: report.residual,
             surface_min_temperature_k: lo,
             surface_max_temperature_k: hi,
             surface_mean_temperature_k: mean,
-        }
+        })
     };
-    let first = record(
-        &mut *vehicle,
-        state,
-        plan.start_s(settings.start_step.min(steps)),
-    );
+    let t0 = plan.start_s(settings.start_step.min(steps));
+    let first = record(&mut *vehicle, &mut *control, state, t0).map_err(wrap(t0))?;
     if !observe(&first, state, vehicle) {
         return Ok(0);
     }
@@ -319,13 +374,16 @@ fn march(
     for k in settings.start_step.min(steps)..steps {
         let t = plan.start_s(k);
         let dt = plan.dt_of(k);
+        // The controller samples (at its rate) and the actuators move over the step.
+        control.begin_step(k, t, dt, state).map_err(wrap(t))?;
         // The body region at the accepted state, read by the step's stages (its rate).
+        let start_controls = control.controls_at(t).map_err(wrap(t))?;
         vehicle
-            .begin_step(state, &inputs.controls(trim, t), t)
+            .begin_step(state, &start_controls, t)
             .map_err(wrap(t))?;
         let mut f = |time: f64, x: &DVector<f64>, dx: &mut DVector<f64>| {
             layout.unpack(x, &mut scratch)?;
-            let controls = inputs.controls(trim, time);
+            let controls = control.controls_at(time)?;
             vehicle.set_time(time);
             vehicle.derivative(&scratch, &controls, &mut derivative)?;
             layout.pack_derivative(x, &derivative, dx)?;
@@ -340,7 +398,8 @@ fn march(
         // The accepted step: models with memory commit their history, the surfaces heat.
         vehicle.commit_step(state, plan.end_s(k)).map_err(wrap(t))?;
         if (done % settings.record_every.max(1) == 0 || done == steps) && {
-            let sample = record(&mut *vehicle, state, plan.end_s(k));
+            let sample =
+                record(&mut *vehicle, &mut *control, state, plan.end_s(k)).map_err(wrap(t))?;
             !observe(&sample, state, vehicle)
         } {
             return Ok(done);

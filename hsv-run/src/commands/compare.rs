@@ -89,11 +89,12 @@ fn fly(
         start_step: 0,
     };
     let mut samples = Vec::new();
+    let mut control =
+        crate::control::ControlLoop::schedule(Inputs::paper_doublet(), &controls, args.dt_s)?;
     let outcome = simulate(
         &mut vehicle,
         &mut state,
-        &controls,
-        &Inputs::paper_doublet(),
+        &mut control,
         &settings,
         |s, _, _| {
             samples.push(s.clone());

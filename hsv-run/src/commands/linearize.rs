@@ -36,6 +36,10 @@ pub struct LinearizeArgs {
     /// Write into a non-empty --out folder.
     #[arg(long)]
     pub force: bool,
+    /// Also close the loop with this controller (`lqr`) and print the closed-loop eigenvalues
+    /// of the full flexible linear model.
+    #[arg(long, value_name = "NAME")]
+    pub controller: Option<String>,
     #[command(flatten)]
     pub json: JsonFlag,
 }
@@ -80,6 +84,32 @@ pub fn run(args: LinearizeArgs, registry: &Registry) -> Result<()> {
     let (state, _) =
         vehicle.level_flight_state(mach, altitude_m, t.alpha_deg.to_radians(), &controls)?;
     let lin = linearize(&mut vehicle, &state, &controls, &rule)?;
+    let closed = match &args.controller {
+        None => None,
+        Some(name) => {
+            let (control, _) = crate::control::build_control_loop(
+                &loaded,
+                &registry,
+                name,
+                None,
+                &mut vehicle,
+                &state,
+                &controls,
+                1e-3,
+                None,
+            )?;
+            let laws = control.controller().state_feedback();
+            if laws.is_empty() {
+                anyhow::bail!("controller `{name}` is no linear state feedback: no closed loop");
+            }
+            let a = crate::control::design::closed_loop_matrix(&lin.model, &laws)
+                .map_err(|e| anyhow::anyhow!("closing the loop with `{name}`: {e}"))?;
+            let eig = hsv_core::linalg::general_eigen(&a)?;
+            let mut values: Vec<[f64; 2]> = eig.values.iter().map(|c| [c.re, c.im]).collect();
+            values.sort_by(|a, b| b[0].total_cmp(&a[0]));
+            Some((name.clone(), values, control.controller().design_report()))
+        }
+    };
     let mut folder = RunFolder::create("linearize", args.out.as_deref(), args.force)?;
     let m = &lin.model;
     for (name, matrix, rows, columns) in [
@@ -126,6 +156,11 @@ pub fn run(args: LinearizeArgs, registry: &Registry) -> Result<()> {
         "inputs": m.input_names,
         "outputs": m.output_names,
         "modes": lin.modes,
+        "closed_loop": closed.as_ref().map(|(name, values, design)| serde_json::json!({
+            "controller": name,
+            "eigenvalues_re_im": values,
+            "design": design,
+        })),
     });
     let written = folder.write_summary(summary, &RunStatus::Completed)?;
     if args.json.json {
@@ -158,6 +193,16 @@ pub fn run(args: LinearizeArgs, registry: &Registry) -> Result<()> {
             mode.damped_frequency_hz,
             mode.damping_ratio
         )?;
+    }
+    if let Some((name, values, design)) = &closed {
+        super::simulate::print_gains(design)?;
+        outln!(
+            "closed loop under `{name}` (full flexible model), eigenvalues by real part, largest \
+             first:"
+        )?;
+        for v in values {
+            outln!("  {:>13.5e} {:>+13.5e} i", v[0], v[1])?;
+        }
     }
     outln!("outputs in {}", folder.path.display())?;
     Ok(())

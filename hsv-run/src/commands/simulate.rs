@@ -77,6 +77,10 @@ pub struct SimulateArgs {
     /// proposed correction).
     #[arg(long = "lumped-surface-mass", requires = "monolithic")]
     pub lumped_surface_mass: bool,
+    /// The controller flying the vehicle (`hsv-run models`, role control; overrides
+    /// `[control] controller`; default `schedule`: the `[simulation.inputs]` tables).
+    #[arg(long, value_name = "NAME")]
+    pub controller: Option<String>,
     #[command(flatten)]
     pub json: JsonFlag,
 }
@@ -96,6 +100,14 @@ struct RestartFile {
     controls: FlightControls,
     state: crate::dynamics::VehicleState,
     vehicle: crate::vehicle::partitioned::VehicleRestart,
+    /// The controller, its loop state and the design it was built from (absent in files
+    /// written before controllers: the `schedule` at trim).
+    #[serde(default)]
+    controller: Option<String>,
+    #[serde(default)]
+    control: Option<crate::control::ControlState>,
+    #[serde(default)]
+    design: Option<crate::control::DesignRecord>,
 }
 
 impl RestartFile {
@@ -242,32 +254,11 @@ pub(crate) fn inputs(loaded: &hsv_core::config::LoadedConfig) -> Result<Inputs> 
     let table = table
         .as_table()
         .with_context(|| format!("{}: key `simulation.inputs` must be a table", loaded.file))?;
-    let mut merged = Inputs::paper_doublet();
-    let parsed: toml::Table = table.clone();
-    for (key, value) in &parsed {
-        let path = format!("simulation.inputs.{key}");
-        let t: crate::analysis::simulate::InputTable = hsv_core::config::parse_table(
-            value
-                .as_table()
-                .with_context(|| format!("{}: key `{path}` must be a table", loaded.file))?,
-            &loaded.file,
-            &path,
-        )?;
-        match key.as_str() {
-            "symmetric_elevon_deg" => merged.symmetric_elevon_deg = t,
-            "differential_elevon_deg" => merged.differential_elevon_deg = t,
-            "fuel_equivalence_ratio" => merged.fuel_equivalence_ratio = t,
-            other => bail!(
-                "{}: key `simulation.inputs.{other}` is unknown; expected symmetric_elevon_deg, \
-                 differential_elevon_deg or fuel_equivalence_ratio",
-                loaded.file
-            ),
-        }
-    }
-    merged
-        .check("simulation.inputs")
-        .with_context(|| loaded.file.clone())?;
-    Ok(merged)
+    Ok(Inputs::from_table(
+        table,
+        &loaded.file,
+        "simulation.inputs",
+    )?)
 }
 
 /// Trims, flies and writes the run folder.
@@ -281,7 +272,10 @@ pub fn run(args: SimulateArgs, registry: &Registry) -> Result<()> {
             args.dt_s
         )
     })?;
-    let inputs = inputs(&loaded)?;
+    // Checked up front so a bad table fails before the trim.
+    inputs(&loaded)?;
+    let (controller_name, actuators) =
+        crate::control::control_settings(&loaded, args.controller.as_deref())?;
     let mach = loaded.config.flight.mach;
     let altitude_m = loaded.config.flight.altitude_m;
     let rates = heating_rates(&loaded)?;
@@ -309,7 +303,8 @@ pub fn run(args: SimulateArgs, registry: &Registry) -> Result<()> {
         ..TrimRequest::default()
     };
     // From trim, or from where a restart file left off (bit for bit).
-    let (trim_point, trim_controls, mut state, start_step) = match &args.resume {
+    let (trim_point, trim_controls, mut state, start_step, mut control, design) = match &args.resume
+    {
         None => {
             let t = trim(&mut vehicle, &request)?.trim;
             let controls = FlightControls {
@@ -325,6 +320,18 @@ pub fn run(args: SimulateArgs, registry: &Registry) -> Result<()> {
                 t.alpha_deg.to_radians(),
                 &controls,
             )?;
+            // Designed on the trimmed vehicle before it heats.
+            let (control, design) = crate::control::build_control_loop(
+                &loaded,
+                &registry,
+                &controller_name,
+                actuators,
+                &mut vehicle,
+                &state,
+                &controls,
+                args.dt_s,
+                None,
+            )?;
             vehicle.start_heating(&rates)?;
             let point = (
                 t.alpha_deg,
@@ -332,7 +339,7 @@ pub fn run(args: SimulateArgs, registry: &Registry) -> Result<()> {
                 t.fuel_equivalence_ratio,
                 t.modal_amplitudes,
             );
-            (point, controls, state, 0)
+            (point, controls, state, 0, control, design)
         }
         Some(path) => {
             let restart = RestartFile::read(path)?;
@@ -356,6 +363,28 @@ pub fn run(args: SimulateArgs, registry: &Registry) -> Result<()> {
                     args.duration_s
                 );
             }
+            let stored_name = restart.controller.as_deref().unwrap_or("schedule");
+            if stored_name != controller_name {
+                bail!(
+                    "{}: the run was flown by controller `{stored_name}`, not \
+                     `{controller_name}`; resume with the same controller",
+                    path.display()
+                );
+            }
+            let (mut control, design) = crate::control::build_control_loop(
+                &loaded,
+                &registry,
+                &controller_name,
+                actuators,
+                &mut vehicle,
+                &restart.state,
+                &restart.controls,
+                args.dt_s,
+                restart.design.clone(),
+            )?;
+            if let Some(c) = restart.control.clone() {
+                control.restore(c)?;
+            }
             vehicle.restore(&restart.vehicle)?;
             let point = (
                 restart.trim_alpha_deg,
@@ -363,9 +392,17 @@ pub fn run(args: SimulateArgs, registry: &Registry) -> Result<()> {
                 restart.controls.fuel_equivalence_ratio,
                 Vec::new(),
             );
-            (point, restart.controls, restart.state, restart.step)
+            (
+                point,
+                restart.controls,
+                restart.state,
+                restart.step,
+                control,
+                design,
+            )
         }
     };
+    let design_report = control.controller().design_report();
     let mut folder = RunFolder::create("simulate", args.output.out.as_deref(), args.output.force)?;
     let settings = RunSettings {
         dt_s: args.dt_s,
@@ -387,8 +424,7 @@ pub fn run(args: SimulateArgs, registry: &Registry) -> Result<()> {
     let outcome = simulate(
         &mut vehicle,
         &mut state,
-        &trim_controls,
-        &inputs,
+        &mut control,
         &settings,
         |sample, state, vehicle| {
             samples.push(sample.clone());
@@ -459,7 +495,15 @@ pub fn run(args: SimulateArgs, registry: &Registry) -> Result<()> {
         controls: trim_controls,
         state: state.clone(),
         vehicle: vehicle.restart(),
+        controller: Some(controller_name.clone()),
+        control: Some(control.state.clone()),
+        design: Some(design),
     };
+    if !design_report.is_null() {
+        let path = folder.join("controller.json");
+        crate::output::write_file(&path, serde_json::to_string_pretty(&design_report)?)?;
+        folder.record(path);
+    }
     let restart_path = folder.join("restart.json");
     crate::output::write_file(&restart_path, serde_json::to_string(&restart)?)?;
     folder.record(restart_path);
@@ -490,6 +534,10 @@ pub fn run(args: SimulateArgs, registry: &Registry) -> Result<()> {
         "body_loads_dt_s": rate_seconds(body_rate),
         "body_friction_dt_s": rate_seconds(friction_rate),
         "warnings": warnings,
+        "controller": controller_name,
+        "controller_design": design_report,
+        "saturated_samples": samples.iter().filter(|s| s.elevon_position_saturated
+            || s.elevon_rate_saturated || s.phi_position_saturated || s.phi_rate_saturated).count(),
     });
     let written = folder.write_summary(summary, &status)?;
     if args.json.json {
@@ -514,6 +562,7 @@ pub fn run(args: SimulateArgs, registry: &Registry) -> Result<()> {
             last.pitch_deg,
             last.q_deg_s
         )?;
+        print_gains(&design_report)?;
         outln!("outputs in {}", folder.path.display())?;
     }
     outcome.map(|_| ()).map_err(|e| {
@@ -522,6 +571,24 @@ pub fn run(args: SimulateArgs, registry: &Registry) -> Result<()> {
             folder.path.display()
         )
     })
+}
+
+/// The gains of a designed controller (its `controller.json` report), one line per axis.
+pub(crate) fn print_gains(report: &serde_json::Value) -> Result<()> {
+    let Some(axes) = report.as_object() else {
+        return Ok(());
+    };
+    for (axis, r) in axes {
+        outln!(
+            "{axis} LQR: states {}, inputs {}; CARE relative residual {:.2e}",
+            r["states"],
+            r["inputs"],
+            r["care_relative_residual"].as_f64().unwrap_or(f64::NAN)
+        )?;
+        outln!("  K = {}", r["gain_k"])?;
+        outln!("  closed-loop poles (re, im) = {}", r["closed_loop_poles"])?;
+    }
+    Ok(())
 }
 
 /// The CSV history and the PNG figures.
@@ -558,6 +625,35 @@ fn write_history(
             column(|s| s.coupling_iterations as f64),
         ),
         ("coupling_residual", column(|s| s.coupling_residual)),
+        (
+            "differential_elevon_deg",
+            column(|s| s.differential_elevon_deg),
+        ),
+        ("command_elevon_deg", column(|s| s.command_elevon_deg)),
+        (
+            "command_differential_elevon_deg",
+            column(|s| s.command_differential_elevon_deg),
+        ),
+        (
+            "command_fuel_equivalence_ratio",
+            column(|s| s.command_fuel_equivalence_ratio),
+        ),
+        (
+            "elevon_position_saturated",
+            column(|s| f64::from(u8::from(s.elevon_position_saturated))),
+        ),
+        (
+            "elevon_rate_saturated",
+            column(|s| f64::from(u8::from(s.elevon_rate_saturated))),
+        ),
+        (
+            "phi_position_saturated",
+            column(|s| f64::from(u8::from(s.phi_position_saturated))),
+        ),
+        (
+            "phi_rate_saturated",
+            column(|s| f64::from(u8::from(s.phi_rate_saturated))),
+        ),
         (
             "surface_min_temperature_k",
             column(|s| s.surface_min_temperature_k),

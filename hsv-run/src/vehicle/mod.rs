@@ -154,6 +154,8 @@ fn role_key(role: Role) -> &'static str {
         Role::Conduction => "conduction",
         Role::Structure => "structure",
         Role::Propulsion => "propulsion",
+        // Not a region role: the run's controller is `[control] controller`.
+        Role::Control => "controller",
     }
 }
 
@@ -248,6 +250,8 @@ fn check_needs(
             Role::Conduction => set.conduction.is_some(),
             Role::Structure => set.structure.is_some(),
             Role::Propulsion => set.propulsion.is_some(),
+            // Regions carry no controller (the run's is `[control]`); no analysis asks.
+            Role::Control => true,
         };
         if !present {
             return Err(AssemblyError::MissingRole {

@@ -84,11 +84,12 @@ pub(super) fn simulate_case(
         start_step: 0,
     };
     let mut history: BTreeMap<String, Vec<f64>> = BTreeMap::new();
+    let mut control =
+        crate::control::ControlLoop::schedule(inputs.clone(), &controls, flight.dt_s)?;
     simulate(
         &mut vehicle,
         &mut state,
-        &controls,
-        inputs,
+        &mut control,
         &settings,
         |s, _, _| {
             for (name, value) in [

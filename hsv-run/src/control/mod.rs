@@ -1,0 +1,473 @@
+//! Controllers in the loop: the built-in controllers (`schedule`, `lqr`), the design models they
+//! are built from (rigid longitudinal and lateral models residualized from `linearize`), the
+//! actuators (position and rate limits, first-order lag) and the sample-and-hold loop the time
+//! simulation runs them in.
+//!
+//! `[control]` of the config: `controller = "schedule"` (default: the `[simulation.inputs]`
+//! table, flown exactly as before) or any registered controller (`hsv-run models`, role
+//! `control`), and `[control.actuators]` (below). A controller's own settings are
+//! `[models.<name>]`.
+
+pub mod actuators;
+pub mod design;
+pub mod lqr;
+pub mod schedule;
+
+use hsv_core::control::{ControlCommands, Controller, MeasuredOutputs};
+use nalgebra::Vector3;
+
+use crate::dynamics::VehicleState;
+use crate::vehicle::partitioned::{ElevonCommand, FlightControls, VehicleError};
+
+pub use actuators::{ActuatorSettings, Actuators, Saturation};
+
+/// The measured outputs of `state` with the actuators at `positions`, at time `time_s`.
+pub fn measure(state: &VehicleState, positions: &ControlCommands, time_s: f64) -> MeasuredOutputs {
+    let rigid = &state.rigid;
+    let (airspeed, alpha, beta) = rigid.air_data(&Vector3::zeros());
+    let (roll, pitch, yaw) = rigid.euler_angles();
+    let w = rigid.angular_velocity_body_rad_s;
+    let v_ned = rigid.velocity_ned_m_s();
+    let speed = v_ned.norm();
+    let altitude = rigid.altitude_m();
+    let mach = hsv_core::atmosphere::us_standard_atmosphere_1976(altitude)
+        .map_or(f64::NAN, |atm| airspeed / atm.speed_of_sound_m_s);
+    MeasuredOutputs {
+        time_s,
+        p_rad_s: w.x,
+        q_rad_s: w.y,
+        r_rad_s: w.z,
+        alpha_rad: alpha,
+        beta_rad: beta,
+        airspeed_m_s: airspeed,
+        mach,
+        altitude_m: altitude,
+        roll_rad: roll,
+        pitch_rad: pitch,
+        yaw_rad: yaw,
+        flight_path_rad: if speed > 0.0 {
+            (-v_ned.z / speed).clamp(-1.0, 1.0).asin()
+        } else {
+            0.0
+        },
+        symmetric_elevon_rad: positions.symmetric_elevon_rad,
+        differential_elevon_rad: positions.differential_elevon_rad,
+        fuel_equivalence_ratio: positions.fuel_equivalence_ratio,
+    }
+}
+
+/// The vehicle's controls from commands (or actuator positions).
+pub fn flight_controls(c: &ControlCommands) -> FlightControls {
+    FlightControls {
+        elevon: ElevonCommand {
+            symmetric_rad: c.symmetric_elevon_rad,
+            differential_rad: c.differential_elevon_rad,
+        },
+        fuel_equivalence_ratio: c.fuel_equivalence_ratio,
+    }
+}
+
+/// Commands from the vehicle's controls.
+pub fn commands_of(c: &FlightControls) -> ControlCommands {
+    ControlCommands {
+        symmetric_elevon_rad: c.elevon.symmetric_rad,
+        differential_elevon_rad: c.elevon.differential_rad,
+        fuel_equivalence_ratio: c.fuel_equivalence_ratio,
+    }
+}
+
+/// Everything the control loop remembers between steps: simulation state, written into restart
+/// files.
+#[derive(Debug, Clone, PartialEq, Default, serde::Serialize, serde::Deserialize)]
+pub struct ControlState {
+    /// The controller's own state ([`Controller::state_len`] values).
+    pub controller: Vec<f64>,
+    /// The step at which the controller samples next.
+    pub next_sample_step: usize,
+    /// The command held since the last sample.
+    pub command: ControlCommands,
+    /// Actuator positions at the start and the end of the current step.
+    pub position_start: ControlCommands,
+    pub position_end: ControlCommands,
+    /// Which limits the actuators met over the current step.
+    pub saturation: Saturation,
+}
+
+/// A controller, its actuators and their state, sampled in the time loop.
+pub struct ControlLoop {
+    controller: Box<dyn Controller>,
+    actuators: Option<Actuators>,
+    /// Steps between samples (None: a law of time, evaluated at every instant).
+    sample_steps: Option<usize>,
+    pub state: ControlState,
+    /// The start and length of the current step, s.
+    step_start_s: f64,
+    step_dt_s: f64,
+    /// The last measurement (continuous laws read its time only).
+    last_outputs: MeasuredOutputs,
+    /// Scratch of a continuous law's state (length 0: it keeps none).
+    scratch: Vec<f64>,
+}
+
+impl ControlLoop {
+    /// The loop at trim: actuators at the trim commands, the controller at its initial state.
+    pub fn new(
+        controller: Box<dyn Controller>,
+        actuators: Option<Actuators>,
+        trim: &FlightControls,
+        dt_s: f64,
+    ) -> Result<Self, VehicleError> {
+        let sample_steps = match controller.sample_interval_s() {
+            None => {
+                if controller.state_len() != 0 {
+                    return Err(VehicleError::Input(format!(
+                        "controller `{}` keeps state but names no sample interval",
+                        controller.name()
+                    )));
+                }
+                None
+            }
+            Some(interval) if interval.is_finite() && interval > 0.0 => {
+                Some(((interval / dt_s).round() as usize).max(1))
+            }
+            Some(interval) => {
+                return Err(VehicleError::Input(format!(
+                    "controller `{}`: sample interval {interval} s must be finite and > 0",
+                    controller.name()
+                )));
+            }
+        };
+        let trim = commands_of(trim);
+        let mut state = ControlState {
+            controller: vec![0.0; controller.state_len()],
+            next_sample_step: 0,
+            command: trim,
+            position_start: trim,
+            position_end: trim,
+            saturation: Saturation::default(),
+        };
+        controller.initial_state(&mut state.controller);
+        Ok(Self {
+            controller,
+            actuators,
+            sample_steps,
+            state,
+            step_start_s: 0.0,
+            step_dt_s: dt_s,
+            last_outputs: MeasuredOutputs::default(),
+            scratch: Vec::new(),
+        })
+    }
+
+    /// The open-loop `schedule` of `inputs` around `trim`, without actuators (the run the
+    /// input tables always flew).
+    pub fn schedule(
+        inputs: crate::analysis::simulate::Inputs,
+        trim: &FlightControls,
+        dt_s: f64,
+    ) -> Result<Self, VehicleError> {
+        Self::new(
+            Box::new(schedule::Schedule::new(inputs, commands_of(trim))),
+            None,
+            trim,
+            dt_s,
+        )
+    }
+
+    pub fn controller(&self) -> &dyn Controller {
+        self.controller.as_ref()
+    }
+
+    /// Continues from a restart file's control state.
+    pub fn restore(&mut self, state: ControlState) -> Result<(), VehicleError> {
+        if state.controller.len() != self.controller.state_len() {
+            return Err(VehicleError::Input(format!(
+                "the restart file holds {} values of controller state, `{}` keeps {}",
+                state.controller.len(),
+                self.controller.name(),
+                self.controller.state_len()
+            )));
+        }
+        self.state = state;
+        Ok(())
+    }
+
+    fn model_error(&self, e: hsv_core::ModelError) -> VehicleError {
+        VehicleError::Input(format!("controller `{}`: {e}", self.controller.name()))
+    }
+
+    /// The start of step `step` at `t` (length `dt`) from the accepted `vehicle` state: the
+    /// controller samples if due, the actuators move towards the held command.
+    pub fn begin_step(
+        &mut self,
+        step: usize,
+        t: f64,
+        dt: f64,
+        vehicle: &VehicleState,
+    ) -> Result<(), VehicleError> {
+        self.step_start_s = t;
+        self.step_dt_s = dt;
+        self.state.position_start = self.state.position_end;
+        let outputs = measure(vehicle, &self.state.position_start, t);
+        self.last_outputs = outputs;
+        match self.sample_steps {
+            None => {
+                if self.actuators.is_some() {
+                    self.controller
+                        .update(&outputs, &mut self.scratch, &mut self.state.command)
+                        .map_err(|e| self.model_error(e))?;
+                }
+            }
+            Some(every) => {
+                if step >= self.state.next_sample_step {
+                    self.controller
+                        .update(
+                            &outputs,
+                            &mut self.state.controller,
+                            &mut self.state.command,
+                        )
+                        .map_err(|e| self.model_error(e))?;
+                    self.state.next_sample_step = step + every;
+                }
+            }
+        }
+        let command = self.state.command;
+        let values = command_values(&command);
+        if !values.iter().all(|v| v.is_finite()) {
+            return Err(VehicleError::Input(format!(
+                "controller `{}` commanded non-finite values at t = {t} s: {command:?}",
+                self.controller.name()
+            )));
+        }
+        match &self.actuators {
+            Some(act) => {
+                let (end, saturation) = act.advance(&self.state.position_start, &command, dt);
+                self.state.position_end = end;
+                self.state.saturation = saturation;
+            }
+            None => {
+                self.state.position_end = command;
+                self.state.saturation = Saturation::default();
+            }
+        }
+        Ok(())
+    }
+
+    /// The controls at `time` inside the current step: a continuous law without actuators at
+    /// that instant, else the actuator positions, linear across the step.
+    pub fn controls_at(&mut self, time: f64) -> Result<FlightControls, VehicleError> {
+        if self.sample_steps.is_none() && self.actuators.is_none() {
+            let outputs = MeasuredOutputs {
+                time_s: time,
+                ..self.last_outputs
+            };
+            let mut command = ControlCommands::default();
+            self.controller
+                .update(&outputs, &mut self.scratch, &mut command)
+                .map_err(|e| self.model_error(e))?;
+            return Ok(flight_controls(&command));
+        }
+        let w = if self.step_dt_s > 0.0 {
+            ((time - self.step_start_s) / self.step_dt_s).clamp(0.0, 1.0)
+        } else {
+            1.0
+        };
+        let (a, b) = (
+            command_values(&self.state.position_start),
+            command_values(&self.state.position_end),
+        );
+        let mix = |i: usize| a[i] * (1.0 - w) + b[i] * w;
+        Ok(flight_controls(&ControlCommands {
+            symmetric_elevon_rad: mix(0),
+            differential_elevon_rad: mix(1),
+            fuel_equivalence_ratio: mix(2),
+        }))
+    }
+}
+
+fn command_values(c: &ControlCommands) -> [f64; 3] {
+    [
+        c.symmetric_elevon_rad,
+        c.differential_elevon_rad,
+        c.fuel_equivalence_ratio,
+    ]
+}
+
+/// What a history sample records of the loop.
+#[derive(Debug, Clone, Copy, PartialEq, Default, serde::Serialize)]
+pub struct ControlRecord {
+    /// The controller's command (held since its last sample).
+    pub command: ControlCommands,
+    /// The actuator positions the vehicle flies with.
+    pub position: ControlCommands,
+    pub saturation: Saturation,
+}
+
+impl ControlLoop {
+    /// The loop at `time`, the end of the last step (or the start of the run).
+    pub fn record(&mut self, time: f64) -> Result<ControlRecord, VehicleError> {
+        if self.sample_steps.is_none() && self.actuators.is_none() {
+            let c = commands_of(&self.controls_at(time)?);
+            return Ok(ControlRecord {
+                command: c,
+                position: c,
+                saturation: Saturation::default(),
+            });
+        }
+        Ok(ControlRecord {
+            command: self.state.command,
+            position: self.state.position_end,
+            saturation: self.state.saturation,
+        })
+    }
+}
+
+/// `[control]` of the config.
+#[derive(Debug, Clone, PartialEq, serde::Deserialize)]
+#[serde(deny_unknown_fields)]
+struct ControlTable {
+    controller: Option<String>,
+    actuators: Option<ActuatorSettings>,
+}
+
+/// The design data a run's controller was built from: saved in restart files so a resumed run
+/// rebuilds the same controller bit for bit.
+#[derive(Debug, Clone, PartialEq, Default, serde::Serialize, serde::Deserialize)]
+pub struct DesignRecord {
+    pub trim_outputs: MeasuredOutputs,
+    pub trim_commands: ControlCommands,
+    pub longitudinal: Option<hsv_core::control::LinearDesignModel>,
+    pub lateral: Option<hsv_core::control::LinearDesignModel>,
+}
+
+/// Linearizes the trimmed vehicle on the first request.
+struct VehicleDesign<'v> {
+    vehicle: std::cell::RefCell<&'v mut crate::vehicle::partitioned::PartitionedVehicle>,
+    trim_state: &'v VehicleState,
+    trim_controls: &'v FlightControls,
+    full: std::cell::RefCell<Option<crate::dynamics::LinearModel>>,
+    record: std::cell::RefCell<DesignRecord>,
+}
+
+impl VehicleDesign<'_> {
+    fn axis(
+        &self,
+        axis: &design::Axis,
+        slot: fn(&mut DesignRecord) -> &mut Option<hsv_core::control::LinearDesignModel>,
+    ) -> Result<hsv_core::control::LinearDesignModel, hsv_core::ModelError> {
+        if let Some(m) = slot(&mut self.record.borrow_mut()).clone() {
+            return Ok(m);
+        }
+        let err = |m: String| hsv_core::ModelError::Settings {
+            file: String::new(),
+            key_path: "control".to_owned(),
+            message: m,
+        };
+        if self.full.borrow().is_none() {
+            let lin = crate::analysis::linearize::linearize(
+                &mut self.vehicle.borrow_mut(),
+                self.trim_state,
+                self.trim_controls,
+                &crate::dynamics::PerturbationRule::default(),
+            )
+            .map_err(|e| {
+                err(format!(
+                    "linearizing the trimmed vehicle for the design: {e}"
+                ))
+            })?;
+            *self.full.borrow_mut() = Some(lin.model);
+        }
+        let full = self.full.borrow();
+        let model =
+            design::design_model(full.as_ref().expect("linearized above"), axis).map_err(err)?;
+        *slot(&mut self.record.borrow_mut()) = Some(model.clone());
+        Ok(model)
+    }
+}
+
+impl hsv_core::control::DesignSource for VehicleDesign<'_> {
+    fn longitudinal(&self) -> Result<hsv_core::control::LinearDesignModel, hsv_core::ModelError> {
+        self.axis(&design::LONGITUDINAL, |r| &mut r.longitudinal)
+    }
+    fn lateral(&self) -> Result<hsv_core::control::LinearDesignModel, hsv_core::ModelError> {
+        self.axis(&design::LATERAL, |r| &mut r.lateral)
+    }
+}
+
+/// The controller name and actuators of `[control]` (`override_name`, from `--controller`,
+/// wins over `[control] controller`; default `schedule`, whose default is no actuators).
+pub fn control_settings(
+    loaded: &hsv_core::config::LoadedConfig,
+    override_name: Option<&str>,
+) -> anyhow::Result<(String, Option<Actuators>)> {
+    let table: ControlTable =
+        hsv_core::config::parse_table(&loaded.config.control, &loaded.file, "control")?;
+    let name = override_name
+        .map(str::to_owned)
+        .or(table.controller)
+        .unwrap_or_else(|| "schedule".to_owned());
+    let actuators = match table.actuators {
+        Some(s) => Some(s),
+        None if name == "schedule" => None,
+        None => Some(ActuatorSettings::default()),
+    };
+    let actuators = actuators
+        .map(|s| Actuators::new(s, "control.actuators"))
+        .transpose()
+        .map_err(|e| anyhow::anyhow!("{}: {e}", loaded.file))?;
+    Ok((name, actuators))
+}
+
+/// Builds controller `name` at the trim (`trim_state`, `trim_controls`) of `vehicle`, from a
+/// restart file's `stored` design when given; the loop and the design it used.
+#[allow(clippy::too_many_arguments)]
+pub fn build_control_loop(
+    loaded: &hsv_core::config::LoadedConfig,
+    registry: &hsv_core::registry::Registry,
+    name: &str,
+    actuators: Option<Actuators>,
+    vehicle: &mut crate::vehicle::partitioned::PartitionedVehicle,
+    trim_state: &VehicleState,
+    trim_controls: &FlightControls,
+    dt_s: f64,
+    stored: Option<DesignRecord>,
+) -> anyhow::Result<(ControlLoop, DesignRecord)> {
+    let trim_commands = commands_of(trim_controls);
+    let record = stored.unwrap_or_else(|| DesignRecord {
+        trim_outputs: measure(trim_state, &trim_commands, 0.0),
+        trim_commands,
+        longitudinal: None,
+        lateral: None,
+    });
+    let (trim_outputs, trim_commands) = (record.trim_outputs, record.trim_commands);
+    let source = VehicleDesign {
+        vehicle: std::cell::RefCell::new(vehicle),
+        trim_state,
+        trim_controls,
+        full: std::cell::RefCell::new(None),
+        record: std::cell::RefCell::new(record),
+    };
+    let empty = toml::Table::new();
+    let schedule = loaded
+        .config
+        .simulation
+        .get("inputs")
+        .and_then(|v| v.as_table())
+        .unwrap_or(&empty);
+    let key_path = format!("models.{name}");
+    let context = hsv_core::control::ControlContext {
+        settings: loaded.model_settings(name),
+        key_path: &key_path,
+        file: &loaded.file,
+        trim_outputs: &trim_outputs,
+        trim_commands: &trim_commands,
+        design: &source,
+        schedule,
+        registry,
+    };
+    let controller = registry
+        .create_controller(name, &context)
+        .map_err(|e| anyhow::anyhow!("{}: controller `{name}`: {e}", loaded.file))?;
+    let control = ControlLoop::new(controller, actuators, trim_controls, dt_s)?;
+    Ok((control, source.record.into_inner()))
+}

@@ -1,0 +1,107 @@
+//! The `lqr` controller on the (coarse) sample vehicle: its design, its linear closed loop and a
+//! short nonlinear closed-loop flight with the paper's doublet.
+
+mod common;
+
+use hsv_run::analysis::simulate::{Integrator, RunSettings, simulate};
+use hsv_run::control::{ControlLoop, build_control_loop};
+
+fn design_and_loop(
+    dt_s: f64,
+) -> (
+    hsv_run::vehicle::partitioned::PartitionedVehicle,
+    hsv_run::dynamics::VehicleState,
+    ControlLoop,
+    hsv_run::control::DesignRecord,
+) {
+    let loaded = common::parse(&common::coarse_text());
+    let (mut vehicle, state, controls) = common::trimmed(
+        &loaded,
+        hsv_run::vehicle::partitioned::SurfaceModel::Partitioned,
+        false,
+    );
+    let registry = hsv_run::registry().expect("registry");
+    let (control, design) = build_control_loop(
+        &loaded,
+        &registry,
+        "lqr",
+        Some(hsv_run::control::Actuators::new(Default::default(), "control.actuators").unwrap()),
+        &mut vehicle,
+        &state,
+        &controls,
+        dt_s,
+        None,
+    )
+    .expect("lqr designs");
+    (vehicle, state, control, design)
+}
+
+/// The design: the CARE residual below 1e-9 relative on both axes (the bound), the
+/// residualized longitudinal model keeps the unstable short-period root (full model: +1.83 /s
+/// from `hsv-run linearize`; the band [1.3, 2.3] /s was chosen after seeing that value), and
+/// the rigid closed loop A − B K has every pole in the left half-plane (LQR guarantees it for a
+/// stabilizing CARE solution; Anderson & Moore 1990, ch. 3).
+#[test]
+fn lqr_design_residual_and_closed_loop_poles() {
+    let (_, _, control, design) = design_and_loop(0.002);
+    let report = control.controller().design_report();
+    for axis in ["longitudinal", "lateral"] {
+        let r = &report[axis];
+        let residual = r["care_relative_residual"].as_f64().unwrap();
+        assert!(residual < 1e-9, "{axis}: CARE residual {residual}");
+        for pole in r["closed_loop_poles"].as_array().unwrap() {
+            let re = pole[0].as_f64().unwrap();
+            assert!(re < 0.0, "{axis}: closed-loop pole {pole}");
+        }
+    }
+    let a = &design.longitudinal.as_ref().unwrap().a;
+    let eig = hsv_core::linalg::general_eigen(a).unwrap();
+    let largest = eig.values.iter().map(|c| c.re).fold(f64::MIN, f64::max);
+    assert!((1.3..2.3).contains(&largest), "short-period root {largest}");
+}
+
+/// 3 s of nonlinear closed-loop flight with the paper's doublet (+1° elevon, 0.5-2 s) added to
+/// the LQR commands. Open loop the short period (+1.8 /s) diverges; closed loop α stays within
+/// 1° of trim and q within 5 °/s throughout, and by 3 s α is back within 0.1° and q within
+/// 0.1 °/s. The throughout-bounds were written before the run; the settling bounds after a
+/// CLI run of the full vehicle ended at 0.02° and 0.002 °/s.
+#[test]
+fn lqr_flies_the_doublet_and_settles() {
+    let dt_s = 0.002;
+    let (mut vehicle, mut state, mut control, design) = design_and_loop(dt_s);
+    let trim_alpha = design.trim_outputs.alpha_rad.to_degrees();
+    let settings = RunSettings {
+        dt_s,
+        integrator: Integrator::default(),
+        duration_s: 3.0,
+        record_every: 5,
+        start_step: 0,
+    };
+    let mut samples = Vec::new();
+    simulate(
+        &mut vehicle,
+        &mut state,
+        &mut control,
+        &settings,
+        |s, _, _| {
+            samples.push(s.clone());
+            true
+        },
+    )
+    .expect("flies");
+    for s in &samples {
+        assert!((s.alpha_deg - trim_alpha).abs() < 1.0, "{s:?}");
+        assert!(s.q_deg_s.abs() < 5.0, "{s:?}");
+        assert!((0.0..=1.0).contains(&s.fuel_equivalence_ratio), "{s:?}");
+    }
+    // The doublet moved the commands.
+    assert!(
+        samples
+            .iter()
+            .any(|s| (s.command_elevon_deg - samples[0].command_elevon_deg).abs() > 0.1)
+    );
+    let last = samples.last().unwrap();
+    assert!((last.time_s - 3.0).abs() < 1e-9);
+    assert!((last.alpha_deg - trim_alpha).abs() < 0.1, "{last:?}");
+    assert!(last.q_deg_s.abs() < 0.1, "{last:?}");
+}

@@ -173,7 +173,7 @@ pub(super) fn check_times(times_s: &[f64], dt_s: f64) -> Result<()> {
     check_count("--times-s (count)", times_s.len(), 1, MAX_FLUTTER_TIMES)?;
     let last_s = times_s.last().copied().unwrap_or(0.0);
     let steps = (last_s / dt_s).ceil();
-    if !(steps <= MAX_HEATING_STEPS as f64) {
+    if steps.is_nan() || steps > MAX_HEATING_STEPS as f64 {
         bail!(
             "--times-s up to {last_s:e} s at --dt-s {dt_s} is {steps:.3e} heating steps; the limit is {MAX_HEATING_STEPS} steps (shorten the times or lengthen the step)"
         );

@@ -397,6 +397,18 @@ fn check_values(config: &HsvConfig, file: &str) -> Result<(), ConfigError> {
             ),
         ));
     }
+    // One turn at most: 720 deg is a typing error, not 0 deg.
+    for (key, value) in [
+        ("flight.alpha_deg", flight.alpha_deg),
+        ("flight.beta_deg", flight.beta_deg),
+    ] {
+        if !(value.is_finite() && value.abs() <= 180.0) {
+            return Err(error(
+                key,
+                format!("must be a finite angle from -180 to 180 deg, got {value}"),
+            ));
+        }
+    }
     let reference = &config.reference;
     for (key, value, what) in [
         ("reference.area_m2", reference.area_m2, "reference area, m²"),

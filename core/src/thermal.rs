@@ -173,6 +173,9 @@ pub struct CacheUse {
     pub path: std::path::PathBuf,
     /// True when the file held what the model needed; false when the model built it anew.
     pub reused: bool,
+    /// What the model made of the cache beyond reuse, for the run's warnings (e.g. fewer modes
+    /// than set because the training gave fewer snapshots).
+    pub note: Option<String>,
 }
 
 /// Transient heat conduction in a structure, advanced by the heat flux on its wetted panels.

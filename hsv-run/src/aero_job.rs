@@ -147,13 +147,13 @@ pub fn flight_condition(loaded: &LoadedConfig, request: &AeroRequest) -> Result<
     for (name, value) in [
         ("--mach", request.mach),
         ("--altitude-m", request.altitude_m),
-        ("--alpha-deg", request.alpha_deg),
-        ("--beta-deg", request.beta_deg),
     ] {
         if !value.is_finite() {
             bail!("{name} must be a finite number, got {value}");
         }
     }
+    crate::limits::check_flow_angle_deg("--alpha-deg", request.alpha_deg)?;
+    crate::limits::check_flow_angle_deg("--beta-deg", request.beta_deg)?;
     let freestream = Freestream::standard(request.mach, request.altitude_m, loaded.config.gas)?;
     let mut flight = FlightCondition::steady(
         freestream,

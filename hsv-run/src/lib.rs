@@ -7,6 +7,7 @@ pub mod analysis;
 pub mod commands;
 pub mod control;
 pub mod dynamics;
+pub mod limits;
 pub mod linked;
 pub mod output;
 pub mod progress;

@@ -69,8 +69,15 @@ impl FromStr for Shard {
             .split_once('/')
             .and_then(|(k, n)| Some((k.trim().parse().ok()?, n.trim().parse().ok()?)));
         match parsed {
-            Some((index, count)) if count >= 1 && index < count => Ok(Self { index, count }),
-            _ => bail!("--shard `{text}`: expected K/N with 0 <= K < N, e.g. 0/4"),
+            Some((index, count))
+                if count >= 1 && index < count && count <= crate::limits::MAX_SHARDS =>
+            {
+                Ok(Self { index, count })
+            }
+            _ => bail!(
+                "--shard `{text}`: expected K/N with 0 <= K < N <= {}, e.g. 0/4",
+                crate::limits::MAX_SHARDS
+            ),
         }
     }
 }

@@ -319,6 +319,20 @@ pub fn validity_warnings(
             "{model}: Mach {mach} is below the model's range; {why}"
         ));
     }
+    // Beyond 90 deg the flow meets the vehicle from behind: every panel method here measures
+    // running lengths and leading edges from the nose, so its numbers mean nothing there.
+    for (quantity, angle_rad) in [
+        ("angle of attack", flight.alpha_rad),
+        ("angle of sideslip", flight.beta_rad),
+    ] {
+        let angle_deg = angle_rad.to_degrees();
+        if angle_deg.abs() > 90.0 {
+            warnings.push(format!(
+                "{model}: {quantity} {angle_deg} deg is beyond 90 deg (flow from behind the \
+                 vehicle), outside the model's range"
+            ));
+        }
+    }
     let counts = [
         (
             d.detached_shocks,

@@ -160,11 +160,29 @@ pub(super) fn grid(range: (f64, f64), step: f64) -> Result<Vec<f64>> {
     if !(step.is_finite() && step > 0.0) {
         bail!("--mach-step must be a positive number, got {step}");
     }
-    let n = ((range.1 - range.0) / step).round() as usize;
-    if n > 400 {
-        bail!("--mach-step {step} gives {n} grid points; the limit is 400");
+    let intervals = ((range.1 - range.0) / step).round();
+    let limit = crate::limits::MAX_MACH_POINTS;
+    if intervals + 1.0 > limit as f64 {
+        bail!("--mach-step {step} gives {intervals:.3e} grid points; the limit is {limit} points");
     }
+    let n = intervals as usize;
     Ok(mach_grid(range.0, range.1, n.max(1) + 1))
+}
+
+/// The times of a flutter map within their limits: at most
+/// [`MAX_FLUTTER_TIMES`](crate::limits::MAX_FLUTTER_TIMES) of them, and the heating to the last
+/// at most [`MAX_HEATING_STEPS`](crate::limits::MAX_HEATING_STEPS) conduction steps.
+pub(super) fn check_times(times_s: &[f64], dt_s: f64) -> Result<()> {
+    use crate::limits::{MAX_FLUTTER_TIMES, MAX_HEATING_STEPS, check_count};
+    check_count("--times-s (count)", times_s.len(), 1, MAX_FLUTTER_TIMES)?;
+    let last_s = times_s.last().copied().unwrap_or(0.0);
+    let steps = (last_s / dt_s).ceil();
+    if steps.is_nan() || steps > MAX_HEATING_STEPS as f64 {
+        bail!(
+            "--times-s up to {last_s:e} s at --dt-s {dt_s} is {steps:.3e} heating steps; the limit is {MAX_HEATING_STEPS} steps (shorten the times or lengthen the step)"
+        );
+    }
+    Ok(())
 }
 
 /// Runs the flutter analysis and writes the run folder.
@@ -198,15 +216,14 @@ pub fn run(args: FlutterArgs, registry: &Registry) -> Result<()> {
     if !(args.dt_s.is_finite() && args.dt_s > 0.0) {
         bail!("--dt-s must be a positive number, got {}", args.dt_s);
     }
+    check_times(&times, args.dt_s)?;
     let configured = loaded
         .config
         .regions
         .region(SURFACE_REGION)
         .unwrap_or_default();
     let alpha_deg = args.alpha_deg.unwrap_or(loaded.config.flight.alpha_deg);
-    if !alpha_deg.is_finite() {
-        bail!("--alpha-deg must be a finite number, got {alpha_deg}");
-    }
+    crate::limits::check_flow_angle_deg("--alpha-deg", alpha_deg)?;
     let Some(structure) = configured.structure.clone() else {
         bail!(
             "{}: region `{SURFACE_REGION}` has no structure model (set `regions.lifting_surfaces.structure`)",
@@ -741,6 +758,14 @@ fn run_panel(
     registry: &Registry,
     machs: &[f64],
 ) -> Result<()> {
+    use crate::limits::{MAX_MODES, MAX_PANEL_ELEMENTS, check_count};
+    check_count("--panel-modes", args.panel_modes, 1, MAX_MODES)?;
+    check_count(
+        "--panel-elements",
+        args.panel_elements,
+        1,
+        MAX_PANEL_ELEMENTS,
+    )?;
     let panel = SimplySupportedPanel {
         chord_m: args.panel_chord_m,
         span_m: args.panel_span_m,

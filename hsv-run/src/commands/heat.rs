@@ -132,9 +132,7 @@ fn setup(loaded: &LoadedConfig, args: &HeatArgs, mach: f64) -> Result<Setup> {
     let flight_cfg = loaded.config.flight;
     let altitude_m = args.altitude_m.unwrap_or(10_000.0);
     let alpha_deg = args.alpha_deg.unwrap_or(flight_cfg.alpha_deg);
-    if !alpha_deg.is_finite() {
-        bail!("--alpha-deg must be a finite number, got {alpha_deg}");
-    }
+    crate::limits::check_flow_angle_deg("--alpha-deg", alpha_deg)?;
     let freestream = Freestream::standard(mach, altitude_m, loaded.config.gas)?;
     let flight = FlightCondition::steady(freestream, alpha_deg.to_radians(), 0.0);
     let region = loaded.region(HEATED_REGION)?;
@@ -172,6 +170,12 @@ fn train_pod_for_run(s: &mut Setup, args: &HeatArgs, mach: f64) -> Result<()> {
     } else {
         args.snapshot_mach.clone()
     };
+    crate::limits::check_count(
+        "--snapshot-mach (count of snapshot runs)",
+        machs.len(),
+        1,
+        crate::limits::MAX_SNAPSHOT_RUNS,
+    )?;
     for &m in &machs {
         check_positive("--snapshot-mach", m)?;
     }
@@ -377,6 +381,9 @@ pub fn run(args: HeatArgs, registry: &Registry) -> Result<()> {
             };
             eprintln!("heat: `{name}` cache {}: {how}", cache.path.display());
             notes.push(format!("`{name}` cache {}: {how}", cache.path.display()));
+            if let Some(note) = cache.note {
+                warnings.push(format!("{name}: {note}"));
+            }
         }
         for w in super::aero::validity_warnings(&s.aero, &s.flight, heating.aero_diagnostics()) {
             let w = format!("{name}: {w}");

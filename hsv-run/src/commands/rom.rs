@@ -264,6 +264,22 @@ fn check_flight(rom: &dyn ReducedOrderAero, args: &CheckArgs) -> Result<FlightCo
 }
 
 fn check(args: CheckArgs, registry: &Registry) -> Result<()> {
+    use crate::limits::{MAX_CHECK_STEPS, check_count};
+    check_count(
+        "--steps-per-period",
+        args.steps_per_period,
+        2,
+        MAX_CHECK_STEPS,
+    )?;
+    let response_steps = args.periods * args.steps_per_period as f64;
+    if !(args.periods.is_finite() && args.periods > 0.0 && response_steps <= MAX_CHECK_STEPS as f64)
+    {
+        anyhow::bail!(
+            "--periods {} at --steps-per-period {} is {response_steps:.3e} steps per response; --periods must be positive and the limit is {MAX_CHECK_STEPS} steps",
+            args.periods,
+            args.steps_per_period
+        );
+    }
     let mut model = build(&args.target, registry)?;
     let rom = reduced_order::require(model.as_mut(), "`hsv-run rom check`")?;
     let flight = check_flight(rom, &args)?;

@@ -195,9 +195,13 @@ pub fn emit_slurm(
     json: bool,
 ) -> Result<()> {
     let cases = job.cases;
-    if shards == 0 {
-        bail!("--emit-slurm must be at least 1 shard, got 0");
-    }
+    crate::limits::check_count("--emit-slurm", shards, 1, crate::limits::MAX_SHARDS)?;
+    crate::limits::check_count(
+        "--slurm-cpus",
+        slurm.slurm_cpus,
+        1,
+        crate::limits::MAX_THREADS,
+    )?;
     if shards > cases {
         bail!(
             "--emit-slurm {shards}: the {} has only {cases} cases; use at most {cases} shards",
@@ -212,7 +216,7 @@ pub fn emit_slurm(
         &program.display().to_string(),
         job,
         shards,
-        slurm.slurm_cpus.max(1),
+        slurm.slurm_cpus,
         &slurm.slurm_time,
         slurm.slurm_partition.as_deref(),
     );

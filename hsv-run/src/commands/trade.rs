@@ -271,10 +271,9 @@ fn flutter_grid(
     if !(dt_s.is_finite() && dt_s > 0.0) {
         bail!("--dt-s (or `trade.dt_s`) of a flutter study must be a positive number, got {dt_s}");
     }
+    super::flutter::check_times(&times_s, dt_s)?;
     let alpha_deg = args.alpha_deg.unwrap_or(loaded.config.flight.alpha_deg);
-    if !alpha_deg.is_finite() {
-        bail!("--alpha-deg must be a finite number, got {alpha_deg}");
-    }
+    crate::limits::check_flow_angle_deg("--alpha-deg", alpha_deg)?;
     Ok(FlutterGrid {
         region: flutter_region(variations)?,
         mach_range: range,
@@ -288,6 +287,12 @@ fn flutter_grid(
 
 /// Runs the study (or its shard, or writes the Slurm scripts).
 pub fn run(args: TradeArgs, registry: &Registry) -> Result<()> {
+    crate::limits::check_count(
+        "--threads (0: all cores)",
+        args.threads,
+        0,
+        crate::limits::MAX_THREADS,
+    )?;
     let (loaded, registry) = load_config(args.config.config.as_deref(), registry)?;
     let (spec, costs_path) = study(&args, &loaded, &registry)?;
     let costs = costs_path

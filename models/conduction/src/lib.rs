@@ -86,7 +86,7 @@ pub fn full_order_for(ctx: &ModelContext<'_>) -> Result<FullOrder, ModelError> {
 }
 
 fn construct_pod(ctx: &ModelContext<'_>) -> Result<Box<dyn ConductionModel>, ModelError> {
-    let settings: PodSettings = ctx.parse_settings()?;
+    let mut settings: PodSettings = ctx.parse_settings()?;
     let mut full = full_order_for(ctx)?;
     let path_buf = settings.basis_path(&ctx.region.name);
     let path = path_buf.as_path();
@@ -125,12 +125,27 @@ fn construct_pod(ctx: &ModelContext<'_>) -> Result<Box<dyn ConductionModel>, Mod
             }
         }
     };
+    // A basis the model trained itself may hold fewer modes than asked when its runs gave fewer
+    // snapshots; the run uses what it has and says so. A hand-built basis must hold them all.
+    let mut note = None;
+    if settings.training.is_some() && settings.modes > basis.n_modes() {
+        note = Some(format!(
+            "{}.modes = {} but the training runs gave only {} snapshots: using {} modes \
+             (lengthen training.duration_s or shorten training.dt_s for more)",
+            ctx.key_path,
+            settings.modes,
+            basis.n_snapshots,
+            basis.n_modes()
+        ));
+        settings.modes = basis.n_modes();
+    }
     Ok(Box::new(
         Pod::new(&full, basis, settings)?
             .with_basis_file(path.display().to_string())
             .with_cache_use(hsv_core::thermal::CacheUse {
                 path: path_buf.clone(),
                 reused,
+                note,
             }),
     ))
 }

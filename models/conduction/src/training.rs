@@ -164,7 +164,7 @@ pub fn fingerprint(
 }
 
 /// Runs `full` at every training condition and builds a basis of `modes` modes from the
-/// snapshots.
+/// snapshots (fewer when the runs give fewer snapshots than `modes`).
 pub fn train_basis(
     ctx: &ModelContext<'_>,
     training: &Training,
@@ -211,5 +211,8 @@ pub fn train_basis(
         })?;
         snapshots.extend(run);
     }
+    // A short horizon gives fewer snapshots than modes: take the modes they allow (the model
+    // says so, see `construct_pod`) rather than refuse a run the full-order model can do.
+    let modes = modes.min(snapshots.len()).max(1);
     PodBasis::from_snapshots(&snapshots, modes, full.settings().clone())
 }

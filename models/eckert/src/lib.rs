@@ -602,12 +602,18 @@ fn check_edge(edge: &EdgeState, panel: Option<usize>) -> Result<(), ModelError> 
             ));
         }
     }
-    if !(edge.temperature_k.is_finite() && edge.temperature_k > 0.0) {
+    // An expansion to vacuum (p_e = 0 or ρ_e = 0: piston theory or Prandtl-Meyer past its
+    // maximum turning) also cools the edge to 0 K; such a panel has no boundary layer and is
+    // counted as a vacuum panel, not refused.
+    let vacuum = edge.pressure_pa == 0.0 || edge.density_kg_m3 == 0.0;
+    let temperature_ok = edge.temperature_k.is_finite()
+        && (edge.temperature_k > 0.0 || (vacuum && edge.temperature_k == 0.0));
+    if !temperature_ok {
         return Err(ModelError::out_of_range(
             NAME,
             &format!("edge temperature (K){}", at_panel(panel)),
             edge.temperature_k,
-            "finite and > 0",
+            "finite and > 0 (0 only on a vacuum panel, p_e = 0 or rho_e = 0)",
         ));
     }
     Ok(())

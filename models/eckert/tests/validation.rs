@@ -450,6 +450,38 @@ fn vacuum_and_stagnant_panels_only_radiate() {
     assert_eq!((d.vacuum_panels, d.stagnant_panels), (1, 1));
 }
 
+/// Issue 26: piston theory expanding to vacuum hands over T_e = 0 with p_e = ρ_e = 0; the panel
+/// only radiates (and has no shear) instead of failing the run. T_e = 0 with a pressure is still
+/// refused.
+#[test]
+fn a_vacuum_edge_at_zero_kelvin_only_radiates_and_has_no_shear() {
+    let mesh = plate_mesh(2);
+    let f = freestream(6.0, 26_000.0);
+    let flight = FlightCondition::steady(f, 0.0, 0.0);
+    let mut aero = uniform_solution(&mesh, edge_of(&f));
+    aero.edge[0].pressure_pa = 0.0;
+    aero.edge[0].density_kg_m3 = 0.0;
+    aero.edge[0].temperature_k = 0.0;
+    let mut m = model(Reference::Eckert, Regime::Laminar);
+    let wall = vec![500.0; 3];
+    let mut q = vec![0.0; 3];
+    m.heat_flux(&mesh, &flight, &aero, &wall, &mut q).unwrap();
+    let radiated = 0.8 * STEFAN_BOLTZMANN_W_M2_K4 * 500.0f64.powi(4);
+    assert_relative_eq!(q[0], -radiated, max_relative = 1e-12);
+    assert_eq!(m.diagnostics().vacuum_panels, 1);
+    let mut tau = vec![0.0; 3];
+    m.skin_friction()
+        .expect("eckert has skin friction")
+        .wall_shear(&mesh, &flight, &aero, &wall, &mut tau)
+        .unwrap();
+    assert_eq!(tau[0], 0.0);
+    assert!(tau[1] > 0.0);
+    aero.edge[0].pressure_pa = 100.0;
+    aero.edge[0].density_kg_m3 = 1e-3;
+    let err = error_of(m.heat_flux(&mesh, &flight, &aero, &wall, &mut q));
+    assert!(err.contains("edge temperature (K) at panel 0"), "{err}");
+}
+
 fn error_of(result: Result<(), ModelError>) -> String {
     result.unwrap_err().to_string()
 }

@@ -440,12 +440,20 @@ pub(super) fn describe(b: &FlutterBoundary, kind: Instability) -> String {
             at_mach,
             least_damping_ratio,
             limited_by,
-        } => format!(
-            "no {what} in the range (largest real part of its roots {max_real_per_s:.4} /s at Mach {at_mach}, least damping ratio {least_damping_ratio:.4}){}",
-            limited_by
+        } => {
+            let limit = limited_by
                 .as_ref()
-                .map_or_else(String::new, |l| format!("; analysable only below {l}"))
-        ),
+                .map_or_else(String::new, |l| format!("; analysable only below {l}"));
+            // A time with no root of this kind (no real root for divergence) leaves the search's
+            // maximum at −∞: say so instead of printing the sentinel.
+            if max_real_per_s.is_finite() {
+                format!(
+                    "no {what} in the range (largest real part of its roots {max_real_per_s:.4} /s at Mach {at_mach}, least damping ratio {least_damping_ratio:.4}){limit}"
+                )
+            } else {
+                format!("no {what} in the range (no root of its kind at any Mach analysed){limit}")
+            }
+        }
         FlutterBoundary::UnstableAtLowest {
             lowest_mach,
             max_real_per_s,
@@ -845,4 +853,33 @@ fn run_panel(
     }
     outln!("wall time {wall:.2} s")?;
     Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A time whose roots are all oscillatory has no real root: the divergence line says so
+    /// instead of printing the search's −∞ sentinel.
+    #[test]
+    fn a_kind_with_no_roots_is_named_not_printed_as_minus_infinity() {
+        let none = FlutterBoundary::StableInRange {
+            max_real_per_s: f64::NEG_INFINITY,
+            at_mach: f64::NAN,
+            least_damping_ratio: f64::INFINITY,
+            limited_by: None,
+        };
+        let line = describe(&none, Instability::Divergence);
+        assert_eq!(
+            line,
+            "no divergence in the range (no root of its kind at any Mach analysed)"
+        );
+        let some = FlutterBoundary::StableInRange {
+            max_real_per_s: -2.04,
+            at_mach: 5.0,
+            least_damping_ratio: 0.01,
+            limited_by: None,
+        };
+        assert!(describe(&some, Instability::Flutter).contains("-2.0400 /s at Mach 5"));
+    }
 }

@@ -110,6 +110,39 @@ pub struct ControlCommands {
     pub fuel_equivalence_ratio: f64,
 }
 
+impl ControlCommands {
+    /// The names of [`Self::values`], units in the names.
+    pub const NAMES: [&'static str; 3] = [
+        "symmetric_elevon_rad",
+        "differential_elevon_rad",
+        "fuel_equivalence_ratio",
+    ];
+
+    /// The commands in the order of [`Self::NAMES`].
+    pub fn values(&self) -> [f64; 3] {
+        [
+            self.symmetric_elevon_rad,
+            self.differential_elevon_rad,
+            self.fuel_equivalence_ratio,
+        ]
+    }
+
+    /// The commands from values in the order of [`Self::NAMES`].
+    pub fn from_values(
+        [
+            symmetric_elevon_rad,
+            differential_elevon_rad,
+            fuel_equivalence_ratio,
+        ]: [f64; 3],
+    ) -> Self {
+        Self {
+            symmetric_elevon_rad,
+            differential_elevon_rad,
+            fuel_equivalence_ratio,
+        }
+    }
+}
+
 /// A linear design model ẋ = A x + B u of the trimmed vehicle, in deviations from trim.
 #[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct LinearDesignModel {
@@ -154,15 +187,7 @@ impl ControlContext<'_> {
 
     /// A settings error at `key` under this controller's table.
     pub fn settings_error(&self, key: &str, message: impl Into<String>) -> ModelError {
-        ModelError::Settings {
-            file: self.file.to_owned(),
-            key_path: if key.is_empty() {
-                self.key_path.to_owned()
-            } else {
-                format!("{}.{key}", self.key_path)
-            },
-            message: message.into(),
-        }
+        ModelError::settings_at(self.file, self.key_path, key, message)
     }
 }
 

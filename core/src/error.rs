@@ -45,6 +45,25 @@ pub enum ModelError {
 }
 
 impl ModelError {
+    /// A settings error at `key` under the table at `table_path` (the table itself when `key`
+    /// is empty) of config `file`.
+    pub fn settings_at(
+        file: &str,
+        table_path: &str,
+        key: &str,
+        message: impl Into<String>,
+    ) -> Self {
+        Self::Settings {
+            file: file.to_owned(),
+            key_path: if key.is_empty() {
+                table_path.to_owned()
+            } else {
+                format!("{table_path}.{key}")
+            },
+            message: message.into(),
+        }
+    }
+
     /// Shorthand for [`ModelError::OutOfRange`].
     pub fn out_of_range(
         model: &str,

@@ -148,15 +148,7 @@ impl<'a> ModelContext<'a> {
 
     /// A settings error at `key` under this model's table.
     pub fn settings_error(&self, key: &str, message: impl Into<String>) -> ModelError {
-        ModelError::Settings {
-            file: self.file.to_owned(),
-            key_path: if key.is_empty() {
-                self.key_path.to_owned()
-            } else {
-                format!("{}.{key}", self.key_path)
-            },
-            message: message.into(),
-        }
+        ModelError::settings_at(self.file, self.key_path, key, message)
     }
 }
 

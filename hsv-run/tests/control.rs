@@ -30,7 +30,7 @@ fn design_and_loop(
         &state,
         &controls,
         dt_s,
-        None,
+        hsv_run::control::DesignFrom::Vehicle,
     )
     .expect("lqr designs");
     (vehicle, state, control, design)

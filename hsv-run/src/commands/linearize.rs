@@ -96,17 +96,14 @@ pub fn run(args: LinearizeArgs, registry: &Registry) -> Result<()> {
                 &state,
                 &controls,
                 1e-3,
-                None,
+                crate::control::DesignFrom::Linear(lin.model.clone()),
             )?;
             let laws = control.controller().state_feedback();
             if laws.is_empty() {
                 anyhow::bail!("controller `{name}` is no linear state feedback: no closed loop");
             }
-            let a = crate::control::design::closed_loop_matrix(&lin.model, &laws)
+            let values = crate::control::design::closed_loop_eigenvalues(&lin.model, &laws)
                 .map_err(|e| anyhow::anyhow!("closing the loop with `{name}`: {e}"))?;
-            let eig = hsv_core::linalg::general_eigen(&a)?;
-            let mut values: Vec<[f64; 2]> = eig.values.iter().map(|c| [c.re, c.im]).collect();
-            values.sort_by(|a, b| b[0].total_cmp(&a[0]));
             Some((name.clone(), values, control.controller().design_report()))
         }
     };

@@ -330,7 +330,7 @@ pub fn run(args: SimulateArgs, registry: &Registry) -> Result<()> {
                 &state,
                 &controls,
                 args.dt_s,
-                None,
+                crate::control::DesignFrom::Vehicle,
             )?;
             vehicle.start_heating(&rates)?;
             let point = (
@@ -380,7 +380,10 @@ pub fn run(args: SimulateArgs, registry: &Registry) -> Result<()> {
                 &restart.state,
                 &restart.controls,
                 args.dt_s,
-                restart.design.clone(),
+                restart.design.clone().map_or(
+                    crate::control::DesignFrom::Vehicle,
+                    crate::control::DesignFrom::Restart,
+                ),
             )?;
             if let Some(c) = restart.control.clone() {
                 control.restore(c)?;

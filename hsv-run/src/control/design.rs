@@ -17,10 +17,13 @@ use nalgebra::DMatrix;
 use crate::dynamics::LinearModel;
 
 /// One axis of the design: rigid states of the full model, the outputs that measure them (same
-/// count), and the inputs used.
+/// count; each the linearization's output name and a [`MeasuredOutputs`] name, which agree),
+/// and the inputs used.
+///
+/// [`MeasuredOutputs`]: hsv_core::control::MeasuredOutputs
 pub struct Axis {
     pub rigid_states: &'static [&'static str],
-    pub outputs: &'static [(&'static str, &'static str)],
+    pub outputs: &'static [&'static str],
     pub inputs: &'static [&'static str],
 }
 
@@ -28,11 +31,11 @@ pub struct Axis {
 pub const LONGITUDINAL: Axis = Axis {
     rigid_states: &["u_m_s", "w_m_s", "q_rad_s", "pitch_rad", "down_m"],
     outputs: &[
-        ("airspeed_m_s", "airspeed_m_s"),
-        ("alpha_rad", "alpha_rad"),
-        ("q_rad_s", "q_rad_s"),
-        ("pitch_rad", "pitch_rad"),
-        ("altitude_m", "altitude_m"),
+        "airspeed_m_s",
+        "alpha_rad",
+        "q_rad_s",
+        "pitch_rad",
+        "altitude_m",
     ],
     inputs: &["symmetric_elevon_rad", "fuel_equivalence_ratio"],
 };
@@ -40,12 +43,7 @@ pub const LONGITUDINAL: Axis = Axis {
 /// Lateral: v, p, r, φ measured as β, p, r, roll; differential elevon.
 pub const LATERAL: Axis = Axis {
     rigid_states: &["v_m_s", "p_rad_s", "r_rad_s", "roll_rad"],
-    outputs: &[
-        ("beta_rad", "beta_rad"),
-        ("p_rad_s", "p_rad_s"),
-        ("r_rad_s", "r_rad_s"),
-        ("roll_rad", "roll_rad"),
-    ],
+    outputs: &["beta_rad", "p_rad_s", "r_rad_s", "roll_rad"],
     inputs: &["differential_elevon_rad"],
 };
 
@@ -100,7 +98,7 @@ pub fn design_model(full: &LinearModel, axis: &Axis) -> Result<LinearDesignModel
     let y: Vec<usize> = axis
         .outputs
         .iter()
-        .map(|(o, _)| index_of(&full.output_names, o, "output"))
+        .map(|o| index_of(&full.output_names, o, "output"))
         .collect::<Result<_, _>>()?;
     let t = pick(&full.c, &y, &r);
     let t_inv = t
@@ -108,7 +106,7 @@ pub fn design_model(full: &LinearModel, axis: &Axis) -> Result<LinearDesignModel
         .try_inverse()
         .ok_or("the measured outputs do not determine the rigid states (T singular)")?;
     Ok(LinearDesignModel {
-        state_names: axis.outputs.iter().map(|(_, m)| m.to_string()).collect(),
+        state_names: axis.outputs.iter().map(|m| m.to_string()).collect(),
         input_names: axis.inputs.iter().map(|s| s.to_string()).collect(),
         a: &t * a_red * t_inv,
         b: t * b_red,
@@ -147,4 +145,16 @@ pub fn closed_loop_matrix(
         a -= b * &law.k * c;
     }
     Ok(a)
+}
+
+/// The eigenvalues (re, im) of [`closed_loop_matrix`], largest real part first.
+pub fn closed_loop_eigenvalues(
+    full: &LinearModel,
+    laws: &[hsv_core::control::StateFeedback],
+) -> Result<Vec<[f64; 2]>, String> {
+    let a = closed_loop_matrix(full, laws)?;
+    let eig = hsv_core::linalg::general_eigen(&a).map_err(|e| e.to_string())?;
+    let mut values: Vec<[f64; 2]> = eig.values.iter().map(|c| [c.re, c.im]).collect();
+    values.sort_by(|a, b| b[0].total_cmp(&a[0]));
+    Ok(values)
 }

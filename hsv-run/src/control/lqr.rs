@@ -82,19 +82,13 @@ struct Regulator {
     /// Indices into `MeasuredOutputs::values()` of the states, and into the command triple.
     states: Vec<usize>,
     inputs: Vec<usize>,
-    k: DMatrix<f64>,
     feedback: StateFeedback,
     report: serde_json::Value,
 }
 
-fn command_index(name: &str) -> Option<usize> {
-    [
-        "symmetric_elevon_rad",
-        "differential_elevon_rad",
-        "fuel_equivalence_ratio",
-    ]
-    .iter()
-    .position(|n| *n == name)
+/// A matrix as its rows, for the JSON design report.
+fn rows(m: &DMatrix<f64>) -> Vec<Vec<f64>> {
+    m.row_iter().map(|r| r.iter().copied().collect()).collect()
 }
 
 fn design(
@@ -133,20 +127,19 @@ fn design(
         .input_names
         .iter()
         .map(|n| {
-            command_index(n)
+            ControlCommands::NAMES
+                .iter()
+                .position(|c| c == n)
                 .ok_or_else(|| ctx.settings_error("", format!("design input `{n}` is no command")))
         })
         .collect::<Result<Vec<_>, _>>()?;
-    let gains: Vec<Vec<f64>> = (0..s.k.nrows())
-        .map(|i| (0..s.k.ncols()).map(|j| s.k[(i, j)]).collect())
-        .collect();
     let report = serde_json::json!({
         "states": model.state_names,
         "inputs": model.input_names,
         "reduction": model.reduction,
-        "a": (0..model.a.nrows()).map(|i| (0..model.a.ncols()).map(|j| model.a[(i, j)]).collect::<Vec<_>>()).collect::<Vec<_>>(),
-        "b": (0..model.b.nrows()).map(|i| (0..model.b.ncols()).map(|j| model.b[(i, j)]).collect::<Vec<_>>()).collect::<Vec<_>>(),
-        "gain_k": gains,
+        "a": rows(&model.a),
+        "b": rows(&model.b),
+        "gain_k": rows(&s.k),
         "care_relative_residual": s.relative_residual,
         "sign_iterations": s.sign_iterations,
         "newton_kleinman_steps": s.newton_steps,
@@ -158,9 +151,8 @@ fn design(
         feedback: StateFeedback {
             state_names: model.state_names.clone(),
             input_names: model.input_names.clone(),
-            k: s.k.clone(),
+            k: s.k,
         },
-        k: s.k,
         report,
     })
 }
@@ -189,35 +181,23 @@ impl Controller for Lqr {
         _state: &mut [f64],
         commands: &mut ControlCommands,
     ) -> Result<(), ModelError> {
-        let mut u = [
-            self.trim.symmetric_elevon_rad,
-            self.trim.differential_elevon_rad,
-            self.trim.fuel_equivalence_ratio,
-        ];
+        let mut base = self.trim;
         if let Some(pilot) = self.pilot.as_mut() {
-            let mut p = ControlCommands::default();
-            pilot.update(outputs, &mut [], &mut p)?;
-            u = [
-                p.symmetric_elevon_rad,
-                p.differential_elevon_rad,
-                p.fuel_equivalence_ratio,
-            ];
+            pilot.update(outputs, &mut [], &mut base)?;
         }
+        let mut u = base.values();
         let y = outputs.values();
         for reg in &self.regulators {
+            let k = &reg.feedback.k;
             for (i, &ui) in reg.inputs.iter().enumerate() {
                 let mut sum = 0.0;
                 for (j, &zj) in reg.states.iter().enumerate() {
-                    sum += reg.k[(i, j)] * (y[zj] - self.trim_outputs[zj]);
+                    sum += k[(i, j)] * (y[zj] - self.trim_outputs[zj]);
                 }
                 u[ui] -= sum;
             }
         }
-        *commands = ControlCommands {
-            symmetric_elevon_rad: u[0],
-            differential_elevon_rad: u[1],
-            fuel_equivalence_ratio: u[2],
-        };
+        *commands = ControlCommands::from_values(u);
         Ok(())
     }
 

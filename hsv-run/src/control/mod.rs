@@ -103,10 +103,6 @@ pub struct ControlLoop {
     /// The start and length of the current step, s.
     step_start_s: f64,
     step_dt_s: f64,
-    /// The last measurement (continuous laws read its time only).
-    last_outputs: MeasuredOutputs,
-    /// Scratch of a continuous law's state (length 0: it keeps none).
-    scratch: Vec<f64>,
 }
 
 impl ControlLoop {
@@ -154,8 +150,6 @@ impl ControlLoop {
             state,
             step_start_s: 0.0,
             step_dt_s: dt_s,
-            last_outputs: MeasuredOutputs::default(),
-            scratch: Vec::new(),
         })
     }
 
@@ -208,32 +202,30 @@ impl ControlLoop {
         self.step_start_s = t;
         self.step_dt_s = dt;
         self.state.position_start = self.state.position_end;
-        let outputs = measure(vehicle, &self.state.position_start, t);
-        self.last_outputs = outputs;
-        match self.sample_steps {
-            None => {
-                if self.actuators.is_some() {
-                    self.controller
-                        .update(&outputs, &mut self.scratch, &mut self.state.command)
-                        .map_err(|e| self.model_error(e))?;
-                }
-            }
+        // A law of time without actuators is evaluated at each stage instead (`controls_at`);
+        // with actuators it drives them from the step's start. A sampled law runs when due.
+        let due = match self.sample_steps {
+            None => self.actuators.is_some(),
             Some(every) => {
-                if step >= self.state.next_sample_step {
-                    self.controller
-                        .update(
-                            &outputs,
-                            &mut self.state.controller,
-                            &mut self.state.command,
-                        )
-                        .map_err(|e| self.model_error(e))?;
+                let due = step >= self.state.next_sample_step;
+                if due {
                     self.state.next_sample_step = step + every;
                 }
+                due
             }
+        };
+        if due {
+            let outputs = measure(vehicle, &self.state.position_start, t);
+            self.controller
+                .update(
+                    &outputs,
+                    &mut self.state.controller,
+                    &mut self.state.command,
+                )
+                .map_err(|e| self.model_error(e))?;
         }
         let command = self.state.command;
-        let values = command_values(&command);
-        if !values.iter().all(|v| v.is_finite()) {
+        if !command.values().iter().all(|v| v.is_finite()) {
             return Err(VehicleError::Input(format!(
                 "controller `{}` commanded non-finite values at t = {t} s: {command:?}",
                 self.controller.name()
@@ -253,17 +245,18 @@ impl ControlLoop {
         Ok(())
     }
 
-    /// The controls at `time` inside the current step: a continuous law without actuators at
-    /// that instant, else the actuator positions, linear across the step.
+    /// The controls at `time` inside the current step: a law of time without actuators at that
+    /// instant (it reads the time alone: [`Controller::sample_interval_s`]), else the actuator
+    /// positions, linear across the step.
     pub fn controls_at(&mut self, time: f64) -> Result<FlightControls, VehicleError> {
         if self.sample_steps.is_none() && self.actuators.is_none() {
             let outputs = MeasuredOutputs {
                 time_s: time,
-                ..self.last_outputs
+                ..MeasuredOutputs::default()
             };
             let mut command = ControlCommands::default();
             self.controller
-                .update(&outputs, &mut self.scratch, &mut command)
+                .update(&outputs, &mut [], &mut command)
                 .map_err(|e| self.model_error(e))?;
             return Ok(flight_controls(&command));
         }
@@ -273,24 +266,13 @@ impl ControlLoop {
             1.0
         };
         let (a, b) = (
-            command_values(&self.state.position_start),
-            command_values(&self.state.position_end),
+            self.state.position_start.values(),
+            self.state.position_end.values(),
         );
-        let mix = |i: usize| a[i] * (1.0 - w) + b[i] * w;
-        Ok(flight_controls(&ControlCommands {
-            symmetric_elevon_rad: mix(0),
-            differential_elevon_rad: mix(1),
-            fuel_equivalence_ratio: mix(2),
-        }))
+        Ok(flight_controls(&ControlCommands::from_values(
+            std::array::from_fn(|i| a[i] * (1.0 - w) + b[i] * w),
+        )))
     }
-}
-
-fn command_values(c: &ControlCommands) -> [f64; 3] {
-    [
-        c.symmetric_elevon_rad,
-        c.differential_elevon_rad,
-        c.fuel_equivalence_ratio,
-    ]
 }
 
 /// What a history sample records of the loop.
@@ -340,6 +322,16 @@ pub struct DesignRecord {
     pub lateral: Option<hsv_core::control::LinearDesignModel>,
 }
 
+/// What a controller's design model comes from.
+pub enum DesignFrom {
+    /// Linearize the trimmed vehicle when the controller first asks.
+    Vehicle,
+    /// The full linear model of the trimmed vehicle, already computed (`linearize`).
+    Linear(crate::dynamics::LinearModel),
+    /// The design a restart file saved (bit for bit the same controller).
+    Restart(DesignRecord),
+}
+
 /// Linearizes the trimmed vehicle on the first request.
 struct VehicleDesign<'v> {
     vehicle: std::cell::RefCell<&'v mut crate::vehicle::partitioned::PartitionedVehicle>,
@@ -358,11 +350,7 @@ impl VehicleDesign<'_> {
         if let Some(m) = slot(&mut self.record.borrow_mut()).clone() {
             return Ok(m);
         }
-        let err = |m: String| hsv_core::ModelError::Settings {
-            file: String::new(),
-            key_path: "control".to_owned(),
-            message: m,
-        };
+        let err = |m: String| hsv_core::ModelError::settings_at("", "control", "", m);
         if self.full.borrow().is_none() {
             let lin = crate::analysis::linearize::linearize(
                 &mut self.vehicle.borrow_mut(),
@@ -418,8 +406,8 @@ pub fn control_settings(
     Ok((name, actuators))
 }
 
-/// Builds controller `name` at the trim (`trim_state`, `trim_controls`) of `vehicle`, from a
-/// restart file's `stored` design when given; the loop and the design it used.
+/// Builds controller `name` at the trim (`trim_state`, `trim_controls`) of `vehicle`, its design
+/// model from `from`; the loop and the design it used.
 #[allow(clippy::too_many_arguments)]
 pub fn build_control_loop(
     loaded: &hsv_core::config::LoadedConfig,
@@ -430,21 +418,26 @@ pub fn build_control_loop(
     trim_state: &VehicleState,
     trim_controls: &FlightControls,
     dt_s: f64,
-    stored: Option<DesignRecord>,
+    from: DesignFrom,
 ) -> anyhow::Result<(ControlLoop, DesignRecord)> {
     let trim_commands = commands_of(trim_controls);
-    let record = stored.unwrap_or_else(|| DesignRecord {
+    let fresh = || DesignRecord {
         trim_outputs: measure(trim_state, &trim_commands, 0.0),
         trim_commands,
         longitudinal: None,
         lateral: None,
-    });
+    };
+    let (record, full) = match from {
+        DesignFrom::Vehicle => (fresh(), None),
+        DesignFrom::Linear(model) => (fresh(), Some(model)),
+        DesignFrom::Restart(record) => (record, None),
+    };
     let (trim_outputs, trim_commands) = (record.trim_outputs, record.trim_commands);
     let source = VehicleDesign {
         vehicle: std::cell::RefCell::new(vehicle),
         trim_state,
         trim_controls,
-        full: std::cell::RefCell::new(None),
+        full: std::cell::RefCell::new(full),
         record: std::cell::RefCell::new(record),
     };
     let empty = toml::Table::new();

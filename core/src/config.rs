@@ -397,17 +397,11 @@ fn check_values(config: &HsvConfig, file: &str) -> Result<(), ConfigError> {
             ),
         ));
     }
-    // One turn at most: 720 deg is a typing error, not 0 deg.
     for (key, value) in [
         ("flight.alpha_deg", flight.alpha_deg),
         ("flight.beta_deg", flight.beta_deg),
     ] {
-        if !(value.is_finite() && value.abs() <= 180.0) {
-            return Err(error(
-                key,
-                format!("must be a finite angle from -180 to 180 deg, got {value}"),
-            ));
-        }
+        flow_angle_deg(value).map_err(|message| error(key, message))?;
     }
     let reference = &config.reference;
     for (key, value, what) in [
@@ -506,6 +500,21 @@ pub fn parse_table<T: DeserializeOwned>(
 /// The first line of a message: deserializer errors append context lines the key path already gives.
 fn first_line(message: &str) -> String {
     message.lines().next().unwrap_or_default().trim().to_owned()
+}
+
+/// Largest magnitude of a flow angle (α, β), deg: an angle is one turn at most, so 720° is a
+/// typing error, not 0°.
+pub const MAX_FLOW_ANGLE_DEG: f64 = 180.0;
+
+/// `value_deg` if it is a finite flow angle within ±[`MAX_FLOW_ANGLE_DEG`], else what is wrong.
+pub fn flow_angle_deg(value_deg: f64) -> Result<f64, String> {
+    if value_deg.is_finite() && value_deg.abs() <= MAX_FLOW_ANGLE_DEG {
+        Ok(value_deg)
+    } else {
+        Err(format!(
+            "must be a finite angle from -{MAX_FLOW_ANGLE_DEG} to {MAX_FLOW_ANGLE_DEG} deg, got {value_deg}"
+        ))
+    }
 }
 
 #[cfg(test)]

@@ -24,19 +24,11 @@ pub const MAX_SNAPSHOT_RUNS: usize = 20;
 /// Most steps per period or periods of a ROM check response.
 pub const MAX_CHECK_STEPS: usize = 1_000_000;
 
-/// Largest magnitude of a flow angle (α, β), deg: an angle is one turn at most, so 720° is a
-/// typing error, not 0°.
-pub const MAX_FLOW_ANGLE_DEG: f64 = 180.0;
-
-/// `value_deg` if it is a finite flow angle within ±[`MAX_FLOW_ANGLE_DEG`], else an error
-/// naming `what`.
+/// `value_deg` if it is a finite flow angle within ±[`hsv_core::config::MAX_FLOW_ANGLE_DEG`]
+/// (the rule config files obey too), else an error naming `what`.
 pub fn check_flow_angle_deg(what: &str, value_deg: f64) -> anyhow::Result<f64> {
-    if !(value_deg.is_finite() && value_deg.abs() <= MAX_FLOW_ANGLE_DEG) {
-        anyhow::bail!(
-            "{what} must be a finite angle from -{MAX_FLOW_ANGLE_DEG} to {MAX_FLOW_ANGLE_DEG} deg, got {value_deg}"
-        );
-    }
-    Ok(value_deg)
+    hsv_core::config::flow_angle_deg(value_deg)
+        .map_err(|message| anyhow::anyhow!("{what} {message}"))
 }
 
 /// A count outside its limit.

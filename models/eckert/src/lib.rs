@@ -489,7 +489,7 @@ impl Eckert {
                 "finite and > 0",
             ));
         }
-        if edge.pressure_pa == 0.0 || edge.density_kg_m3 == 0.0 || edge.velocity_m_s == 0.0 {
+        if is_vacuum(edge) || edge.velocity_m_s == 0.0 {
             return Ok(None);
         }
         Ok(Some(self.heating(
@@ -585,6 +585,11 @@ fn at_panel(panel: Option<usize>) -> String {
 }
 
 /// Checks an edge state is finite and non-negative with T_e > 0.
+/// An edge expanded to vacuum (p_e = 0 or ρ_e = 0): no boundary layer forms on its panel.
+fn is_vacuum(edge: &EdgeState) -> bool {
+    edge.pressure_pa == 0.0 || edge.density_kg_m3 == 0.0
+}
+
 fn check_edge(edge: &EdgeState, panel: Option<usize>) -> Result<(), ModelError> {
     let named = [
         ("edge Mach number", edge.mach),
@@ -605,9 +610,8 @@ fn check_edge(edge: &EdgeState, panel: Option<usize>) -> Result<(), ModelError> 
     // An expansion to vacuum (p_e = 0 or ρ_e = 0: piston theory or Prandtl-Meyer past its
     // maximum turning) also cools the edge to 0 K; such a panel has no boundary layer and is
     // counted as a vacuum panel, not refused.
-    let vacuum = edge.pressure_pa == 0.0 || edge.density_kg_m3 == 0.0;
     let temperature_ok = edge.temperature_k.is_finite()
-        && (edge.temperature_k > 0.0 || (vacuum && edge.temperature_k == 0.0));
+        && (edge.temperature_k > 0.0 || (is_vacuum(edge) && edge.temperature_k == 0.0));
     if !temperature_ok {
         return Err(ModelError::out_of_range(
             NAME,
@@ -643,7 +647,7 @@ impl HeatFluxModel for Eckert {
             let edge = &aero.edge[i];
             check_wall_temperature(NAME, tw, self.settings.melting_point_k, Some(i))?;
             check_edge(edge, Some(i))?;
-            let flat_plate = if edge.pressure_pa == 0.0 || edge.density_kg_m3 == 0.0 {
+            let flat_plate = if is_vacuum(edge) {
                 diagnostics.vacuum_panels += 1;
                 continue_radiating(&mut out_w_m2[i], self.radiated_flux_w_m2(tw), i)?;
                 continue;
@@ -720,8 +724,7 @@ impl SkinFriction for Eckert {
             let edge = &aero.edge[i];
             check_wall_temperature(NAME, tw, self.settings.melting_point_k, Some(i))?;
             check_edge(edge, Some(i))?;
-            let no_boundary_layer =
-                edge.pressure_pa == 0.0 || edge.density_kg_m3 == 0.0 || edge.velocity_m_s == 0.0;
+            let no_boundary_layer = is_vacuum(edge) || edge.velocity_m_s == 0.0;
             let tau = if no_boundary_layer {
                 0.0
             } else {

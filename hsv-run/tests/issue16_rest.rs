@@ -3,8 +3,11 @@
 //! that refuse a run outside what they hold (item 3), validity warnings and round-off clamping
 //! (item 5), and plots and VTK files that say what they show (item 9).
 
+mod common;
+
 use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
+
+use common::cli::{hsv_run_in, json, scratch_dir, stderr};
 
 use hsv_core::config::LoadedConfig;
 use hsv_core::surface_grid::SurfaceGrid;
@@ -13,33 +16,6 @@ use hsv_core::vehicle::{Side, lifting_surface_mesh};
 use hsv_model_conduction::{
     FullOrder, FullOrderSettings, Pod, PodBasis, PodSettings, collect_snapshots,
 };
-
-fn hsv_run_in(dir: Option<&Path>, args: &[&str]) -> Output {
-    let mut command = Command::new(env!("CARGO_BIN_EXE_hsv-run"));
-    command.args(args);
-    if let Some(dir) = dir {
-        command.current_dir(dir);
-    }
-    command.output().expect("hsv-run starts")
-}
-
-fn stderr(output: &Output) -> String {
-    String::from_utf8_lossy(&output.stderr).into_owned()
-}
-
-fn json(output: &Output) -> serde_json::Value {
-    assert!(output.status.success(), "{}", stderr(output));
-    serde_json::from_slice(&output.stdout).expect("valid JSON")
-}
-
-fn scratch_dir(name: &str) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("hsv-issue16-{}-{name}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&dir);
-    std::fs::create_dir_all(&dir).expect("temp dir");
-    dir
-}
-
-// ---- heat on the shared conventions ----------------------------------------------------------
 
 #[test]
 fn refused_heat_inputs_leave_no_run_folder() {

@@ -2,32 +2,9 @@
 //! before work starts; default commands work on the default config at short horizons and with
 //! friction; flow angles beyond one turn are refused and angles beyond a model's range warn.
 
-use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
+mod common;
 
-fn hsv_run_in(dir: Option<&Path>, args: &[&str]) -> Output {
-    let mut command = Command::new(env!("CARGO_BIN_EXE_hsv-run"));
-    command.args(args);
-    if let Some(dir) = dir {
-        command.current_dir(dir);
-    }
-    command.output().expect("hsv-run starts")
-}
-
-fn hsv_run(args: &[&str]) -> Output {
-    hsv_run_in(None, args)
-}
-
-fn stderr(output: &Output) -> String {
-    String::from_utf8_lossy(&output.stderr).into_owned()
-}
-
-fn scratch_dir(name: &str) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("hsv-issue26-{}-{name}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&dir);
-    std::fs::create_dir_all(&dir).expect("temp dir");
-    dir
-}
+use common::cli::{hsv_run, hsv_run_in, scratch_dir, stderr};
 
 /// Expects failure with one `error:` line containing `needle` and no panic.
 fn expect_error(args: &[&str], needle: &str) {

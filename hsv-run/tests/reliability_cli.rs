@@ -2,36 +2,12 @@
 //! say how the run ended, meshes are checked, config errors come early and name the key, and
 //! plugins load from the named file.
 
+mod common;
+
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output, Stdio};
 
-fn hsv_run_in(dir: Option<&Path>, args: &[&str]) -> Output {
-    let mut command = Command::new(env!("CARGO_BIN_EXE_hsv-run"));
-    command.args(args);
-    if let Some(dir) = dir {
-        command.current_dir(dir);
-    }
-    command.output().expect("hsv-run starts")
-}
-
-fn hsv_run(args: &[&str]) -> Output {
-    hsv_run_in(None, args)
-}
-
-fn stdout(output: &Output) -> String {
-    String::from_utf8_lossy(&output.stdout).into_owned()
-}
-
-fn stderr(output: &Output) -> String {
-    String::from_utf8_lossy(&output.stderr).into_owned()
-}
-
-fn scratch_dir(name: &str) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("hsv-reliability-{}-{name}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&dir);
-    std::fs::create_dir_all(&dir).expect("temp dir");
-    dir
-}
+use common::cli::{hsv_run, hsv_run_in, json, scratch_dir, stderr, stdout};
 
 /// Expects failure with one `error:` line containing every needle and no panic.
 fn expect_error(output: &Output, needles: &[&str]) -> String {
@@ -44,11 +20,6 @@ fn expect_error(output: &Output, needles: &[&str]) -> String {
         assert!(err.contains(needle), "`{needle}` not in: {err}");
     }
     err
-}
-
-fn json(output: &Output) -> serde_json::Value {
-    assert!(output.status.success(), "{}", stderr(output));
-    serde_json::from_str(&stdout(output)).expect("valid JSON")
 }
 
 // ---- 1. output never panics ----------------------------------------------------------------

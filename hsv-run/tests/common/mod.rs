@@ -5,6 +5,8 @@
 // Each test crate uses some of these.
 #![allow(dead_code)]
 
+pub mod cli;
+
 use hsv_core::config::{LoadedConfig, SAMPLE_CONFIG_TOML, parse_config};
 use hsv_run::analysis::trim::{TrimPoint, TrimRequest, trim};
 use hsv_run::dynamics::VehicleState;

@@ -656,6 +656,10 @@ fn flat_plate_pitch_damping_matches_piston_theory() {
         let m_q = (moment(q, &mut flight) - moment(-q, &mut flight)) / (2.0 * q);
         let fs = flight.freestream;
         let closed_form = -fs.density_kg_m3 * fs.speed_of_sound_m_s * chord.powi(3) / 6.0;
+        eprintln!(
+            "M {mach}: dM/dq / piston theory - 1 = {:.3e}",
+            m_q / closed_form - 1.0
+        );
         assert!(
             (m_q / closed_form - 1.0).abs() <= 0.10,
             "M {mach}: dM/dq {m_q} N m s against piston theory {closed_form}"

@@ -52,6 +52,33 @@ fn controls(u: &DVector<f64>) -> FlightControls {
     }
 }
 
+/// The configured flexible vehicle, trimmed for level flight at the config's flight condition
+/// and linearized there by `rule`: the vehicle (for a controller design on it), its trim and
+/// the linear model.
+pub fn linearize_configured(
+    loaded: &hsv_core::config::LoadedConfig,
+    registry: &hsv_core::registry::Registry,
+    rule: &PerturbationRule,
+) -> anyhow::Result<(PartitionedVehicle, super::flight::LevelTrim, Linearization)> {
+    let sets = crate::vehicle::assemble(
+        loaded,
+        registry,
+        &crate::vehicle::partitioned::partitioned_needs("the linearization"),
+    )?;
+    let mut vehicle = PartitionedVehicle::new(
+        sets,
+        crate::dynamics::GravityModel::default(),
+        crate::vehicle::partitioned::CouplingSettings::default(),
+    )?;
+    let trim = super::flight::trim_level_flight(
+        &mut vehicle,
+        loaded.config.flight.mach,
+        loaded.config.flight.altitude_m,
+    )?;
+    let lin = linearize(&mut vehicle, &trim.state, &trim.controls, rule)?;
+    Ok((vehicle, trim, lin))
+}
+
 /// Linearizes `vehicle` around `trim_state` and `trim_controls`.
 pub fn linearize(
     vehicle: &mut PartitionedVehicle,

@@ -1,5 +1,6 @@
 //! Analyses built on the vehicle's regions: what a command runs, without its CLI and outputs.
 
+pub mod flight;
 pub mod flutter;
 pub mod heating;
 pub mod linearize;

@@ -215,6 +215,79 @@ pub struct Sample {
     pub surface_mean_temperature_k: f64,
 }
 
+impl Sample {
+    /// The recorded quantities in `history.csv` order (units in the names; the saturation flags
+    /// as 0 or 1): the columns of the history and of the Python `Simulation`'s outputs.
+    pub const COLUMNS: [&'static str; 30] = [
+        "time_s",
+        "north_m",
+        "altitude_m",
+        "u_m_s",
+        "v_m_s",
+        "w_m_s",
+        "airspeed_m_s",
+        "alpha_deg",
+        "beta_deg",
+        "roll_deg",
+        "pitch_deg",
+        "yaw_deg",
+        "p_deg_s",
+        "q_deg_s",
+        "r_deg_s",
+        "elevon_deg",
+        "fuel_equivalence_ratio",
+        "coupling_iterations",
+        "coupling_residual",
+        "differential_elevon_deg",
+        "command_elevon_deg",
+        "command_differential_elevon_deg",
+        "command_fuel_equivalence_ratio",
+        "elevon_position_saturated",
+        "elevon_rate_saturated",
+        "phi_position_saturated",
+        "phi_rate_saturated",
+        "surface_min_temperature_k",
+        "surface_max_temperature_k",
+        "surface_mean_temperature_k",
+    ];
+
+    /// The values in the order of [`Self::COLUMNS`].
+    pub fn values(&self) -> [f64; 30] {
+        [
+            self.time_s,
+            self.north_m,
+            self.altitude_m,
+            self.u_m_s,
+            self.v_m_s,
+            self.w_m_s,
+            self.airspeed_m_s,
+            self.alpha_deg,
+            self.beta_deg,
+            self.roll_deg,
+            self.pitch_deg,
+            self.yaw_deg,
+            self.p_deg_s,
+            self.q_deg_s,
+            self.r_deg_s,
+            self.elevon_deg,
+            self.fuel_equivalence_ratio,
+            self.coupling_iterations as f64,
+            self.coupling_residual,
+            self.differential_elevon_deg,
+            self.command_elevon_deg,
+            self.command_differential_elevon_deg,
+            self.command_fuel_equivalence_ratio,
+            f64::from(u8::from(self.elevon_position_saturated)),
+            f64::from(u8::from(self.elevon_rate_saturated)),
+            f64::from(u8::from(self.phi_position_saturated)),
+            f64::from(u8::from(self.phi_rate_saturated)),
+            self.surface_min_temperature_k,
+            self.surface_max_temperature_k,
+            self.surface_mean_temperature_k,
+        ]
+    }
+}
+
 /// How the state is marched over one aeroelastic step.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub enum Integrator {
@@ -295,76 +368,14 @@ fn march(
     settings: &RunSettings,
     mut observe: impl FnMut(&Sample, &VehicleState, &mut PartitionedVehicle) -> bool,
 ) -> Result<usize, SimulationError> {
-    let layout = vehicle.dynamics().layout(AttitudeCoordinates::Quaternion);
-    let mut x = DVector::zeros(layout.len());
     let wrap = |time_s: f64| move |source: VehicleError| SimulationError { time_s, source };
-    layout
-        .pack(state, &mut x)
-        .map_err(|e| wrap(0.0)(e.into()))?;
-    // Classical RK4 is the exponential method without blocks (to rounding).
-    let blocks = match settings.integrator {
-        Integrator::Rk4 => Vec::new(),
-        Integrator::ExponentialRk4 => vehicle.dynamics().surface_linear_blocks(&layout),
-    };
-    let mut rk4 = ExponentialRk4::new(layout.len(), blocks).map_err(|e| wrap(0.0)(e.into()))?;
-    let mut scratch = state.clone();
-    let mut derivative = vehicle.dynamics().zero_derivative();
+    let mut stepper = Stepper::new(vehicle, state, settings.integrator).map_err(wrap(0.0))?;
     // The last step is shortened so the run ends exactly at the duration.
     let plan = crate::steps::time_steps(settings.duration_s, settings.dt_s)
         .map_err(|e| wrap(0.0)(VehicleError::Input(e.to_string())))?;
     let steps = plan.steps;
-    let record = |vehicle: &mut PartitionedVehicle,
-                  control: &mut ControlLoop,
-                  state: &VehicleState,
-                  t: f64|
-     -> Result<Sample, VehicleError> {
-        let (lo, hi, mean) = vehicle
-            .heated_surface_range()
-            .map_or((f64::NAN, f64::NAN, f64::NAN), |t| {
-                (t.min_k, t.max_k, t.mean_k)
-            });
-        let rigid = &state.rigid;
-        let (airspeed, alpha, beta) = rigid.air_data(&nalgebra::Vector3::zeros());
-        let (roll, pitch, yaw) = rigid.euler_angles();
-        let c = control.record(t)?;
-        let w = rigid.angular_velocity_body_rad_s;
-        let v = rigid.velocity_body_m_s;
-        let report = vehicle.coupling_report();
-        Ok(Sample {
-            time_s: t,
-            north_m: rigid.position_ned_m.x,
-            altitude_m: rigid.altitude_m(),
-            u_m_s: v.x,
-            v_m_s: v.y,
-            w_m_s: v.z,
-            airspeed_m_s: airspeed,
-            alpha_deg: alpha.to_degrees(),
-            beta_deg: beta.to_degrees(),
-            roll_deg: roll.to_degrees(),
-            pitch_deg: pitch.to_degrees(),
-            yaw_deg: yaw.to_degrees(),
-            p_deg_s: w.x.to_degrees(),
-            q_deg_s: w.y.to_degrees(),
-            r_deg_s: w.z.to_degrees(),
-            elevon_deg: c.position.symmetric_elevon_rad.to_degrees(),
-            fuel_equivalence_ratio: c.position.fuel_equivalence_ratio,
-            differential_elevon_deg: c.position.differential_elevon_rad.to_degrees(),
-            command_elevon_deg: c.command.symmetric_elevon_rad.to_degrees(),
-            command_differential_elevon_deg: c.command.differential_elevon_rad.to_degrees(),
-            command_fuel_equivalence_ratio: c.command.fuel_equivalence_ratio,
-            elevon_position_saturated: c.saturation.elevon_position,
-            elevon_rate_saturated: c.saturation.elevon_rate,
-            phi_position_saturated: c.saturation.phi_position,
-            phi_rate_saturated: c.saturation.phi_rate,
-            coupling_iterations: report.iterations,
-            coupling_residual: report.residual,
-            surface_min_temperature_k: lo,
-            surface_max_temperature_k: hi,
-            surface_mean_temperature_k: mean,
-        })
-    };
     let t0 = plan.start_s(settings.start_step.min(steps));
-    let first = record(&mut *vehicle, &mut *control, state, t0).map_err(wrap(t0))?;
+    let first = record_sample(&mut *vehicle, &mut *control, state, t0).map_err(wrap(t0))?;
     if !observe(&first, state, vehicle) {
         return Ok(0);
     }
@@ -373,37 +384,150 @@ fn march(
     }
     for k in settings.start_step.min(steps)..steps {
         let t = plan.start_s(k);
-        let dt = plan.dt_of(k);
-        // The controller samples (at its rate) and the actuators move over the step.
-        control.begin_step(k, t, dt, state).map_err(wrap(t))?;
-        // The body region at the accepted state, read by the step's stages (its rate).
-        let start_controls = control.controls_at(t).map_err(wrap(t))?;
-        vehicle
-            .begin_step(state, &start_controls, t)
+        stepper
+            .step(vehicle, state, control, k, t, plan.dt_of(k), plan.end_s(k))
             .map_err(wrap(t))?;
-        let mut f = |time: f64, x: &DVector<f64>, dx: &mut DVector<f64>| {
-            layout.unpack(x, &mut scratch)?;
-            let controls = control.controls_at(time)?;
-            vehicle.set_time(time);
-            vehicle.derivative(&scratch, &controls, &mut derivative)?;
-            layout.pack_derivative(x, &derivative, dx)?;
-            Ok::<(), VehicleError>(())
-        };
-        rk4.step(&mut f, t, dt, &mut x).map_err(wrap(t))?;
-        layout
-            .normalize_attitude(&mut x)
-            .map_err(|e| wrap(t)(e.into()))?;
-        layout.unpack(&x, state).map_err(|e| wrap(t)(e.into()))?;
         let done = k + 1;
-        // The accepted step: models with memory commit their history, the surfaces heat.
-        vehicle.commit_step(state, plan.end_s(k)).map_err(wrap(t))?;
         if (done % settings.record_every.max(1) == 0 || done == steps) && {
-            let sample =
-                record(&mut *vehicle, &mut *control, state, plan.end_s(k)).map_err(wrap(t))?;
+            let sample = record_sample(&mut *vehicle, &mut *control, state, plan.end_s(k))
+                .map_err(wrap(t))?;
             !observe(&sample, state, vehicle)
         } {
             return Ok(done);
         }
     }
     Ok(steps)
+}
+
+/// One aeroelastic step at a time: the packed state, the integrator and the scratch the state
+/// derivative writes into, so a host that commands each step (Python, an FMU) marches exactly
+/// as [`simulate`] does. Built at the state it starts from; the loop allocates nothing.
+pub struct Stepper {
+    layout: crate::dynamics::StateLayout,
+    x: DVector<f64>,
+    rk4: ExponentialRk4,
+    scratch: VehicleState,
+    derivative: crate::dynamics::VehicleDerivative,
+}
+
+impl Stepper {
+    /// The stepper at `state` with `integrator`.
+    pub fn new(
+        vehicle: &PartitionedVehicle,
+        state: &VehicleState,
+        integrator: Integrator,
+    ) -> Result<Self, VehicleError> {
+        let layout = vehicle.dynamics().layout(AttitudeCoordinates::Quaternion);
+        let mut x = DVector::zeros(layout.len());
+        layout.pack(state, &mut x)?;
+        // Classical RK4 is the exponential method without blocks (to rounding).
+        let blocks = match integrator {
+            Integrator::Rk4 => Vec::new(),
+            Integrator::ExponentialRk4 => vehicle.dynamics().surface_linear_blocks(&layout),
+        };
+        let rk4 = ExponentialRk4::new(layout.len(), blocks)?;
+        Ok(Self {
+            layout,
+            x,
+            rk4,
+            scratch: state.clone(),
+            derivative: vehicle.dynamics().zero_derivative(),
+        })
+    }
+
+    /// Step `k` from `t` to `end` (length `dt`): the controller samples and the actuators move,
+    /// the body region is evaluated at the accepted state, the coupled state is marched, and
+    /// the accepted step is committed (models with memory, surface heating); `state` ends at
+    /// `end`.
+    #[allow(clippy::too_many_arguments)]
+    pub fn step(
+        &mut self,
+        vehicle: &mut PartitionedVehicle,
+        state: &mut VehicleState,
+        control: &mut ControlLoop,
+        k: usize,
+        t: f64,
+        dt: f64,
+        end: f64,
+    ) -> Result<(), VehicleError> {
+        // The controller samples (at its rate) and the actuators move over the step.
+        control.begin_step(k, t, dt, state)?;
+        // The body region at the accepted state, read by the step's stages (its rate).
+        let start_controls = control.controls_at(t)?;
+        vehicle.begin_step(state, &start_controls, t)?;
+        let Self {
+            layout,
+            x,
+            rk4,
+            scratch,
+            derivative,
+        } = self;
+        let mut f = |time: f64, x: &DVector<f64>, dx: &mut DVector<f64>| {
+            layout.unpack(x, scratch)?;
+            let controls = control.controls_at(time)?;
+            vehicle.set_time(time);
+            vehicle.derivative(scratch, &controls, derivative)?;
+            layout.pack_derivative(x, derivative, dx)?;
+            Ok::<(), VehicleError>(())
+        };
+        rk4.step(&mut f, t, dt, x)?;
+        layout.normalize_attitude(x)?;
+        layout.unpack(x, state)?;
+        // The accepted step: models with memory commit their history, the surfaces heat.
+        vehicle.commit_step(state, end)
+    }
+}
+
+/// The sample of `state` at `t`: flight state, the control loop's record, coupling and
+/// surface temperatures.
+pub fn record_sample(
+    vehicle: &mut PartitionedVehicle,
+    control: &mut ControlLoop,
+    state: &VehicleState,
+    t: f64,
+) -> Result<Sample, VehicleError> {
+    let (lo, hi, mean) = vehicle
+        .heated_surface_range()
+        .map_or((f64::NAN, f64::NAN, f64::NAN), |t| {
+            (t.min_k, t.max_k, t.mean_k)
+        });
+    let rigid = &state.rigid;
+    let (airspeed, alpha, beta) = rigid.air_data(&nalgebra::Vector3::zeros());
+    let (roll, pitch, yaw) = rigid.euler_angles();
+    let c = control.record(t)?;
+    let w = rigid.angular_velocity_body_rad_s;
+    let v = rigid.velocity_body_m_s;
+    let report = vehicle.coupling_report();
+    Ok(Sample {
+        time_s: t,
+        north_m: rigid.position_ned_m.x,
+        altitude_m: rigid.altitude_m(),
+        u_m_s: v.x,
+        v_m_s: v.y,
+        w_m_s: v.z,
+        airspeed_m_s: airspeed,
+        alpha_deg: alpha.to_degrees(),
+        beta_deg: beta.to_degrees(),
+        roll_deg: roll.to_degrees(),
+        pitch_deg: pitch.to_degrees(),
+        yaw_deg: yaw.to_degrees(),
+        p_deg_s: w.x.to_degrees(),
+        q_deg_s: w.y.to_degrees(),
+        r_deg_s: w.z.to_degrees(),
+        elevon_deg: c.position.symmetric_elevon_rad.to_degrees(),
+        fuel_equivalence_ratio: c.position.fuel_equivalence_ratio,
+        differential_elevon_deg: c.position.differential_elevon_rad.to_degrees(),
+        command_elevon_deg: c.command.symmetric_elevon_rad.to_degrees(),
+        command_differential_elevon_deg: c.command.differential_elevon_rad.to_degrees(),
+        command_fuel_equivalence_ratio: c.command.fuel_equivalence_ratio,
+        elevon_position_saturated: c.saturation.elevon_position,
+        elevon_rate_saturated: c.saturation.elevon_rate,
+        phi_position_saturated: c.saturation.phi_position,
+        phi_rate_saturated: c.saturation.phi_rate,
+        coupling_iterations: report.iterations,
+        coupling_residual: report.residual,
+        surface_min_temperature_k: lo,
+        surface_max_temperature_k: hi,
+        surface_mean_temperature_k: mean,
+    })
 }

@@ -5,23 +5,28 @@ use hsv_core::registry::Registry;
 
 use crate::outln;
 
+/// Every registered model as JSON (what `models --json` prints): name, family, role, fidelity,
+/// summary and origin.
+pub fn models_json(registry: &Registry) -> serde_json::Value {
+    registry
+        .iter()
+        .map(|e| {
+            serde_json::json!({
+                "name": e.name,
+                "family": e.role().family(),
+                "role": e.role(),
+                "fidelity": e.fidelity,
+                "summary": e.summary,
+                "origin": e.origin.to_string(),
+            })
+        })
+        .collect()
+}
+
 /// Lists every registered model with family, role, fidelity and summary.
 pub fn models(registry: &Registry, json: bool) -> Result<()> {
     if json {
-        let list: Vec<_> = registry
-            .iter()
-            .map(|e| {
-                serde_json::json!({
-                    "name": e.name,
-                    "family": e.role().family(),
-                    "role": e.role(),
-                    "fidelity": e.fidelity,
-                    "summary": e.summary,
-                    "origin": e.origin.to_string(),
-                })
-            })
-            .collect();
-        outln!("{}", serde_json::to_string_pretty(&list)?)?;
+        outln!("{}", serde_json::to_string_pretty(&models_json(registry))?)?;
         return Ok(());
     }
     outln!(

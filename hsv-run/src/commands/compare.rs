@@ -63,8 +63,8 @@ fn fly(
     args: &CompareArgs,
 ) -> Result<Case> {
     let mut vehicle = flexible_vehicle(loaded, registry, model, "hsv-run compare")?;
-    vehicle.set_body_load_rate(super::simulate::body_load_rate(loaded)?);
-    vehicle.set_body_friction_rate(super::simulate::body_friction_rate(loaded)?);
+    vehicle.set_body_load_rate(crate::analysis::flight::body_load_rate(loaded)?);
+    vehicle.set_body_friction_rate(crate::analysis::flight::body_friction_rate(loaded)?);
     let (mach, altitude_m) = (loaded.config.flight.mach, loaded.config.flight.altitude_m);
     let request = TrimRequest {
         mach,
@@ -83,7 +83,7 @@ fn fly(
         vehicle.level_flight_state(mach, altitude_m, t.alpha_deg.to_radians(), &controls)?;
     let settings = RunSettings {
         dt_s: args.dt_s,
-        integrator: super::simulate::integrator(loaded)?,
+        integrator: crate::analysis::flight::integrator(loaded)?,
         duration_s: args.duration_s,
         record_every: 10,
         start_step: 0,

@@ -9,15 +9,10 @@ use clap::Args;
 use hsv_core::registry::Registry;
 
 use super::{ConfigArg, JsonFlag, load_config};
-use crate::analysis::linearize::linearize;
-use crate::analysis::trim::{TrimRequest, trim};
-use crate::dynamics::{GravityModel, PerturbationRule};
+use crate::analysis::linearize::linearize_configured;
+use crate::dynamics::PerturbationRule;
 use crate::outln;
 use crate::output::{RunFolder, RunStatus, write_file};
-use crate::vehicle::assemble;
-use crate::vehicle::partitioned::{
-    CouplingSettings, ElevonCommand, FlightControls, PartitionedVehicle, partitioned_needs,
-};
 
 /// Arguments of `hsv-run linearize`.
 #[derive(Args, Debug, Clone)]
@@ -62,28 +57,8 @@ pub fn run(args: LinearizeArgs, registry: &Registry) -> Result<()> {
         absolute: args.absolute,
     };
     rule.steps(&nalgebra::DVector::zeros(1))?;
-    let mach = loaded.config.flight.mach;
-    let altitude_m = loaded.config.flight.altitude_m;
-    let sets = assemble(&loaded, &registry, &partitioned_needs("the linearization"))?;
-    let mut vehicle =
-        PartitionedVehicle::new(sets, GravityModel::default(), CouplingSettings::default())?;
-    let request = TrimRequest {
-        mach,
-        altitude_m,
-        ..TrimRequest::default()
-    };
-    let trimmed = trim(&mut vehicle, &request)?;
-    let t = &trimmed.trim;
-    let controls = FlightControls {
-        elevon: ElevonCommand {
-            symmetric_rad: t.elevon_deg.to_radians(),
-            differential_rad: 0.0,
-        },
-        fuel_equivalence_ratio: t.fuel_equivalence_ratio,
-    };
-    let (state, _) =
-        vehicle.level_flight_state(mach, altitude_m, t.alpha_deg.to_radians(), &controls)?;
-    let lin = linearize(&mut vehicle, &state, &controls, &rule)?;
+    let (mut vehicle, trimmed, lin) = linearize_configured(&loaded, &registry, &rule)?;
+    let (t, controls, state) = (&trimmed.result.trim, &trimmed.controls, &trimmed.state);
     let closed = match &args.controller {
         None => None,
         Some(name) => {
@@ -93,8 +68,8 @@ pub fn run(args: LinearizeArgs, registry: &Registry) -> Result<()> {
                 name,
                 None,
                 &mut vehicle,
-                &state,
-                &controls,
+                state,
+                controls,
                 1e-3,
                 crate::control::DesignFrom::Linear(lin.model.clone()),
             )?;
@@ -142,8 +117,8 @@ pub fn run(args: LinearizeArgs, registry: &Registry) -> Result<()> {
     write_file(&path, serde_json::to_string_pretty(&lin.model)?)?;
     folder.record(path);
     let summary = serde_json::json!({
-        "mach": mach,
-        "altitude_m": altitude_m,
+        "mach": loaded.config.flight.mach,
+        "altitude_m": loaded.config.flight.altitude_m,
         "trim": {
             "alpha_deg": t.alpha_deg,
             "elevon_deg": t.elevon_deg,

@@ -79,15 +79,34 @@ fn load_config_unchecked(
     registry: &Registry,
 ) -> Result<(LoadedConfig, Registry)> {
     let loaded = LoadedConfig::load(path)?;
-    let mut registry = registry.clone();
     let base = path
         .and_then(Path::parent)
         .map(Path::to_path_buf)
         .unwrap_or_default();
+    let registry = with_plugins(&loaded, &base, registry)?;
+    Ok((loaded, registry))
+}
+
+/// `registry` extended by the plugins `loaded` lists (paths relative to `base`).
+fn with_plugins(loaded: &LoadedConfig, base: &Path, registry: &Registry) -> Result<Registry> {
+    let mut registry = registry.clone();
     for plugin in &loaded.config.plugins {
         registry
             .load_plugin(&base.join(plugin))
             .with_context(|| format!("{}: key `plugins`", loaded.file))?;
     }
+    Ok(registry)
+}
+
+/// [`load_config`] of a config's TOML `text` (named `file` in messages; plugin paths relative
+/// to the working directory): for hosts that build configs in memory (Python dicts).
+pub fn load_config_text(
+    text: &str,
+    file: &str,
+    registry: &Registry,
+) -> Result<(LoadedConfig, Registry)> {
+    let loaded = hsv_core::config::parse_config(text, file)?;
+    let registry = with_plugins(&loaded, Path::new(""), registry)?;
+    validate_config(&loaded, &registry)?;
     Ok((loaded, registry))
 }

@@ -11,17 +11,17 @@ use hsv_core::registry::Registry;
 
 use super::steps::time_steps;
 use super::{ConfigArg, JsonFlag, OutArgs, load_config};
-use crate::analysis::simulate::{Inputs, Integrator, RunSettings, Sample, simulate};
-use crate::analysis::trim::{TrimRequest, trim};
+use crate::analysis::flight::{
+    Flight, FlightOptions, FlightSettings, flight_vehicle, rate_seconds,
+};
+use crate::analysis::simulate::{RunSettings, Sample, simulate};
 use crate::outln;
 use crate::output::{
     LinePlot, RunFolder, RunStatus, Series, write_csv, write_line_plots_png, write_pvd,
     write_vtk_mesh,
 };
 use crate::progress::Progress;
-use crate::vehicle::body_rate::{BodyLoadRate, DEFAULT_BODY_FRICTION_DT_S};
-use crate::vehicle::flexible_vehicle_with;
-use crate::vehicle::partitioned::{ElevonCommand, FlightControls, HeatingRates, SurfaceModel};
+use crate::vehicle::partitioned::{FlightControls, SurfaceModel};
 
 /// Arguments of `hsv-run simulate`.
 #[derive(Args, Debug, Clone)]
@@ -127,140 +127,6 @@ impl RestartFile {
     }
 }
 
-/// The heating rates: `[simulation]` keys `heat_transfer_dt_s`, `aerothermal_dt_s`,
-/// `stiffness_interval_s`, `initial_temperature_k` over the paper's Table 3 defaults.
-fn heating_rates(loaded: &hsv_core::config::LoadedConfig) -> Result<HeatingRates> {
-    let mut rates = HeatingRates::default();
-    for (key, slot) in [
-        ("heat_transfer_dt_s", &mut rates.conduction_s),
-        ("aerothermal_dt_s", &mut rates.heat_flux_s),
-        ("stiffness_interval_s", &mut rates.stiffness_s),
-        ("initial_temperature_k", &mut rates.initial_k),
-    ] {
-        if let Some(value) = loaded.config.simulation.get(key) {
-            let v = value
-                .as_float()
-                .or_else(|| value.as_integer().map(|i| i as f64));
-            match v {
-                Some(v) if v.is_finite() && v > 0.0 => *slot = v,
-                _ => bail!(
-                    "{}: key `simulation.{key}` must be a positive number, got {value}",
-                    loaded.file
-                ),
-            }
-        }
-    }
-    let known = [
-        "inputs",
-        "heat_transfer_dt_s",
-        "aerothermal_dt_s",
-        "stiffness_interval_s",
-        "initial_temperature_k",
-        "body_loads_dt_s",
-        "body_friction_dt_s",
-        "integrator",
-    ];
-    if let Some(key) = loaded
-        .config
-        .simulation
-        .keys()
-        .find(|k| !known.contains(&k.as_str()))
-    {
-        bail!(
-            "{}: key `simulation.{key}` is unknown; expected one of {}",
-            loaded.file,
-            known.join(", ")
-        );
-    }
-    Ok(rates)
-}
-
-/// How often the main body region is evaluated: `[simulation] body_loads_dt_s` (s; default
-/// the paper's 1 ms aeroelastic rate; 0 evaluates it at every Runge-Kutta stage).
-pub(crate) fn body_load_rate(loaded: &hsv_core::config::LoadedConfig) -> Result<BodyLoadRate> {
-    rate_setting(
-        loaded,
-        "body_loads_dt_s",
-        BodyLoadRate::default(),
-        "0: at every Runge-Kutta stage",
-    )
-}
-
-/// How often the body's skin friction is evaluated again: `[simulation] body_friction_dt_s`
-/// (s; default the paper's 10 ms aerothermal rate; 0 at every body evaluation).
-pub(crate) fn body_friction_rate(loaded: &hsv_core::config::LoadedConfig) -> Result<BodyLoadRate> {
-    rate_setting(
-        loaded,
-        "body_friction_dt_s",
-        BodyLoadRate::Interval(DEFAULT_BODY_FRICTION_DT_S),
-        "0: at every evaluation of the body",
-    )
-}
-
-/// A `[simulation]` interval `key` in seconds (0 meaning every evaluation), or `default`.
-fn rate_setting(
-    loaded: &hsv_core::config::LoadedConfig,
-    key: &str,
-    default: BodyLoadRate,
-    zero_means: &str,
-) -> Result<BodyLoadRate> {
-    let Some(value) = loaded.config.simulation.get(key) else {
-        return Ok(default);
-    };
-    value
-        .as_float()
-        .or_else(|| value.as_integer().map(|i| i as f64))
-        .and_then(BodyLoadRate::from_interval_s)
-        .with_context(|| {
-            format!(
-                "{}: key `simulation.{key}` is {value}; expected a number of seconds >= 0 \
-                 ({zero_means})",
-                loaded.file
-            )
-        })
-}
-
-/// A rate as the `[simulation]` key writes it: seconds, 0 for every evaluation.
-fn rate_seconds(rate: BodyLoadRate) -> f64 {
-    match rate {
-        BodyLoadRate::EveryStage => 0.0,
-        BodyLoadRate::Interval(s) => s,
-    }
-}
-
-/// The integrator: `[simulation] integrator` (`exponential-rk4`, the default, or `rk4`).
-pub(crate) fn integrator(loaded: &hsv_core::config::LoadedConfig) -> Result<Integrator> {
-    let Some(value) = loaded.config.simulation.get("integrator") else {
-        return Ok(Integrator::default());
-    };
-    value
-        .as_str()
-        .and_then(Integrator::from_name)
-        .with_context(|| {
-            format!(
-                "{}: key `simulation.integrator` is {value}; expected one of {}",
-                loaded.file,
-                Integrator::NAMES.map(|n| format!("\"{n}\"")).join(", ")
-            )
-        })
-}
-
-/// The inputs: `[simulation.inputs]` of the config over the paper's doublet (also what a
-/// simulate trade study flies).
-pub(crate) fn inputs(loaded: &hsv_core::config::LoadedConfig) -> Result<Inputs> {
-    let Some(table) = loaded.config.simulation.get("inputs") else {
-        return Ok(Inputs::paper_doublet());
-    };
-    let table = table
-        .as_table()
-        .with_context(|| format!("{}: key `simulation.inputs` must be a table", loaded.file))?;
-    Ok(Inputs::from_table(
-        table,
-        &loaded.file,
-        "simulation.inputs",
-    )?)
-}
-
 /// Trims, flies and writes the run folder.
 pub fn run(args: SimulateArgs, registry: &Registry) -> Result<()> {
     let (loaded, registry) = load_config(args.config.config.as_deref(), registry)?;
@@ -272,16 +138,8 @@ pub fn run(args: SimulateArgs, registry: &Registry) -> Result<()> {
             args.dt_s
         )
     })?;
-    // Checked up front so a bad table fails before the trim.
-    inputs(&loaded)?;
-    let (controller_name, actuators) =
-        crate::control::control_settings(&loaded, args.controller.as_deref())?;
     let mach = loaded.config.flight.mach;
     let altitude_m = loaded.config.flight.altitude_m;
-    let rates = heating_rates(&loaded)?;
-    let body_rate = body_load_rate(&loaded)?;
-    let friction_rate = body_friction_rate(&loaded)?;
-    let integrator = integrator(&loaded)?;
     let model = if args.monolithic {
         SurfaceModel::Monolithic {
             lumped_mass: args.lumped_surface_mass,
@@ -289,57 +147,46 @@ pub fn run(args: SimulateArgs, registry: &Registry) -> Result<()> {
     } else {
         SurfaceModel::Partitioned
     };
-    let heated = !args.no_heating && model == SurfaceModel::Partitioned;
-    let mut vehicle =
-        flexible_vehicle_with(&loaded, &registry, model, heated, "the time simulation")?;
-    vehicle.set_body_load_rate(body_rate);
-    vehicle.set_body_friction_rate(friction_rate);
-    if !args.quiet {
-        eprintln!("simulate: trimming the flexible vehicle at Mach {mach}, {altitude_m} m");
-    }
-    let request = TrimRequest {
-        mach,
-        altitude_m,
-        ..TrimRequest::default()
+    let options = FlightOptions {
+        model,
+        heated: !args.no_heating,
+        controller: Some(crate::control::control_settings(&loaded, args.controller.as_deref())?.0),
+        dt_s: args.dt_s,
     };
     // From trim, or from where a restart file left off (bit for bit).
-    let (trim_point, trim_controls, mut state, start_step, mut control, design) = match &args.resume
-    {
+    let (
+        mut vehicle,
+        trim_point,
+        trim_controls,
+        mut state,
+        start_step,
+        mut control,
+        design,
+        settings,
+    ) = match &args.resume {
         None => {
-            let t = trim(&mut vehicle, &request)?.trim;
-            let controls = FlightControls {
-                elevon: ElevonCommand {
-                    symmetric_rad: t.elevon_deg.to_radians(),
-                    differential_rad: 0.0,
-                },
-                fuel_equivalence_ratio: t.fuel_equivalence_ratio,
-            };
-            let (state, _) = vehicle.level_flight_state(
-                mach,
-                altitude_m,
-                t.alpha_deg.to_radians(),
-                &controls,
-            )?;
-            // Designed on the trimmed vehicle before it heats.
-            let (control, design) = crate::control::build_control_loop(
-                &loaded,
-                &registry,
-                &controller_name,
-                actuators,
-                &mut vehicle,
-                &state,
-                &controls,
-                args.dt_s,
-                crate::control::DesignFrom::Vehicle,
-            )?;
-            vehicle.start_heating(&rates)?;
+            let flight = Flight::trimmed(&loaded, &registry, &options, |line| {
+                if !args.quiet {
+                    eprintln!("simulate: {line}");
+                }
+            })?;
+            let t = &flight.trim.result.trim;
             let point = (
                 t.alpha_deg,
                 t.elevon_deg,
                 t.fuel_equivalence_ratio,
-                t.modal_amplitudes,
+                t.modal_amplitudes.clone(),
             );
-            (point, controls, state, 0, control, design)
+            (
+                flight.vehicle,
+                point,
+                flight.trim.controls,
+                flight.state,
+                0,
+                flight.control,
+                flight.design,
+                flight.settings,
+            )
         }
         Some(path) => {
             let restart = RestartFile::read(path)?;
@@ -363,6 +210,10 @@ pub fn run(args: SimulateArgs, registry: &Registry) -> Result<()> {
                     args.duration_s
                 );
             }
+            let settings = FlightSettings::from_config(&loaded)?;
+            let (controller_name, actuators) =
+                crate::control::control_settings(&loaded, args.controller.as_deref())?;
+            let mut vehicle = flight_vehicle(&loaded, &registry, &options, &settings)?;
             let stored_name = restart.controller.as_deref().unwrap_or("schedule");
             if stored_name != controller_name {
                 bail!(
@@ -396,18 +247,23 @@ pub fn run(args: SimulateArgs, registry: &Registry) -> Result<()> {
                 Vec::new(),
             );
             (
+                vehicle,
                 point,
                 restart.controls,
                 restart.state,
                 restart.step,
                 control,
                 design,
+                settings,
             )
         }
     };
+    let controller_name = options.controller.clone().unwrap_or_default();
+    let integrator = settings.integrator;
+    let (body_rate, friction_rate) = (settings.body_loads, settings.body_friction);
     let design_report = control.controller().design_report();
     let mut folder = RunFolder::create("simulate", args.output.out.as_deref(), args.output.force)?;
-    let settings = RunSettings {
+    let run_settings = RunSettings {
         dt_s: args.dt_s,
         integrator,
         duration_s: args.duration_s,
@@ -415,7 +271,7 @@ pub fn run(args: SimulateArgs, registry: &Registry) -> Result<()> {
         start_step,
     };
     let n_steps = plan.steps;
-    let mut samples: Vec<Sample> = Vec::with_capacity(n_steps / settings.record_every + 2);
+    let mut samples: Vec<Sample> = Vec::with_capacity(n_steps / run_settings.record_every + 2);
     let mut body_modes: Vec<Vec<f64>> = Vec::with_capacity(samples.capacity());
     let mut progress = (!args.quiet).then(|| Progress::new("simulate", n_steps));
     let start = Instant::now();
@@ -428,7 +284,7 @@ pub fn run(args: SimulateArgs, registry: &Registry) -> Result<()> {
         &mut vehicle,
         &mut state,
         &mut control,
-        &settings,
+        &run_settings,
         |sample, state, vehicle| {
             samples.push(sample.clone());
             body_modes.push(state.body_modes.q.iter().copied().collect());
@@ -602,74 +458,11 @@ fn write_history(
 ) -> Result<()> {
     let column = |f: fn(&Sample) -> f64| samples.iter().map(f).collect::<Vec<f64>>();
     let time = column(|s| s.time_s);
-    let columns: Vec<(&str, Vec<f64>)> = vec![
-        ("time_s", time.clone()),
-        ("north_m", column(|s| s.north_m)),
-        ("altitude_m", column(|s| s.altitude_m)),
-        ("u_m_s", column(|s| s.u_m_s)),
-        ("v_m_s", column(|s| s.v_m_s)),
-        ("w_m_s", column(|s| s.w_m_s)),
-        ("airspeed_m_s", column(|s| s.airspeed_m_s)),
-        ("alpha_deg", column(|s| s.alpha_deg)),
-        ("beta_deg", column(|s| s.beta_deg)),
-        ("roll_deg", column(|s| s.roll_deg)),
-        ("pitch_deg", column(|s| s.pitch_deg)),
-        ("yaw_deg", column(|s| s.yaw_deg)),
-        ("p_deg_s", column(|s| s.p_deg_s)),
-        ("q_deg_s", column(|s| s.q_deg_s)),
-        ("r_deg_s", column(|s| s.r_deg_s)),
-        ("elevon_deg", column(|s| s.elevon_deg)),
-        (
-            "fuel_equivalence_ratio",
-            column(|s| s.fuel_equivalence_ratio),
-        ),
-        (
-            "coupling_iterations",
-            column(|s| s.coupling_iterations as f64),
-        ),
-        ("coupling_residual", column(|s| s.coupling_residual)),
-        (
-            "differential_elevon_deg",
-            column(|s| s.differential_elevon_deg),
-        ),
-        ("command_elevon_deg", column(|s| s.command_elevon_deg)),
-        (
-            "command_differential_elevon_deg",
-            column(|s| s.command_differential_elevon_deg),
-        ),
-        (
-            "command_fuel_equivalence_ratio",
-            column(|s| s.command_fuel_equivalence_ratio),
-        ),
-        (
-            "elevon_position_saturated",
-            column(|s| f64::from(u8::from(s.elevon_position_saturated))),
-        ),
-        (
-            "elevon_rate_saturated",
-            column(|s| f64::from(u8::from(s.elevon_rate_saturated))),
-        ),
-        (
-            "phi_position_saturated",
-            column(|s| f64::from(u8::from(s.phi_position_saturated))),
-        ),
-        (
-            "phi_rate_saturated",
-            column(|s| f64::from(u8::from(s.phi_rate_saturated))),
-        ),
-        (
-            "surface_min_temperature_k",
-            column(|s| s.surface_min_temperature_k),
-        ),
-        (
-            "surface_max_temperature_k",
-            column(|s| s.surface_max_temperature_k),
-        ),
-        (
-            "surface_mean_temperature_k",
-            column(|s| s.surface_mean_temperature_k),
-        ),
-    ];
+    let columns: Vec<(&str, Vec<f64>)> = Sample::COLUMNS
+        .iter()
+        .enumerate()
+        .map(|(i, name)| (*name, samples.iter().map(|s| s.values()[i]).collect()))
+        .collect();
     let n_modes = body_modes.first().map_or(0, Vec::len);
     let mode_names: Vec<String> = (0..n_modes)
         .map(|k| format!("body_mode_{}_q", k + 1))

@@ -322,7 +322,7 @@ pub fn run(args: TradeArgs, registry: &Registry) -> Result<()> {
     }
     let shard = args.shards.shard()?;
     let inputs = match spec.job {
-        TradeJob::Simulate => super::simulate::inputs(&loaded)?,
+        TradeJob::Simulate => crate::analysis::flight::inputs(&loaded)?,
         TradeJob::Trim | TradeJob::Flutter => Inputs::paper_doublet(),
     };
     let indices = shard.cases(spec.case_count());

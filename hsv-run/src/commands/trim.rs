@@ -39,33 +39,13 @@ pub struct TrimArgs {
 /// Trims the configured vehicle and prints the result.
 pub fn run(args: TrimArgs, registry: &Registry) -> Result<()> {
     let (loaded, registry) = load_config(args.config.config.as_deref(), registry)?;
-    let mach = args.mach.unwrap_or(loaded.config.flight.mach);
-    let altitude_m = args.altitude_m.unwrap_or(loaded.config.flight.altitude_m);
-    for (flag, value) in [("--mach", mach), ("--altitude-m", altitude_m)] {
-        if !value.is_finite() {
-            anyhow::bail!("{flag} must be a finite number, got {value}");
-        }
-    }
-    let request = TrimRequest {
-        mach,
-        altitude_m,
-        ..TrimRequest::default()
-    };
-    let result = if args.flexible {
-        let needs = partitioned_needs("trim of the flexible vehicle");
-        let sets = assemble(&loaded, &registry, &needs)?;
-        let mut vehicle =
-            PartitionedVehicle::new(sets, GravityModel::default(), CouplingSettings::default())?;
-        trim(&mut vehicle, &request)?
-    } else {
-        let sets = assemble(
-            &loaded,
-            &registry,
-            &rigid_needs("trim of the rigid vehicle"),
-        )?;
-        let mut vehicle = RigidVehicle::new(sets)?;
-        trim(&mut vehicle, &request)?
-    };
+    let result = trim_configured(
+        &loaded,
+        &registry,
+        args.flexible,
+        args.mach,
+        args.altitude_m,
+    )?;
     let model = if args.flexible { "flexible" } else { "rigid" };
     if args.json.json {
         outln!(
@@ -78,8 +58,42 @@ pub fn run(args: TrimArgs, registry: &Registry) -> Result<()> {
     Ok(())
 }
 
-/// The JSON summary: keys name quantity and unit.
-fn summary(r: &TrimResult, model: &str) -> serde_json::Value {
+/// Trims the vehicle of `loaded`, rigid or `flexible`, at `mach` and `altitude_m` (default:
+/// the config's flight condition).
+pub fn trim_configured(
+    loaded: &hsv_core::config::LoadedConfig,
+    registry: &Registry,
+    flexible: bool,
+    mach: Option<f64>,
+    altitude_m: Option<f64>,
+) -> Result<TrimResult> {
+    let mach = mach.unwrap_or(loaded.config.flight.mach);
+    let altitude_m = altitude_m.unwrap_or(loaded.config.flight.altitude_m);
+    for (flag, value) in [("--mach", mach), ("--altitude-m", altitude_m)] {
+        if !value.is_finite() {
+            anyhow::bail!("{flag} must be a finite number, got {value}");
+        }
+    }
+    let request = TrimRequest {
+        mach,
+        altitude_m,
+        ..TrimRequest::default()
+    };
+    Ok(if flexible {
+        let needs = partitioned_needs("trim of the flexible vehicle");
+        let sets = assemble(loaded, registry, &needs)?;
+        let mut vehicle =
+            PartitionedVehicle::new(sets, GravityModel::default(), CouplingSettings::default())?;
+        trim(&mut vehicle, &request)?
+    } else {
+        let sets = assemble(loaded, registry, &rigid_needs("trim of the rigid vehicle"))?;
+        let mut vehicle = RigidVehicle::new(sets)?;
+        trim(&mut vehicle, &request)?
+    })
+}
+
+/// The JSON summary (what `--json` prints): keys name quantity and unit.
+pub fn summary(r: &TrimResult, model: &str) -> serde_json::Value {
     let point = |p: &crate::analysis::trim::TrimPoint| {
         serde_json::json!({
             "alpha_deg": p.alpha_deg,

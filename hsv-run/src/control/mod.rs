@@ -168,8 +168,23 @@ impl ControlLoop {
         )
     }
 
+    /// The host program's commands (Python, an FMU): [`ControlState::command`], set by the
+    /// host between steps and held over each step, from the trim commands at the start.
+    pub fn external(
+        actuators: Option<Actuators>,
+        trim: &FlightControls,
+        dt_s: f64,
+    ) -> Result<Self, VehicleError> {
+        Self::new(Box::new(HostCommands), actuators, trim, dt_s)
+    }
+
     pub fn controller(&self) -> &dyn Controller {
         self.controller.as_ref()
+    }
+
+    /// True when the commands pass through actuators (lags and limits) before they act.
+    pub fn has_actuators(&self) -> bool {
+        self.actuators.is_some()
     }
 
     /// Continues from a restart file's control state.
@@ -272,6 +287,30 @@ impl ControlLoop {
         Ok(flight_controls(&ControlCommands::from_values(
             std::array::from_fn(|i| a[i] * (1.0 - w) + b[i] * w),
         )))
+    }
+}
+
+/// The host program's commands: sampled at every step, it leaves the held command as the host
+/// set it (not registered: a flight built without a controller uses it).
+struct HostCommands;
+
+impl Controller for HostCommands {
+    fn name(&self) -> &str {
+        crate::analysis::flight::EXTERNAL_CONTROLLER
+    }
+
+    /// Every step: the loop rounds any interval shorter than a step up to one step.
+    fn sample_interval_s(&self) -> Option<f64> {
+        Some(f64::MIN_POSITIVE)
+    }
+
+    fn update(
+        &mut self,
+        _outputs: &MeasuredOutputs,
+        _state: &mut [f64],
+        _commands: &mut ControlCommands,
+    ) -> Result<(), hsv_core::ModelError> {
+        Ok(())
     }
 }
 

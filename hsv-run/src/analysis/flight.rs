@@ -1,0 +1,451 @@
+//! The trimmed vehicle in flight: the `[simulation]` settings a flight reads, the one
+//! trim-then-fly setup (`simulate`, `compare`, the Python `Simulation`), and a flight a host
+//! program (Python, an FMU) advances one aeroelastic step at a time with its own commands,
+//! marching exactly as [`simulate`](super::simulate::simulate) does.
+
+use anyhow::{Context, Result, bail};
+use hsv_core::config::LoadedConfig;
+use hsv_core::control::ControlCommands;
+use hsv_core::registry::Registry;
+
+use super::simulate::{Inputs, Integrator, Sample, SimulationError, Stepper, record_sample};
+use super::trim::{TrimRequest, TrimResult, trim};
+use crate::control::{ControlLoop, DesignFrom, DesignRecord};
+use crate::dynamics::VehicleState;
+use crate::vehicle::body_rate::{BodyLoadRate, DEFAULT_BODY_FRICTION_DT_S};
+use crate::vehicle::flexible_vehicle_with;
+use crate::vehicle::partitioned::{
+    ElevonCommand, FlightControls, HeatingRates, PartitionedVehicle, SurfaceModel, VehicleError,
+};
+
+/// The keys `[simulation]` may hold.
+const SIMULATION_KEYS: [&str; 8] = [
+    "inputs",
+    "heat_transfer_dt_s",
+    "aerothermal_dt_s",
+    "stiffness_interval_s",
+    "initial_temperature_k",
+    "body_loads_dt_s",
+    "body_friction_dt_s",
+    "integrator",
+];
+
+/// The heating rates: `[simulation]` keys `heat_transfer_dt_s`, `aerothermal_dt_s`,
+/// `stiffness_interval_s`, `initial_temperature_k` over the paper's Table 3 defaults.
+pub fn heating_rates(loaded: &LoadedConfig) -> Result<HeatingRates> {
+    let mut rates = HeatingRates::default();
+    for (key, slot) in [
+        ("heat_transfer_dt_s", &mut rates.conduction_s),
+        ("aerothermal_dt_s", &mut rates.heat_flux_s),
+        ("stiffness_interval_s", &mut rates.stiffness_s),
+        ("initial_temperature_k", &mut rates.initial_k),
+    ] {
+        if let Some(value) = loaded.config.simulation.get(key) {
+            let v = value
+                .as_float()
+                .or_else(|| value.as_integer().map(|i| i as f64));
+            match v {
+                Some(v) if v.is_finite() && v > 0.0 => *slot = v,
+                _ => bail!(
+                    "{}: key `simulation.{key}` must be a positive number, got {value}",
+                    loaded.file
+                ),
+            }
+        }
+    }
+    if let Some(key) = loaded
+        .config
+        .simulation
+        .keys()
+        .find(|k| !SIMULATION_KEYS.contains(&k.as_str()))
+    {
+        bail!(
+            "{}: key `simulation.{key}` is unknown; expected one of {}",
+            loaded.file,
+            SIMULATION_KEYS.join(", ")
+        );
+    }
+    Ok(rates)
+}
+
+/// How often the main body region is evaluated: `[simulation] body_loads_dt_s` (s; default
+/// the paper's 1 ms aeroelastic rate; 0 evaluates it at every Runge-Kutta stage).
+pub fn body_load_rate(loaded: &LoadedConfig) -> Result<BodyLoadRate> {
+    rate_setting(
+        loaded,
+        "body_loads_dt_s",
+        BodyLoadRate::default(),
+        "0: at every Runge-Kutta stage",
+    )
+}
+
+/// How often the body's skin friction is evaluated again: `[simulation] body_friction_dt_s`
+/// (s; default the paper's 10 ms aerothermal rate; 0 at every body evaluation).
+pub fn body_friction_rate(loaded: &LoadedConfig) -> Result<BodyLoadRate> {
+    rate_setting(
+        loaded,
+        "body_friction_dt_s",
+        BodyLoadRate::Interval(DEFAULT_BODY_FRICTION_DT_S),
+        "0: at every evaluation of the body",
+    )
+}
+
+/// A `[simulation]` interval `key` in seconds (0 meaning every evaluation), or `default`.
+fn rate_setting(
+    loaded: &LoadedConfig,
+    key: &str,
+    default: BodyLoadRate,
+    zero_means: &str,
+) -> Result<BodyLoadRate> {
+    let Some(value) = loaded.config.simulation.get(key) else {
+        return Ok(default);
+    };
+    value
+        .as_float()
+        .or_else(|| value.as_integer().map(|i| i as f64))
+        .and_then(BodyLoadRate::from_interval_s)
+        .with_context(|| {
+            format!(
+                "{}: key `simulation.{key}` is {value}; expected a number of seconds >= 0 \
+                 ({zero_means})",
+                loaded.file
+            )
+        })
+}
+
+/// A rate as the `[simulation]` key writes it: seconds, 0 for every evaluation.
+pub fn rate_seconds(rate: BodyLoadRate) -> f64 {
+    match rate {
+        BodyLoadRate::EveryStage => 0.0,
+        BodyLoadRate::Interval(s) => s,
+    }
+}
+
+/// The integrator: `[simulation] integrator` (`exponential-rk4`, the default, or `rk4`).
+pub fn integrator(loaded: &LoadedConfig) -> Result<Integrator> {
+    let Some(value) = loaded.config.simulation.get("integrator") else {
+        return Ok(Integrator::default());
+    };
+    value
+        .as_str()
+        .and_then(Integrator::from_name)
+        .with_context(|| {
+            format!(
+                "{}: key `simulation.integrator` is {value}; expected one of {}",
+                loaded.file,
+                Integrator::NAMES.map(|n| format!("\"{n}\"")).join(", ")
+            )
+        })
+}
+
+/// The inputs: `[simulation.inputs]` of the config over the paper's doublet (also what a
+/// simulate trade study flies).
+pub fn inputs(loaded: &LoadedConfig) -> Result<Inputs> {
+    let Some(table) = loaded.config.simulation.get("inputs") else {
+        return Ok(Inputs::paper_doublet());
+    };
+    let table = table
+        .as_table()
+        .with_context(|| format!("{}: key `simulation.inputs` must be a table", loaded.file))?;
+    Ok(Inputs::from_table(
+        table,
+        &loaded.file,
+        "simulation.inputs",
+    )?)
+}
+
+/// Everything `[simulation]` says about how a flight runs.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct FlightSettings {
+    pub rates: HeatingRates,
+    pub body_loads: BodyLoadRate,
+    pub body_friction: BodyLoadRate,
+    pub integrator: Integrator,
+}
+
+impl FlightSettings {
+    /// The settings of `[simulation]`, its inputs table checked too (so a bad table fails before
+    /// the trim).
+    pub fn from_config(loaded: &LoadedConfig) -> Result<Self> {
+        inputs(loaded)?;
+        Ok(Self {
+            rates: heating_rates(loaded)?,
+            body_loads: body_load_rate(loaded)?,
+            body_friction: body_friction_rate(loaded)?,
+            integrator: integrator(loaded)?,
+        })
+    }
+}
+
+/// The trimmed level flight a run starts from.
+#[derive(Debug, Clone)]
+pub struct LevelTrim {
+    pub result: TrimResult,
+    /// The trim controls (no differential elevon).
+    pub controls: FlightControls,
+    /// The vehicle in level flight at the trim.
+    pub state: VehicleState,
+}
+
+/// Trims `vehicle` for steady level flight at `mach`, `altitude_m` (default search) and puts it
+/// in level flight there.
+pub fn trim_level_flight(
+    vehicle: &mut PartitionedVehicle,
+    mach: f64,
+    altitude_m: f64,
+) -> Result<LevelTrim> {
+    let request = TrimRequest {
+        mach,
+        altitude_m,
+        ..TrimRequest::default()
+    };
+    let result = trim(vehicle, &request)?;
+    let t = &result.trim;
+    let controls = FlightControls {
+        elevon: ElevonCommand {
+            symmetric_rad: t.elevon_deg.to_radians(),
+            differential_rad: 0.0,
+        },
+        fuel_equivalence_ratio: t.fuel_equivalence_ratio,
+    };
+    let (state, _) =
+        vehicle.level_flight_state(mach, altitude_m, t.alpha_deg.to_radians(), &controls)?;
+    Ok(LevelTrim {
+        result,
+        controls,
+        state,
+    })
+}
+
+/// Which vehicle flies and who commands it.
+#[derive(Debug, Clone, PartialEq)]
+pub struct FlightOptions {
+    /// Partitioned (paper §III) or the monolithic comparison model.
+    pub model: SurfaceModel,
+    /// The partitioned surfaces heat in flight.
+    pub heated: bool,
+    /// A registered controller (`schedule`, `lqr`, ...), or `None` for the host's commands
+    /// ([`Flight::command`]), held from the trim commands until the host sets others.
+    pub controller: Option<String>,
+    /// Aeroelastic step, s (paper Table 3: 1 ms).
+    pub dt_s: f64,
+}
+
+impl Default for FlightOptions {
+    fn default() -> Self {
+        Self {
+            model: SurfaceModel::Partitioned,
+            heated: true,
+            controller: Some("schedule".to_owned()),
+            dt_s: 1e-3,
+        }
+    }
+}
+
+/// The vehicle of a flight: `options`' model, heated if asked and partitioned, its body
+/// evaluated at the `[simulation]` rates.
+pub fn flight_vehicle(
+    loaded: &LoadedConfig,
+    registry: &Registry,
+    options: &FlightOptions,
+    settings: &FlightSettings,
+) -> Result<PartitionedVehicle> {
+    let heated = options.heated && options.model == SurfaceModel::Partitioned;
+    let mut vehicle = flexible_vehicle_with(
+        loaded,
+        registry,
+        options.model,
+        heated,
+        "the time simulation",
+    )?;
+    vehicle.set_body_load_rate(settings.body_loads);
+    vehicle.set_body_friction_rate(settings.body_friction);
+    Ok(vehicle)
+}
+
+/// A trimmed vehicle in flight under a controller: the vehicle, its state and its control loop,
+/// advanced one aeroelastic step at a time.
+pub struct Flight {
+    pub vehicle: PartitionedVehicle,
+    pub state: VehicleState,
+    pub control: ControlLoop,
+    /// The design the controller was built from (restart files carry it).
+    pub design: DesignRecord,
+    /// The controller's name (`external` for the host's commands).
+    pub controller_name: String,
+    pub trim: LevelTrim,
+    pub settings: FlightSettings,
+    pub dt_s: f64,
+    /// Steps taken.
+    step: usize,
+    /// Built at the first step (after any restore of the state).
+    stepper: Option<Stepper>,
+    /// The flight at t = 0, for [`Flight::reset`].
+    initial: Initial,
+}
+
+/// What a flight restores to at t = 0.
+struct Initial {
+    state: VehicleState,
+    vehicle: crate::vehicle::partitioned::VehicleRestart,
+    control: crate::control::ControlState,
+}
+
+/// The name a flight under the host's commands reports as its controller.
+pub const EXTERNAL_CONTROLLER: &str = "external";
+
+impl Flight {
+    /// Assembles the configured vehicle, trims it at the config's flight condition, designs the
+    /// controller on the trimmed vehicle before it heats, and starts the heating: the state at
+    /// t = 0 of every run. `log` hears what is happening (the trim takes seconds).
+    pub fn trimmed(
+        loaded: &LoadedConfig,
+        registry: &Registry,
+        options: &FlightOptions,
+        mut log: impl FnMut(&str),
+    ) -> Result<Self> {
+        if !(options.dt_s.is_finite() && options.dt_s > 0.0) {
+            bail!(
+                "the time step must be a positive number of seconds, got {}",
+                options.dt_s
+            );
+        }
+        let settings = FlightSettings::from_config(loaded)?;
+        let (controller_name, actuators) =
+            crate::control::control_settings(loaded, options.controller.as_deref())?;
+        let mut vehicle = flight_vehicle(loaded, registry, options, &settings)?;
+        let (mach, altitude_m) = (loaded.config.flight.mach, loaded.config.flight.altitude_m);
+        log(&format!(
+            "trimming the flexible vehicle at Mach {mach}, {altitude_m} m"
+        ));
+        let trim = trim_level_flight(&mut vehicle, mach, altitude_m)?;
+        let (control, design, controller_name) = match &options.controller {
+            None => (
+                ControlLoop::external(actuators, &trim.controls, options.dt_s)?,
+                DesignRecord::default(),
+                EXTERNAL_CONTROLLER.to_owned(),
+            ),
+            Some(_) => {
+                // Designed on the trimmed vehicle before it heats.
+                let (control, design) = crate::control::build_control_loop(
+                    loaded,
+                    registry,
+                    &controller_name,
+                    actuators,
+                    &mut vehicle,
+                    &trim.state,
+                    &trim.controls,
+                    options.dt_s,
+                    DesignFrom::Vehicle,
+                )?;
+                (control, design, controller_name)
+            }
+        };
+        vehicle.start_heating(&settings.rates)?;
+        vehicle.forget_body_loads();
+        let initial = Initial {
+            state: trim.state.clone(),
+            vehicle: vehicle.restart(),
+            control: control.state.clone(),
+        };
+        Ok(Self {
+            vehicle,
+            state: trim.state.clone(),
+            control,
+            design,
+            controller_name,
+            trim,
+            settings,
+            dt_s: options.dt_s,
+            step: 0,
+            stepper: None,
+            initial,
+        })
+    }
+
+    /// Back to the trimmed flight at t = 0 (the vehicle's models, heating and control loop as
+    /// they were), without trimming again: a run after a reset repeats the first bit for bit.
+    pub fn reset(&mut self) -> Result<(), VehicleError> {
+        self.vehicle.restore(&self.initial.vehicle)?;
+        self.vehicle.forget_body_loads();
+        self.control.restore(self.initial.control.clone())?;
+        self.state.clone_from(&self.initial.state);
+        self.step = 0;
+        self.stepper = None;
+        Ok(())
+    }
+
+    /// Steps taken since t = 0.
+    pub fn steps_taken(&self) -> usize {
+        self.step
+    }
+
+    /// The flight time, s: steps × Δt.
+    pub fn time_s(&self) -> f64 {
+        self.step as f64 * self.dt_s
+    }
+
+    /// The actuators of the loop (None: commands act at once).
+    pub fn has_actuators(&self) -> bool {
+        self.control.has_actuators()
+    }
+
+    /// Sets the commands the host holds from the next step on (only a flight under the host's
+    /// commands takes them: a registered controller commands itself).
+    pub fn command(&mut self, commands: ControlCommands) -> Result<(), VehicleError> {
+        if self.controller_name != EXTERNAL_CONTROLLER {
+            return Err(VehicleError::Input(format!(
+                "this flight is commanded by controller `{}`; commands are taken only by a \
+                 flight built without a controller (the host's commands)",
+                self.controller_name
+            )));
+        }
+        if !commands.values().iter().all(|v| v.is_finite()) {
+            return Err(VehicleError::Input(format!(
+                "commands must be finite, got {commands:?}"
+            )));
+        }
+        self.control.state.command = commands;
+        Ok(())
+    }
+
+    /// Advances `n` aeroelastic steps of Δt under the loop's commands.
+    pub fn advance(&mut self, n: usize) -> Result<(), SimulationError> {
+        let wrap = |time_s: f64| move |source: VehicleError| SimulationError { time_s, source };
+        if self.stepper.is_none() {
+            self.stepper = Some(
+                Stepper::new(&self.vehicle, &self.state, self.settings.integrator)
+                    .map_err(wrap(self.time_s()))?,
+            );
+        }
+        let Some(stepper) = self.stepper.as_mut() else {
+            return Ok(());
+        };
+        // On a rayon worker, as `simulate` runs: the regions' side-by-side sections join there.
+        let (vehicle, state, control, dt, step) = (
+            &mut self.vehicle,
+            &mut self.state,
+            &mut self.control,
+            self.dt_s,
+            &mut self.step,
+        );
+        rayon::scope(|_| {
+            for _ in 0..n {
+                let k = *step;
+                let t = k as f64 * dt;
+                stepper
+                    .step(vehicle, state, control, k, t, dt, (k + 1) as f64 * dt)
+                    .map_err(wrap(t))?;
+                *step += 1;
+            }
+            Ok(())
+        })
+    }
+
+    /// The recorded quantities now.
+    pub fn sample(&mut self) -> Result<Sample, SimulationError> {
+        let t = self.time_s();
+        record_sample(&mut self.vehicle, &mut self.control, &self.state, t)
+            .map_err(|source| SimulationError { time_s: t, source })
+    }
+}

@@ -1,0 +1,190 @@
+"""hsv from Python: the partitioned aerothermoelastic hypersonic vehicle of Klock & Cesnik.
+
+The native module ``hsv._hsv`` is the Rust simulator itself (the ``hsv-run`` library); this
+package turns its JSON into dicts and its tables into numpy arrays.
+
+>>> import hsv
+>>> v = hsv.Vehicle()                      # the embedded sample vehicle
+>>> v.trim(rigid=True)["trim"]["alpha_deg"]
+>>> lin = v.linearize()                    # A, B, C, D as numpy arrays, with names
+>>> sim = hsv.Simulation(v)                # trimmed; commands from sim.step(u)
+>>> y = sim.step([elevon_deg, 0.0, phi], n=10)
+
+Units are SI with angles in degrees at the interface, as in the CLI; every name carries its
+unit (``altitude_m``, ``q_deg_s``). Errors are ``hsv.HsvError``; a refused config is its
+subclass ``hsv.ConfigError``, whose message names the file, the key path and what is allowed.
+"""
+
+from __future__ import annotations
+
+import json
+import os
+from typing import Any, Mapping, Optional, Union
+
+import numpy as np
+
+from . import _hsv
+from ._hsv import ConfigError, HsvError
+
+__all__ = [
+    "ConfigError",
+    "HsvError",
+    "Simulation",
+    "Vehicle",
+    "models",
+    "sample_config",
+]
+
+
+def models() -> list:
+    """Every registered model: dicts of name, family, role, fidelity, summary, origin."""
+    return json.loads(_hsv.models_json())
+
+
+def sample_config() -> dict:
+    """The embedded sample vehicle's config as a dict, to edit and pass to ``Vehicle``."""
+    return json.loads(_hsv.sample_config_json())
+
+
+def _plain(value: Any) -> Any:
+    """numpy scalars and arrays as plain numbers and lists for JSON."""
+    if isinstance(value, np.generic):
+        return value.item()
+    if isinstance(value, np.ndarray):
+        return value.tolist()
+    raise TypeError(f"a value of type {type(value).__name__} is no config value")
+
+
+class Vehicle:
+    """A vehicle config, checked as the CLI checks it.
+
+    ``config``: None for the embedded sample vehicle, a path to a TOML file, or a dict of the
+    same tables (``sample_config()`` gives the sample's to start from).
+    """
+
+    def __init__(self, config: Union[None, str, os.PathLike, Mapping[str, Any]] = None):
+        if config is None:
+            self._native = _hsv.Vehicle()
+        elif isinstance(config, Mapping):
+            try:
+                text = json.dumps(config, allow_nan=False, default=_plain)
+            except (TypeError, ValueError) as e:
+                raise ConfigError(f"<dict>: not a config: {e}") from None
+            self._native = _hsv.Vehicle(json_text=text, name="<dict>")
+        elif isinstance(config, (str, os.PathLike)):
+            self._native = _hsv.Vehicle(path=os.fspath(config))
+        else:
+            raise ConfigError(
+                f"config must be None, a path or a dict, got {type(config).__name__}")
+
+    @property
+    def file(self) -> str:
+        """The file (or ``<dict>``) the config came from."""
+        return self._native.file
+
+    @property
+    def flight_condition(self) -> tuple:
+        """The config's flight condition: (Mach, altitude m)."""
+        return self._native.flight_condition
+
+    def config_toml(self) -> str:
+        """The config as TOML text."""
+        return self._native.config_toml()
+
+    def trim(self, rigid: bool = False, mach: Optional[float] = None,
+             altitude_m: Optional[float] = None) -> dict:
+        """Steady level flight (paper Eq. 2): the dict ``hsv-run trim --json`` prints."""
+        return json.loads(self._native.trim_json(rigid=rigid, mach=mach, altitude_m=altitude_m))
+
+    def linearize(self, relative: Optional[float] = None,
+                  absolute: Optional[float] = None) -> dict:
+        """The trimmed flexible vehicle's linear model x' = A x + B u, y = C x + D u.
+
+        Returns a dict: ``A``, ``B``, ``C``, ``D``, ``x0``, ``u0`` (numpy arrays; deviations
+        from x0, u0), ``state_names``, ``input_names``, ``output_names`` and ``modes`` (named
+        eigenvalues: short period, phugoid, structural modes, ...).
+        """
+        lin = self._native.linearize(relative=relative, absolute=absolute)
+        lin["modes"] = json.loads(lin.pop("modes_json"))
+        return lin
+
+
+class Simulation:
+    """The trimmed vehicle in flight, one aeroelastic step at a time (``hsv-run simulate``).
+
+    ``controller``: None to command the vehicle yourself with ``step(u)`` (held from the trim
+    commands), or a registered controller's name (``"schedule"``: the config's
+    ``[simulation.inputs]``, default the paper's doublet; ``"lqr"``). ``dt_s`` is the
+    aeroelastic step (paper Table 3: 1 ms). Construction trims the vehicle (seconds).
+    """
+
+    def __init__(self, vehicle: Vehicle, dt_s: float = 0.001, controller: Optional[str] = None,
+                 heating: bool = True, monolithic: bool = False,
+                 lumped_surface_mass: bool = False):
+        self._native = _hsv.Simulation(vehicle._native, dt_s=dt_s, controller=controller,
+                                       heating=heating, monolithic=monolithic,
+                                       lumped_surface_mass=lumped_surface_mass)
+        self.output_names = list(self._native.output_names)
+        self.input_names = list(self._native.input_names)
+        self._index = {name: i for i, name in enumerate(self.output_names)}
+
+    @property
+    def time_s(self) -> float:
+        """Flight time, s."""
+        return self._native.time_s
+
+    @property
+    def dt_s(self) -> float:
+        """Aeroelastic step, s."""
+        return self._native.dt_s
+
+    @property
+    def controller(self) -> str:
+        """The controller flying the vehicle (``external``: your ``step(u)`` commands)."""
+        return self._native.controller
+
+    @property
+    def trim(self) -> dict:
+        """The trim the flight started from."""
+        alpha, elevon, phi = self._native.trim
+        return {"alpha_deg": alpha, "elevon_deg": elevon, "fuel_equivalence_ratio": phi}
+
+    @property
+    def state(self) -> np.ndarray:
+        """The vehicle state vector (names in ``state_names``)."""
+        return self._native.state
+
+    @property
+    def state_names(self) -> list:
+        return list(self._native.state_names)
+
+    def index(self, name: str) -> int:
+        """The position of output ``name`` in the arrays ``step`` and ``run`` return."""
+        try:
+            return self._index[name]
+        except KeyError:
+            raise KeyError(f"no output `{name}`; outputs are {', '.join(self.output_names)}")
+
+    def outputs(self) -> np.ndarray:
+        """The outputs now (names in ``output_names``)."""
+        return self._native.outputs()
+
+    def reset(self) -> np.ndarray:
+        """Back to the trimmed flight at t = 0 (no new trim); the outputs there."""
+        return self._native.reset()
+
+    def step(self, u=None, n: int = 1) -> np.ndarray:
+        """``n`` steps with commands ``u`` = (elevon deg, differential elevon deg, φ), absolute
+        and held from now on (None keeps the last); the outputs at the end."""
+        if u is not None:
+            u = [float(x) for x in np.asarray(u, dtype=float).reshape(3)]
+        if n < 0:
+            raise HsvError(f"n must be >= 0, got {n}")
+        return self._native.step(u, int(n))
+
+    def run(self, duration_s: float, record_every: int = 1) -> dict:
+        """Flies ``duration_s`` under the flight's controller: a dict of numpy arrays, one per
+        output (``history.csv``'s columns), sampled every ``record_every`` steps and at the
+        start and end."""
+        rows = self._native.run(float(duration_s), int(record_every))
+        return {name: rows[:, i].copy() for i, name in enumerate(self.output_names)}

@@ -154,6 +154,11 @@ class Simulation:
         """The vehicle state vector (names in ``state_names``)."""
         return self._native.state
 
+    def state_dict(self) -> dict:
+        """The vehicle state as plain data: the ``state`` of ``restart.json`` (rigid body, body
+        and surface modal coordinates), exact to the last bit."""
+        return json.loads(self._native.state_json())
+
     @property
     def state_names(self) -> list:
         return list(self._native.state_names)

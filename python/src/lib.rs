@@ -304,6 +304,12 @@ impl Simulation {
         Ok(x.as_slice().to_vec().into_pyarray(py))
     }
 
+    /// The vehicle state as the JSON `restart.json` stores it (`state`): rigid body, body and
+    /// surface modal coordinates, every float round-tripping exactly.
+    fn state_json(&self) -> PyResult<String> {
+        serde_json::to_string(&self.flight.state).map_err(hsv_error)
+    }
+
     /// The names of `state`'s entries.
     #[getter]
     fn state_names(&self) -> Vec<String> {

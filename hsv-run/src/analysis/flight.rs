@@ -282,6 +282,9 @@ pub struct Flight {
     stepper: Option<Stepper>,
     /// The flight at t = 0, for [`Flight::reset`].
     initial: Initial,
+    /// What the vehicle was assembled from: a reset after the heated stiffness has been applied
+    /// assembles it again (the structure models keep no cold copy of their matrices).
+    source: (LoadedConfig, Registry, FlightOptions),
 }
 
 /// What a flight restores to at t = 0.
@@ -289,6 +292,8 @@ struct Initial {
     state: VehicleState,
     vehicle: crate::vehicle::partitioned::VehicleRestart,
     control: crate::control::ControlState,
+    /// The first sample, once taken.
+    sample: Option<Sample>,
 }
 
 /// The name a flight under the host's commands reports as its controller.
@@ -347,6 +352,7 @@ impl Flight {
             state: trim.state.clone(),
             vehicle: vehicle.restart(),
             control: control.state.clone(),
+            sample: None,
         };
         Ok(Self {
             vehicle,
@@ -360,12 +366,18 @@ impl Flight {
             step: 0,
             stepper: None,
             initial,
+            source: (loaded.clone(), registry.clone(), options.clone()),
         })
     }
 
     /// Back to the trimmed flight at t = 0 (the vehicle's models, heating and control loop as
     /// they were), without trimming again: a run after a reset repeats the first bit for bit.
     pub fn reset(&mut self) -> Result<(), VehicleError> {
+        if self.vehicle.stiffness_heated() {
+            let (loaded, registry, options) = &self.source;
+            self.vehicle = flight_vehicle(loaded, registry, options, &self.settings)
+                .map_err(|e| VehicleError::Input(format!("{e:#}")))?;
+        }
         self.vehicle.restore(&self.initial.vehicle)?;
         self.vehicle.forget_body_loads();
         self.control.restore(self.initial.control.clone())?;
@@ -444,8 +456,18 @@ impl Flight {
 
     /// The recorded quantities now.
     pub fn sample(&mut self) -> Result<Sample, SimulationError> {
+        if self.step == 0
+            && let Some(first) = &self.initial.sample
+        {
+            // The coupling diagnostics at t = 0 are the trim's, which a reset cannot recompute.
+            return Ok(first.clone());
+        }
         let t = self.time_s();
-        record_sample(&mut self.vehicle, &mut self.control, &self.state, t)
-            .map_err(|source| SimulationError { time_s: t, source })
+        let sample = record_sample(&mut self.vehicle, &mut self.control, &self.state, t)
+            .map_err(|source| SimulationError { time_s: t, source })?;
+        if self.step == 0 {
+            self.initial.sample = Some(sample.clone());
+        }
+        Ok(sample)
     }
 }

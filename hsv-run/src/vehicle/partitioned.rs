@@ -1488,6 +1488,19 @@ impl PartitionedVehicle {
     /// the saved temperature field again, so the modal matrices are those of the run.
     pub fn restore(&mut self, r: &VehicleRestart) -> Result<(), VehicleError> {
         let n = self.surfaces.len();
+        if self.stiffness_heated()
+            && r.thermal
+                .iter()
+                .flatten()
+                .any(|t| t.stiffness_time_s <= 0.0)
+        {
+            // A heated structure cannot be cooled in place: its models keep no cold matrices.
+            return Err(VehicleError::Input(
+                "cannot restore a cold-stiffness state into a vehicle whose surfaces' stiffness \
+                 has been heated; assemble the vehicle again"
+                    .to_owned(),
+            ));
+        }
         for (what, len) in [
             ("coupling accelerations", r.q_ddot.len()),
             ("coupling steps", r.previous_step.len()),
@@ -1553,6 +1566,14 @@ impl PartitionedVehicle {
             }
         }
         Ok(())
+    }
+
+    /// Whether any surface's stiffness has been updated from its temperature field.
+    pub fn stiffness_heated(&self) -> bool {
+        self.surfaces
+            .iter()
+            .filter_map(|s| s.thermal.as_ref())
+            .any(|t| t.stiffness_time_s > 0.0)
     }
 
     /// Force (N) and moment about the centre of mass (N m) of every load but gravity at the

@@ -292,8 +292,6 @@ struct Initial {
     state: VehicleState,
     vehicle: crate::vehicle::partitioned::VehicleRestart,
     control: crate::control::ControlState,
-    /// The first sample, once taken.
-    sample: Option<Sample>,
 }
 
 /// The name a flight under the host's commands reports as its controller.
@@ -352,7 +350,6 @@ impl Flight {
             state: trim.state.clone(),
             vehicle: vehicle.restart(),
             control: control.state.clone(),
-            sample: None,
         };
         Ok(Self {
             vehicle,
@@ -456,18 +453,8 @@ impl Flight {
 
     /// The recorded quantities now.
     pub fn sample(&mut self) -> Result<Sample, SimulationError> {
-        if self.step == 0
-            && let Some(first) = &self.initial.sample
-        {
-            // The coupling diagnostics at t = 0 are the trim's, which a reset cannot recompute.
-            return Ok(first.clone());
-        }
         let t = self.time_s();
-        let sample = record_sample(&mut self.vehicle, &mut self.control, &self.state, t)
-            .map_err(|source| SimulationError { time_s: t, source })?;
-        if self.step == 0 {
-            self.initial.sample = Some(sample.clone());
-        }
-        Ok(sample)
+        record_sample(&mut self.vehicle, &mut self.control, &self.state, t)
+            .map_err(|source| SimulationError { time_s: t, source })
     }
 }

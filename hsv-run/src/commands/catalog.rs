@@ -8,19 +8,19 @@ use crate::outln;
 /// Every registered model as JSON (what `models --json` prints): name, family, role, fidelity,
 /// summary and origin.
 pub fn models_json(registry: &Registry) -> serde_json::Value {
-    registry
-        .iter()
-        .map(|e| {
-            serde_json::json!({
-                "name": e.name,
-                "family": e.role().family(),
-                "role": e.role(),
-                "fidelity": e.fidelity,
-                "summary": e.summary,
-                "origin": e.origin.to_string(),
-            })
-        })
-        .collect()
+    registry.iter().map(entry_json).collect()
+}
+
+/// One registered model as JSON: name, family, role, fidelity, summary and origin.
+fn entry_json(e: &hsv_core::registry::RegistryEntry) -> serde_json::Value {
+    serde_json::json!({
+        "name": e.name,
+        "family": e.role().family(),
+        "role": e.role(),
+        "fidelity": e.fidelity,
+        "summary": e.summary,
+        "origin": e.origin.to_string(),
+    })
 }
 
 /// Lists every registered model with family, role, fidelity and summary.
@@ -53,15 +53,8 @@ pub fn models(registry: &Registry, json: bool) -> Result<()> {
 pub fn describe(registry: &Registry, name: &str, json: bool) -> Result<()> {
     let e = registry.get(name)?;
     if json {
-        let value = serde_json::json!({
-            "name": e.name,
-            "family": e.role().family(),
-            "role": e.role(),
-            "fidelity": e.fidelity,
-            "summary": e.summary,
-            "origin": e.origin.to_string(),
-            "settings": e.settings_doc,
-        });
+        let mut value = entry_json(e);
+        value["settings"] = serde_json::json!(e.settings_doc);
         outln!("{}", serde_json::to_string_pretty(&value)?)?;
         return Ok(());
     }

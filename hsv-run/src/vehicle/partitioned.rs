@@ -189,6 +189,10 @@ pub struct VehicleRestart {
     /// body at every stage).
     #[serde(default)]
     pub body_loads: BodyLoadHistory,
+    /// The last coupling iteration's report (the first sample of a continued run shows it;
+    /// absent in older restart files).
+    #[serde(default)]
+    pub coupling: CouplingReport,
 }
 
 /// Temperatures of one heated surface, K.
@@ -258,7 +262,7 @@ impl Default for CouplingSettings {
 }
 
 /// Iterations and final residual of the last coupling iteration.
-#[derive(Debug, Clone, Copy, PartialEq, Default, serde::Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Default, serde::Serialize, serde::Deserialize)]
 pub struct CouplingReport {
     pub iterations: usize,
     /// Largest relative change of a surface's root force in the last iteration.
@@ -1481,6 +1485,7 @@ impl PartitionedVehicle {
             heating_stiffness_s: self.heating.stiffness_s,
             heating_initial_k: self.heating.initial_k,
             body_loads: self.body_history.clone(),
+            coupling: self.report,
         }
     }
 
@@ -1515,6 +1520,7 @@ impl PartitionedVehicle {
             }
         }
         self.time_s = r.time_s;
+        self.report = r.coupling;
         self.body_history.clone_from(&r.body_loads);
         self.in_step = false;
         self.q_ddot.clone_from(&r.q_ddot);

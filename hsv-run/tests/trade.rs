@@ -6,7 +6,6 @@ use std::path::{Path, PathBuf};
 use std::process::Command;
 
 use hsv_core::config::LoadedConfig;
-use hsv_run::analysis::simulate::Inputs;
 use hsv_run::analysis::trade::{
     CaseResult, Shard, StudySpec, TradeJob, compare, fingerprint, merge_cases, run_case,
 };
@@ -205,9 +204,8 @@ fn library_shards_merge_into_the_unsharded_comparison() {
         config_fingerprint: fingerprint("sample"),
     };
     spec.rank(&registry).unwrap();
-    let inputs = Inputs::paper_doublet();
     let all: Vec<CaseResult> = (0..spec.case_count())
-        .map(|i| run_case(&spec, &loaded, &registry, &inputs, i))
+        .map(|i| run_case(&spec, &loaded, &registry, i))
         .collect();
     let whole = compare(&spec, all.clone(), None).unwrap();
     let parts = (0..2)
@@ -399,4 +397,91 @@ fn costs_file_sets_the_cost_column() {
     assert!(!run.status.success());
     assert!(String::from_utf8_lossy(&run.stderr).contains("shock-expansion"));
     let _ = std::fs::remove_dir_all(&out);
+}
+
+/// Issue 25's defect: `trade --job simulate` flew its own setup (default integrator and body
+/// rate, no heating), whatever `[simulation]` said. It now flies `simulate`'s, so a
+/// one-combination study of the config's own models ends where `simulate` ends, to the digits
+/// `history.csv` prints, on a config whose surfaces start hot (700 K) and soften every 5 ms (the
+/// old setup, unheated, ended with α 2e-4 deg away).
+#[test]
+fn a_simulate_study_flies_what_simulate_flies() {
+    let out = scratch("simulate-study");
+    let sim_out = scratch("simulate-run");
+    let config = scratch("simulate-config");
+    std::fs::create_dir_all(&config).unwrap();
+    let sample = hsv_run(&["config"]);
+    assert!(sample.status.success());
+    let config = config.join("hot-surfaces.toml");
+    let text = format!(
+        "{}\n[simulation]\ninitial_temperature_k = 700.0\nstiffness_interval_s = 0.005\n",
+        String::from_utf8_lossy(&sample.stdout)
+    );
+    std::fs::write(&config, text).unwrap();
+    let flight = [
+        "--config",
+        config.to_str().unwrap(),
+        "--duration-s",
+        "0.02",
+        "--dt-s",
+        "0.001",
+        "--record-every",
+        "1",
+    ];
+    let mut trade_args = vec![
+        "trade",
+        "--vary",
+        "main_body.aero=shock-expansion-piston",
+        "--job",
+        "simulate",
+        "--quiet",
+        "--out",
+        out.to_str().unwrap(),
+    ];
+    trade_args.extend(flight);
+    let run = hsv_run(&trade_args);
+    assert!(
+        run.status.success(),
+        "{}",
+        String::from_utf8_lossy(&run.stderr)
+    );
+    let mut sim_args = vec!["simulate", "--quiet", "--out", sim_out.to_str().unwrap()];
+    sim_args.extend(flight);
+    let sim = hsv_run(&sim_args);
+    assert!(
+        sim.status.success(),
+        "{}",
+        String::from_utf8_lossy(&sim.stderr)
+    );
+
+    let table = json(&out.join("trade.json"));
+    let values = &table["rows"][0]["values"];
+    let csv = std::fs::read_to_string(sim_out.join("history.csv")).unwrap();
+    let mut lines = csv.lines();
+    let header: Vec<&str> = lines.next().unwrap().split(',').collect();
+    let last: Vec<f64> = lines
+        .last()
+        .unwrap()
+        .split(',')
+        .map(|v| v.parse().unwrap())
+        .collect();
+    for channel in [
+        "altitude_m",
+        "airspeed_m_s",
+        "alpha_deg",
+        "pitch_deg",
+        "q_deg_s",
+    ] {
+        let column = header.iter().position(|h| *h == channel).unwrap();
+        let simulated = last[column];
+        let studied = values[format!("final_{channel}")].as_f64().unwrap();
+        // history.csv prints ten significant digits.
+        assert!(
+            (studied - simulated).abs() <= 1e-9 * simulated.abs().max(1e-3),
+            "{channel}: trade {studied}, simulate {simulated}"
+        );
+    }
+    let _ = std::fs::remove_dir_all(&out);
+    let _ = std::fs::remove_dir_all(&sim_out);
+    let _ = std::fs::remove_dir_all(config.parent().unwrap());
 }

@@ -31,7 +31,6 @@ use flutter_job::{flutter_case, flutter_deviation};
 
 pub use super::shards::{Shard, fingerprint};
 use super::shards::{ShardOutput, ShardedCase, ShardedStudy, merge_shards};
-use crate::analysis::simulate::Inputs;
 
 /// Region tables a variation may edit (`lifting_surfaces` sets both surfaces).
 pub const REGION_TABLES: [&str; 5] = [
@@ -329,7 +328,6 @@ pub fn run_case(
     spec: &StudySpec,
     base: &LoadedConfig,
     registry: &Registry,
-    inputs: &Inputs,
     index: usize,
 ) -> CaseResult {
     let start = Instant::now();
@@ -346,7 +344,7 @@ pub fn run_case(
         .config_for(base, index)
         .and_then(|loaded| match spec.job {
             TradeJob::Trim => trim_case(spec, &loaded, registry, &mut result),
-            TradeJob::Simulate => simulate_case(spec, &loaded, registry, inputs, &mut result),
+            TradeJob::Simulate => simulate_case(spec, &loaded, registry, &mut result),
             TradeJob::Flutter => flutter_case(spec, &loaded, registry, &mut result),
         });
     if let Err(error) = outcome {

@@ -17,7 +17,6 @@ use rayon::prelude::*;
 use super::shard::{ShardArgs, SlurmJob, absolute, emit_slurm};
 use super::{ConfigArg, JsonFlag, OutArgs, load_config};
 use crate::analysis::shards::config_fingerprint;
-use crate::analysis::simulate::Inputs;
 use crate::analysis::trade::{
     CaseResult, FlightSpec, FlutterGrid, StudySpec, TradeCases, TradeJob, Variation, compare,
     flutter_region, read_costs, run_case,
@@ -321,10 +320,10 @@ pub fn run(args: TradeArgs, registry: &Registry) -> Result<()> {
         return emit_slurm(&args.shards, &job, shards, &mut folder, args.json.json);
     }
     let shard = args.shards.shard()?;
-    let inputs = match spec.job {
-        TradeJob::Simulate => crate::analysis::flight::inputs(&loaded)?,
-        TradeJob::Trim | TradeJob::Flutter => Inputs::paper_doublet(),
-    };
+    if spec.job == TradeJob::Simulate {
+        // A bad `[simulation]` table fails here, before any case runs.
+        crate::analysis::flight::FlightSettings::from_config(&loaded)?;
+    }
     let indices = shard.cases(spec.case_count());
     if !args.quiet {
         eprintln!(
@@ -349,7 +348,7 @@ pub fn run(args: TradeArgs, registry: &Registry) -> Result<()> {
         indices
             .par_iter()
             .map(|&i| {
-                let case = run_case(&spec, &loaded, &registry, &inputs, i);
+                let case = run_case(&spec, &loaded, &registry, i);
                 if !args.quiet {
                     eprintln!(
                         "trade: case {i} {} in {:.2} s{}",

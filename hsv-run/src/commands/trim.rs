@@ -101,6 +101,14 @@ pub fn summary(r: &TrimResult, model: &str) -> serde_json::Value {
             "fuel_equivalence_ratio": p.fuel_equivalence_ratio,
             "thrust_n": p.loads.thrust_n,
             "drag_n": p.loads.drag_n,
+            "friction_drag_n": p.loads.friction_drag_n,
+            // Body axes (x forward, z down), moments about the centre of mass: where each
+            // region's share of the balance comes from.
+            "loads_about_centre_of_mass": {
+                "body_aero": p.loads.body_aero,
+                "surface_aero": p.loads.surface_aero,
+                "engine": p.loads.engine,
+            },
             "cost": p.cost,
             "u_dot_m_s2": p.accelerations.u_dot_m_s2,
             "w_dot_m_s2": p.accelerations.w_dot_m_s2,

@@ -1,5 +1,5 @@
 //! The trim and simulate jobs of a trade study: the rigid vehicle trimmed for level flight, and
-//! the partitioned flexible vehicle trimmed and flown under the config's inputs.
+//! the partitioned flexible vehicle trimmed and flown as `hsv-run simulate` flies it.
 
 use std::collections::BTreeMap;
 
@@ -8,13 +8,10 @@ use hsv_core::config::LoadedConfig;
 use hsv_core::registry::Registry;
 
 use super::{CaseResult, HISTORY_CHANNELS, StudySpec};
-use crate::analysis::simulate::{Inputs, RunSettings, simulate};
+use crate::analysis::flight::{Flight, FlightOptions};
+use crate::analysis::simulate::{RunSettings, simulate};
 use crate::analysis::trim::{TrimRequest, trim};
-use crate::dynamics::GravityModel;
 use crate::vehicle::assemble;
-use crate::vehicle::partitioned::{
-    CouplingSettings, ElevonCommand, FlightControls, PartitionedVehicle, partitioned_needs,
-};
 use crate::vehicle::rigid::{RigidVehicle, rigid_needs};
 
 fn request(spec: &StudySpec) -> TrimRequest {
@@ -48,63 +45,56 @@ pub(super) fn trim_case(
     Ok(())
 }
 
-/// The partitioned vehicle trimmed and flown under `inputs`, as `hsv-run simulate` does.
+/// The partitioned vehicle trimmed and flown as `hsv-run simulate` flies it (one setup,
+/// `analysis::flight::Flight`: the config's controller, integrator, body rates and in-flight
+/// heating), at the study's Mach and altitude.
 pub(super) fn simulate_case(
     spec: &StudySpec,
     loaded: &LoadedConfig,
     registry: &Registry,
-    inputs: &Inputs,
     out: &mut CaseResult,
 ) -> Result<()> {
-    let Some(flight) = spec.flight else {
+    let Some(flight_spec) = spec.flight else {
         bail!("a simulate study needs its flight duration and step");
     };
-    let sets = assemble(loaded, registry, &partitioned_needs("trade study flight"))?;
-    let mut vehicle =
-        PartitionedVehicle::new(sets, GravityModel::default(), CouplingSettings::default())?;
-    let t = trim(&mut vehicle, &request(spec))?.trim;
-    let controls = FlightControls {
-        elevon: ElevonCommand {
-            symmetric_rad: t.elevon_deg.to_radians(),
-            differential_rad: 0.0,
-        },
-        fuel_equivalence_ratio: t.fuel_equivalence_ratio,
+    let mut loaded = loaded.clone();
+    loaded.config.flight.mach = spec.mach;
+    loaded.config.flight.altitude_m = spec.altitude_m;
+    let options = FlightOptions {
+        controller: Some(crate::control::control_settings(&loaded, None)?.0),
+        dt_s: flight_spec.dt_s,
+        ..FlightOptions::default()
     };
-    let (mut state, _) = vehicle.level_flight_state(
-        spec.mach,
-        spec.altitude_m,
-        t.alpha_deg.to_radians(),
-        &controls,
-    )?;
-    let settings = RunSettings {
-        dt_s: flight.dt_s,
-        integrator: crate::analysis::simulate::Integrator::default(),
-        duration_s: flight.duration_s,
-        record_every: flight.record_every.max(1),
+    let Flight {
+        mut vehicle,
+        mut state,
+        mut control,
+        trim,
+        settings,
+        ..
+    } = Flight::trimmed(&loaded, registry, &options, |_| {})?;
+    let run = RunSettings {
+        dt_s: flight_spec.dt_s,
+        integrator: settings.integrator,
+        duration_s: flight_spec.duration_s,
+        record_every: flight_spec.record_every.max(1),
         start_step: 0,
     };
     let mut history: BTreeMap<String, Vec<f64>> = BTreeMap::new();
-    let mut control =
-        crate::control::ControlLoop::schedule(inputs.clone(), &controls, flight.dt_s)?;
-    simulate(
-        &mut vehicle,
-        &mut state,
-        &mut control,
-        &settings,
-        |s, _, _| {
-            for (name, value) in [
-                ("time_s", s.time_s),
-                ("altitude_m", s.altitude_m),
-                ("airspeed_m_s", s.airspeed_m_s),
-                ("alpha_deg", s.alpha_deg),
-                ("pitch_deg", s.pitch_deg),
-                ("q_deg_s", s.q_deg_s),
-            ] {
-                history.entry(name.to_owned()).or_default().push(value);
-            }
-            true
-        },
-    )?;
+    simulate(&mut vehicle, &mut state, &mut control, &run, |s, _, _| {
+        for (name, value) in [
+            ("time_s", s.time_s),
+            ("altitude_m", s.altitude_m),
+            ("airspeed_m_s", s.airspeed_m_s),
+            ("alpha_deg", s.alpha_deg),
+            ("pitch_deg", s.pitch_deg),
+            ("q_deg_s", s.q_deg_s),
+        ] {
+            history.entry(name.to_owned()).or_default().push(value);
+        }
+        true
+    })?;
+    let t = &trim.result.trim;
     out.values = BTreeMap::from([
         ("trim_alpha_deg".to_owned(), t.alpha_deg),
         ("trim_elevon_deg".to_owned(), t.elevon_deg),

@@ -6,6 +6,7 @@
 //! perfect-gas relations, frames, and panel meshes. SI units throughout.
 
 pub mod atmosphere;
+pub mod cache;
 pub mod coupling;
 pub mod frames;
 pub mod gas;

@@ -128,3 +128,79 @@ fn bad_requests_are_named() {
         "{err}"
     );
 }
+
+/// Issue 26 item 6: a cache whose numbers were edited (seal broken), or whose arrays were cut
+/// short and the seal recomputed, is rebuilt with a warning naming the file, never used or
+/// panicked on (a cut-short cache used to panic `rom check` with an index out of range).
+#[test]
+fn an_edited_or_cut_short_cache_is_rebuilt_and_said_so() {
+    let dir = scratch_dir("damaged");
+    let first = json(&hsv_run(&dir, &["rom", "identify", "--json"]));
+    assert_eq!(first["rom"]["from_cache"], false);
+    let cache = dir.join("hsv-cache/convolution-rom-left_surface.json");
+    let sealed: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(&cache).unwrap()).unwrap();
+    let write = |content: &serde_json::Value, reseal: bool| {
+        let text = serde_json::to_string(content).unwrap();
+        let checksum = if reseal {
+            format!("{:016x}", hsv_core::cache::fnv1a(text.bytes()))
+        } else {
+            sealed["checksum"].as_str().unwrap().to_owned()
+        };
+        let bytes = if reseal {
+            text.len()
+        } else {
+            sealed["bytes"].as_u64().unwrap() as usize
+        };
+        std::fs::write(
+            &cache,
+            format!(
+                "{{\"seal\":\"hsv-cache-1\",\"checksum\":\"{checksum}\",\"bytes\":{bytes},\
+                 \"content\":{text}}}"
+            ),
+        )
+        .unwrap();
+    };
+    let mut scaled = sealed["content"].clone();
+    for v in scaled["forces"]["steps"].as_array_mut().unwrap() {
+        *v = serde_json::json!(2.0 * v.as_f64().unwrap());
+    }
+    let mut cut = sealed["content"].clone();
+    cut["forces"]["steps"].as_array_mut().unwrap().truncate(3);
+    for (what, content, reseal) in [("scaled", scaled, false), ("cut short", cut, true)] {
+        write(&content, reseal);
+        for command in [
+            vec!["rom", "identify", "--json"],
+            vec![
+                "rom",
+                "check",
+                "--forces-only",
+                "--periods",
+                "1",
+                "--steps-per-period",
+                "8",
+                "--out",
+                "check",
+                "--force",
+                "--json",
+            ],
+        ] {
+            let run = hsv_run(&dir, &command);
+            let stderr = String::from_utf8_lossy(&run.stderr);
+            assert!(!stderr.contains("panicked"), "{what}: {stderr}");
+            let summary = json(&run);
+            assert_eq!(summary["rom"]["from_cache"], false, "{what}: {summary}");
+            assert!(
+                stderr.contains("is damaged") && stderr.contains("rebuilding it"),
+                "{what}: {stderr}"
+            );
+            assert!(
+                stderr.contains("convolution-rom-left_surface.json"),
+                "{stderr}"
+            );
+            // Damage it again for the next command (the rebuild wrote a good cache).
+            write(&content, reseal);
+        }
+    }
+    let _ = std::fs::remove_dir_all(&dir);
+}

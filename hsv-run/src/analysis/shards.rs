@@ -31,10 +31,7 @@ use super::heating::HeatingSteps;
 
 /// FNV-1a 64 of `text`, as 16 hex digits (stable across builds, unlike `DefaultHasher`).
 pub fn fingerprint(text: &str) -> String {
-    let hash = text.bytes().fold(0xcbf2_9ce4_8422_2325u64, |h, b| {
-        (h ^ u64::from(b)).wrapping_mul(0x0000_0100_0000_01b3)
-    });
-    format!("{hash:016x}")
+    format!("{:016x}", hsv_core::cache::fnv1a(text.bytes()))
 }
 
 /// The fingerprint of a loaded config's TOML, so shards of different configs never merge.

@@ -110,9 +110,15 @@ fn construct_pod(ctx: &ModelContext<'_>) -> Result<Box<dyn ConductionModel>, Mod
                 return Err(settings_error(ctx, &key, value, allowed));
             }
             let fingerprint = training::fingerprint(ctx, training, &full)?;
-            match PodBasis::load(path) {
+            let cached = PodBasis::load_cache(path);
+            if let Err(e) = &cached
+                && e.is_damaged()
+            {
+                hsv_core::cache::warn_rebuilding(e);
+            }
+            match cached {
                 Ok(basis) if basis.fingerprint == fingerprint => basis,
-                // Missing, unreadable or built from something else: train and replace it.
+                // Missing, damaged or built from something else: train and replace it.
                 _ => {
                     reused = false;
                     let mut basis =

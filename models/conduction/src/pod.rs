@@ -171,50 +171,40 @@ impl PodBasis {
         self.modes.ncols()
     }
 
-    /// Writes the basis as JSON to `path`.
+    /// Writes the basis to `path` as a sealed cache ([`hsv_core::cache`]: checksummed, written
+    /// atomically).
     pub fn save(&self, path: &Path) -> Result<(), ModelError> {
-        let text = serde_json::to_string(self).map_err(|e| {
-            ModelError::inconsistent(NAME, format!("cannot encode the POD basis: {e}"))
-        })?;
-        if let Some(folder) = path.parent().filter(|f| !f.as_os_str().is_empty()) {
-            std::fs::create_dir_all(folder).map_err(|e| {
-                ModelError::inconsistent(
-                    NAME,
-                    format!("cannot create the cache folder {}: {e}", folder.display()),
-                )
-            })?;
-        }
-        std::fs::write(path, text).map_err(|e| {
-            ModelError::inconsistent(
-                NAME,
-                format!("cannot write POD basis file {}: {e}", path.display()),
-            )
-        })
+        hsv_core::cache::save(path, self)
+            .map(|_: Self| ())
+            .map_err(|e| ModelError::inconsistent(NAME, e.to_string()))
     }
 
-    /// Reads a basis written by [`Self::save`].
+    /// Reads a basis written by [`Self::save`]: refused when the file is missing, damaged (its
+    /// seal does not match its content), of another format, or its arrays disagree in shape.
     pub fn load(path: &Path) -> Result<Self, ModelError> {
-        let text = std::fs::read_to_string(path).map_err(|e| {
-            ModelError::inconsistent(
-                NAME,
-                format!("cannot read POD basis file {}: {e}", path.display()),
-            )
-        })?;
-        let basis: Self = serde_json::from_str(&text).map_err(|e| {
-            ModelError::inconsistent(
-                NAME,
-                format!("POD basis file {} is not a basis: {e}", path.display()),
-            )
-        })?;
+        Self::load_cache(path).map_err(|e| ModelError::inconsistent(NAME, e.to_string()))
+    }
+
+    /// [`Self::load`] with the reason kept apart, so a caller can tell a first run (missing) from
+    /// a damaged cache it must say it rebuilds.
+    pub fn load_cache(path: &Path) -> Result<Self, hsv_core::cache::CacheError> {
+        let damaged = |reason: String| hsv_core::cache::CacheError::Damaged {
+            path: path.to_owned(),
+            reason,
+        };
+        let basis: Self = hsv_core::cache::load(path)?;
         if basis.format != BASIS_FORMAT {
-            return Err(ModelError::inconsistent(
-                NAME,
-                format!(
-                    "POD basis file {} has format `{}`, expected `{BASIS_FORMAT}`",
-                    path.display(),
-                    basis.format
-                ),
-            ));
+            return Err(damaged(format!(
+                "POD basis format `{}`, expected `{BASIS_FORMAT}`",
+                basis.format
+            )));
+        }
+        let (n_dofs, n_modes) = basis.modes.shape();
+        if n_modes == 0 || n_dofs == 0 || basis.singular_values.len() < n_modes.saturating_sub(1) {
+            return Err(damaged(format!(
+                "a {n_dofs} x {n_modes} mode matrix with {} singular values",
+                basis.singular_values.len()
+            )));
         }
         Ok(basis)
     }

@@ -362,3 +362,31 @@ fn a_training_table_trains_reuses_and_retrains_the_basis() {
     assert!(err.contains("models.pod.training.alpha_deg[1]"), "{err}");
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+/// Issue 26 item 6: a saved basis whose numbers were edited (scaled) no longer matches its seal
+/// and is refused as damaged, naming the file, instead of being used.
+#[test]
+fn an_edited_basis_file_is_refused_as_damaged() {
+    let b = basis(4);
+    let dir = std::env::temp_dir().join(format!("hsv-pod-edited-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let path = dir.join("basis.json");
+    b.save(&path).unwrap();
+    let text = std::fs::read_to_string(&path).unwrap();
+    let first = b.singular_values[0];
+    let edited = text.replacen(
+        &serde_json::to_string(&first).unwrap(),
+        &serde_json::to_string(&(2.0 * first)).unwrap(),
+        1,
+    );
+    assert_ne!(edited, text);
+    std::fs::write(&path, edited).unwrap();
+    let error = PodBasis::load_cache(&path).unwrap_err();
+    assert!(error.is_damaged(), "{error}");
+    let message = PodBasis::load(&path).unwrap_err().to_string();
+    assert!(
+        message.contains("damaged") && message.contains("basis.json"),
+        "{message}"
+    );
+    let _ = std::fs::remove_dir_all(&dir);
+}

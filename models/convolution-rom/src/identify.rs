@@ -139,6 +139,46 @@ impl Identification {
     pub fn n_inputs(&self) -> usize {
         2 * self.n_modes
     }
+
+    /// Every array as long as the counts say (a cache can be edited; the online model indexes
+    /// without checks).
+    pub fn check_shapes(&self) -> Result<(), String> {
+        let n_amp = self.amplitudes.first().map_or(0, Vec::len);
+        if self.amplitudes.iter().any(|a| a.len() != n_amp)
+            || !(self.amplitudes.is_empty() || self.amplitudes.len() == self.n_modes)
+        {
+            return Err(format!(
+                "amplitude table of {} rows for {} modes, rows of unequal length",
+                self.amplitudes.len(),
+                self.n_modes
+            ));
+        }
+        let n_mach = self.correction_mach.len();
+        for (name, block, n_outputs) in [
+            ("forces", &self.forces, self.n_modes),
+            ("pressures", &self.pressures, self.n_panels),
+        ] {
+            let steps = block.samples * self.n_inputs() * block.n_outputs;
+            let correction = n_mach * self.n_modes * n_amp * block.n_outputs;
+            let rate = n_mach * self.n_modes * block.n_outputs;
+            if block.n_outputs != n_outputs
+                || block.samples == 0
+                || block.steps.len() != steps
+                || !(block.correction.is_empty() || block.correction.len() == correction)
+                || !(block.rate_correction.is_empty() || block.rate_correction.len() == rate)
+            {
+                return Err(format!(
+                    "{name}: {} outputs (expected {n_outputs}), {} samples, {} step entries                      (expected {steps}), {} correction entries (expected 0 or {correction}), {}                      rate-correction entries (expected 0 or {rate})",
+                    block.n_outputs,
+                    block.samples,
+                    block.steps.len(),
+                    block.correction.len(),
+                    block.rate_correction.len()
+                ));
+            }
+        }
+        Ok(())
+    }
 }
 
 /// Peak vertex displacement of each mode per unit modal coordinate, m; an error names a mode
@@ -678,16 +718,10 @@ pub fn read_step_csv(
     Ok(out)
 }
 
-/// FNV-1a over 64-bit words: a stable fingerprint of large inputs (mesh, modes, CSV).
+/// FNV-1a over 64-bit words (little-endian bytes): a stable fingerprint of large inputs (mesh,
+/// modes, CSV).
 fn fnv1a(words: impl Iterator<Item = u64>) -> u64 {
-    let mut hash: u64 = 0xcbf2_9ce4_8422_2325;
-    for word in words {
-        for byte in word.to_le_bytes() {
-            hash ^= u64::from(byte);
-            hash = hash.wrapping_mul(0x0000_0100_0000_01b3);
-        }
-    }
-    hash
+    hsv_core::cache::fnv1a(words.flat_map(u64::to_le_bytes))
 }
 
 fn mesh_hash(mesh: &PanelMesh) -> u64 {
@@ -741,37 +775,36 @@ pub(crate) fn fingerprint(
     .map_err(|e| ModelError::inconsistent(NAME, format!("fingerprint: {e}")))
 }
 
-/// The cached identification at `path` if it exists, parses and was built from `fingerprint`.
+/// The cached identification at `path` if it exists, its seal matches, it was built from
+/// `fingerprint` and its arrays have the shapes its counts say; a damaged one is reported and
+/// rebuilt.
 pub(crate) fn load(path: &Path, fingerprint: &str) -> Option<Identification> {
-    let text = std::fs::read_to_string(path).ok()?;
-    let identification: Identification = serde_json::from_str(&text).ok()?;
-    (identification.format == FORMAT && identification.fingerprint == fingerprint)
-        .then_some(identification)
+    let damaged = |reason: String| hsv_core::cache::CacheError::Damaged {
+        path: path.to_owned(),
+        reason,
+    };
+    match hsv_core::cache::load::<Identification>(path) {
+        Ok(id) if id.format == FORMAT && id.fingerprint == fingerprint => match id.check_shapes() {
+            Ok(()) => Some(id),
+            Err(reason) => {
+                hsv_core::cache::warn_rebuilding(&damaged(reason));
+                None
+            }
+        },
+        Ok(_) => None,
+        Err(e) => {
+            if e.is_damaged() {
+                hsv_core::cache::warn_rebuilding(&e);
+            }
+            None
+        }
+    }
 }
 
-/// Writes `identification` to `path` (creating its directory) through a temporary file and a
-/// rename, so regions or flutter points identifying at the same time never leave a torn file
-/// (a reader sees the old cache or the new one).
+/// Writes `identification` to `path` as a sealed cache, atomically (regions or flutter points
+/// identifying at the same time never leave a torn file).
 pub(crate) fn save(path: &Path, identification: &Identification) -> Result<(), ModelError> {
-    let io = |e: std::io::Error| {
-        ModelError::inconsistent(
-            NAME,
-            format!("cannot write the cache `{}`: {e}", path.display()),
-        )
-    };
-    if let Some(dir) = path.parent().filter(|d| !d.as_os_str().is_empty()) {
-        std::fs::create_dir_all(dir).map_err(io)?;
-    }
-    let text = serde_json::to_string(identification)
-        .map_err(|e| ModelError::inconsistent(NAME, format!("cache: {e}")))?;
-    static WRITES: std::sync::atomic::AtomicUsize = std::sync::atomic::AtomicUsize::new(0);
-    let unique = WRITES.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
-    let mut temporary = path.as_os_str().to_owned();
-    temporary.push(format!(".{}-{unique}.tmp", std::process::id()));
-    let temporary = std::path::PathBuf::from(temporary);
-    std::fs::write(&temporary, text).map_err(io)?;
-    std::fs::rename(&temporary, path).map_err(|e| {
-        let _ = std::fs::remove_file(&temporary);
-        io(e)
-    })
+    hsv_core::cache::save(path, identification)
+        .map(|_: Identification| ())
+        .map_err(|e| ModelError::inconsistent(NAME, e.to_string()))
 }

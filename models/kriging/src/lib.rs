@@ -562,30 +562,26 @@ fn fingerprint(settings: &Settings, context: &ModelContext<'_>) -> Result<String
     .map_err(|e| ModelError::inconsistent(NAME, format!("fingerprint: {e}")))
 }
 
+/// The saved training at `path` if its seal matches and it was built from `fingerprint`; a
+/// damaged file is reported and retrained.
 fn load(path: &Path, fingerprint: &str) -> Option<Surrogate> {
-    let text = std::fs::read_to_string(path).ok()?;
-    let surrogate: Surrogate = serde_json::from_str(&text).ok()?;
-    (surrogate.format == FORMAT && surrogate.fingerprint == fingerprint).then_some(surrogate)
+    match hsv_core::cache::load::<Surrogate>(path) {
+        Ok(surrogate) => (surrogate.format == FORMAT && surrogate.fingerprint == fingerprint)
+            .then_some(surrogate),
+        Err(e) => {
+            if e.is_damaged() {
+                hsv_core::cache::warn_rebuilding(&e);
+            }
+            None
+        }
+    }
 }
 
-/// Writes the training and returns it as the file holds it: JSON decimal floats need not parse
-/// back to the same bits, so this run predicts exactly what a reloading run will.
+/// Writes the training as a sealed cache, atomically, and returns it as the file holds it, so
+/// this run predicts exactly what a reloading run will.
 fn save(path: &Path, surrogate: &Surrogate) -> Result<Surrogate, ModelError> {
-    let text = serde_json::to_string(surrogate)
-        .map_err(|e| ModelError::inconsistent(NAME, format!("saving the training: {e}")))?;
-    if let Some(folder) = path.parent().filter(|f| !f.as_os_str().is_empty()) {
-        std::fs::create_dir_all(folder).map_err(|e| {
-            ModelError::inconsistent(
-                NAME,
-                format!("cannot create the cache folder {}: {e}", folder.display()),
-            )
-        })?;
-    }
-    std::fs::write(path, &text).map_err(|e| {
-        ModelError::inconsistent(NAME, format!("cannot write {}: {e}", path.display()))
-    })?;
-    serde_json::from_str(&text)
-        .map_err(|e| ModelError::inconsistent(NAME, format!("re-reading the training: {e}")))
+    hsv_core::cache::save(path, surrogate)
+        .map_err(|e| ModelError::inconsistent(NAME, format!("saving the training: {e}")))
 }
 
 /// One flat-plate panel of length 2x (so its running length is x) inclined by θ to a freestream

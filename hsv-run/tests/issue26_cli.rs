@@ -149,3 +149,23 @@ fn a_one_second_heat_run_trains_pod_on_the_snapshots_it_has_and_says_so() {
     );
     std::fs::remove_dir_all(&dir).ok();
 }
+
+// ---- item 5: a trim outside the envelope says so -----------------------------------------
+
+/// `trim --altitude-m 0` (Mach 6 at sea level) still finds level flight, but its JSON status is
+/// `converged-with-warnings` with the dynamic pressure named, and the warning reaches stderr;
+/// the paper's condition is `converged`.
+#[test]
+fn a_sea_level_trim_converges_with_a_warning() {
+    let output = hsv_run(&["trim", "--altitude-m", "0", "--json"]);
+    let summary = common::cli::json(&output);
+    assert_eq!(
+        summary["trim_status"], "converged-with-warnings",
+        "{summary}"
+    );
+    let notes = summary["notes"].to_string();
+    assert!(notes.contains("air-breathing corridor"), "{notes}");
+    assert!(stderr(&output).contains("warning: trim: dynamic pressure"));
+    let paper = common::cli::json(&hsv_run(&["trim", "--json"]));
+    assert_eq!(paper["trim_status"], "converged", "{paper}");
+}

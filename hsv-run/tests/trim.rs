@@ -3,7 +3,8 @@
 
 use hsv_core::config::LoadedConfig;
 use hsv_run::analysis::trim::{
-    SteadyFlight, TRIMMED_ACCELERATION_M_S2, TRIMMED_PITCH_ACCELERATION_RAD_S2, TrimRequest, trim,
+    SteadyFlight, TRIMMED_ACCELERATION_M_S2, TRIMMED_PITCH_ACCELERATION_RAD_S2, TrimPoint,
+    TrimRequest, TrimStatus, trim, trim_status,
 };
 use hsv_run::vehicle::assemble;
 use hsv_run::vehicle::rigid::{Accelerations, Controls, RigidLoads, RigidVehicle, rigid_needs};
@@ -153,5 +154,63 @@ fn very_stiff_structures_trim_like_the_rigid_vehicle_in_both_flexible_models() {
             close(t.fuel_equivalence_ratio, rigid.fuel_equivalence_ratio),
             "{model:?}: {t:?} vs {rigid:?}"
         );
+    }
+}
+
+/// A trim point with the given φ and engine status (the rest does not enter the status).
+fn point(phi: f64, engine: hsv_core::propulsion::EngineStatus) -> TrimPoint {
+    TrimPoint {
+        alpha_deg: 1.0,
+        elevon_deg: 0.0,
+        fuel_equivalence_ratio: phi,
+        cost: 0.0,
+        accelerations: Accelerations::default(),
+        loads: RigidLoads {
+            engine_status: engine,
+            ..RigidLoads::default()
+        },
+        evaluations: 1,
+        modal_amplitudes: Vec::new(),
+    }
+}
+
+/// Issue 26 item 5: the status of a converged trim, against closed forms of the freestream
+/// (US Standard Atmosphere 1976, γ = 1.4): the paper's Mach 6, 26 km (q = 0.7 p M² ≈ 54 kPa,
+/// T0 = T (1 + 0.2 M²) ≈ 1820 K) is inside Heiser & Pratt's 500-2000 lbf/ft² corridor and the
+/// perfect-gas range; Mach 6 at sea level (q = 0.7 × 101325 Pa × 36 = 2553 kPa) is not; Mach 25
+/// at 20 km leaves both (T0 ≈ 216.65 K × 126 = 27300 K); an unstarted or choked engine, or φ at
+/// its bound, fails.
+#[test]
+fn a_trim_outside_the_envelope_or_on_a_failed_engine_says_so() {
+    use hsv_core::propulsion::EngineStatus::{Ok, Spillage, ThermalChoking, Unstart};
+    let (status, notes) = trim_status(6.0, 26_000.0, &point(0.3, Spillage), true);
+    assert_eq!(status, TrimStatus::Converged, "{notes:?}");
+    assert!(notes.is_empty());
+
+    let (status, notes) = trim_status(6.0, 0.0, &point(0.3, Ok), true);
+    assert_eq!(status, TrimStatus::ConvergedWithWarnings);
+    assert_eq!(notes.len(), 1, "{notes:?}");
+    assert!(
+        notes[0].contains("dynamic pressure 2553.4 kPa"),
+        "{notes:?}"
+    );
+
+    let (status, notes) = trim_status(25.0, 20_000.0, &point(0.3, Ok), true);
+    assert_eq!(status, TrimStatus::ConvergedWithWarnings);
+    assert!(notes[0].contains("dynamic pressure"), "{notes:?}");
+    assert!(notes[1].contains("stagnation temperature 27"), "{notes:?}");
+
+    let (status, notes) = trim_status(6.0, 26_000.0, &point(0.3, Ok), false);
+    assert_eq!(status, TrimStatus::ConvergedWithWarnings);
+    assert!(notes[0].contains("local minimum"), "{notes:?}");
+
+    for (phi, engine, needle) in [
+        (0.3, Unstart, "unstarted"),
+        (0.3, ThermalChoking, "thermally choked"),
+        (1.0, Ok, "at the search's bound"),
+    ] {
+        let (status, notes) = trim_status(6.0, 26_000.0, &point(phi, engine), true);
+        assert_eq!(status, TrimStatus::Failed, "{needle}: {notes:?}");
+        assert!(notes[0].contains(needle), "{notes:?}");
     }
 }

@@ -9,7 +9,7 @@ use hsv_core::control::ControlCommands;
 use hsv_core::registry::Registry;
 
 use super::simulate::{Inputs, Integrator, Sample, SimulationError, Stepper, record_sample};
-use super::trim::{TrimRequest, TrimResult, trim};
+use super::trim::{TrimRequest, TrimResult, TrimStatus, trim};
 use crate::control::{ControlLoop, DesignFrom, DesignRecord};
 use crate::dynamics::VehicleState;
 use crate::vehicle::body_rate::{BodyLoadRate, DEFAULT_BODY_FRICTION_DT_S};
@@ -200,6 +200,12 @@ pub fn trim_level_flight(
         ..TrimRequest::default()
     };
     let result = trim(vehicle, &request)?;
+    if result.status == TrimStatus::Failed {
+        bail!(
+            "no flight starts from the trim at Mach {mach}, {altitude_m} m: it failed ({})",
+            result.notes.join("; ")
+        );
+    }
     let t = &result.trim;
     let controls = FlightControls {
         elevon: ElevonCommand {
@@ -322,6 +328,9 @@ impl Flight {
             "trimming the flexible vehicle at Mach {mach}, {altitude_m} m"
         ));
         let trim = trim_level_flight(&mut vehicle, mach, altitude_m)?;
+        for note in &trim.result.notes {
+            log(&format!("warning: {note}"));
+        }
         let (control, design, controller_name) = match &options.controller {
             None => (
                 ControlLoop::external(actuators, &trim.controls, options.dt_s)?,

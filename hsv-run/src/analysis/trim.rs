@@ -12,6 +12,7 @@ use rand_xoshiro::Xoshiro256Plus;
 use rand_xoshiro::rand_core::{RngCore, SeedableRng};
 
 use crate::vehicle::rigid::{Accelerations, Controls, RigidLoads, RigidVehicle};
+use hsv_core::propulsion::EngineStatus;
 
 /// Cost of a point the models refuse (an unstarted engine, a detached inlet), above any real J.
 const REFUSED_COST: f64 = 1e12;
@@ -63,6 +64,107 @@ pub struct TrimPoint {
     pub modal_amplitudes: Vec<(String, f64)>,
 }
 
+/// What a converged trim is worth (issue 26: a trim outside the vehicle's envelope says so).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum TrimStatus {
+    /// Level flight inside the models' and the engine's range.
+    Converged,
+    /// Level flight, but outside the air-breathing corridor, the perfect-gas range or the
+    /// search's own check ([`TrimResult::notes`] say where).
+    ConvergedWithWarnings,
+    /// The accelerations vanish only with the engine unstarted or choked, or φ at its bound: no
+    /// flight a run may start from.
+    Failed,
+}
+
+impl TrimStatus {
+    /// The status's name in JSON and messages.
+    pub fn name(self) -> &'static str {
+        match self {
+            Self::Converged => "converged",
+            Self::ConvergedWithWarnings => "converged-with-warnings",
+            Self::Failed => "failed",
+        }
+    }
+}
+
+/// Dynamic pressures of the air-breathing corridor, Pa: 500 to 2000 lbf/ft² (Heiser & Pratt,
+/// Hypersonic Airbreathing Propulsion, AIAA 1994, ch. 1: below, too little air for the engine;
+/// above, loads and heating beyond the airframe's).
+pub const CORRIDOR_DYNAMIC_PRESSURE_PA: (f64, f64) = (23_940.0, 95_760.0);
+
+/// Freestream stagnation temperature above which calorically perfect air is no longer a model of
+/// the flow, K: oxygen dissociates from about 2000-2500 K (Anderson, Hypersonic and
+/// High-Temperature Gas Dynamics, 2nd ed., 2006, ch. 1; vibrational excitation already from
+/// 800 K). Every aero and engine model here assumes γ = 1.4 air.
+pub const PERFECT_GAS_STAGNATION_LIMIT_K: f64 = 2500.0;
+
+/// The status of `trim` and what it rests on: failures first, then warnings.
+pub fn trim_status(
+    mach: f64,
+    altitude_m: f64,
+    trim: &TrimPoint,
+    agreed: bool,
+) -> (TrimStatus, Vec<String>) {
+    let mut failures = Vec::new();
+    let mut warnings = Vec::new();
+    match trim.loads.engine_status {
+        EngineStatus::Unstart => failures.push(
+            "the engine is unstarted at the trim (the inlet cannot swallow its shocks)".to_owned(),
+        ),
+        EngineStatus::ThermalChoking => failures.push(
+            "the combustor is thermally choked at the trim (more heat than its flow can take)"
+                .to_owned(),
+        ),
+        EngineStatus::Ok | EngineStatus::Spillage => {}
+    }
+    let phi = trim.fuel_equivalence_ratio;
+    if phi <= PHI_RANGE.0 * (1.0 + 1e-6) || phi >= PHI_RANGE.1 * (1.0 - 1e-6) {
+        failures.push(format!(
+            "the fuel equivalence ratio {phi} is at the search's bound [{}, {}]",
+            PHI_RANGE.0, PHI_RANGE.1
+        ));
+    }
+    if let Ok(air) = hsv_core::atmosphere::us_standard_atmosphere_1976(altitude_m) {
+        let gamma = 1.4;
+        let q = 0.5 * gamma * air.pressure_pa * mach * mach;
+        let (lo, hi) = CORRIDOR_DYNAMIC_PRESSURE_PA;
+        if !(lo..=hi).contains(&q) {
+            warnings.push(format!(
+                "dynamic pressure {:.1} kPa is outside the air-breathing corridor {:.1}-{:.1} kPa \
+                 (500-2000 lbf/ft^2, Heiser & Pratt 1994)",
+                q / 1e3,
+                lo / 1e3,
+                hi / 1e3
+            ));
+        }
+        let t0 = air.temperature_k * (1.0 + 0.5 * (gamma - 1.0) * mach * mach);
+        if t0 > PERFECT_GAS_STAGNATION_LIMIT_K {
+            warnings.push(format!(
+                "stagnation temperature {t0:.0} K is above {PERFECT_GAS_STAGNATION_LIMIT_K:.0} K, \
+                 where air dissociates and the models' calorically perfect gas no longer holds"
+            ));
+        }
+    }
+    if !agreed {
+        warnings.push(
+            "the restart from a perturbed start found a minimum more than 1 % away (paper \
+             §IV.B's check): the trim may be a local minimum"
+                .to_owned(),
+        );
+    }
+    let status = if !failures.is_empty() {
+        TrimStatus::Failed
+    } else if !warnings.is_empty() {
+        TrimStatus::ConvergedWithWarnings
+    } else {
+        TrimStatus::Converged
+    };
+    failures.extend(warnings);
+    (status, failures)
+}
+
 /// The trim and its check.
 #[derive(Debug, Clone, PartialEq, serde::Serialize)]
 pub struct TrimResult {
@@ -73,6 +175,10 @@ pub struct TrimResult {
     pub restart: TrimPoint,
     /// Both minima agree within 1 % in every parameter.
     pub agreed: bool,
+    /// What the trim is worth ([`trim_status`]).
+    pub status: TrimStatus,
+    /// Why the status is not `converged`: failures first, then warnings.
+    pub notes: Vec<String>,
     pub mass_kg: f64,
     pub wall_time_s: f64,
 }
@@ -315,10 +421,14 @@ pub fn trim(
         });
     }
     let (restart, _) = minimize(vehicle, request, perturbed(&first, request.seed))?;
+    let agreed = agree(&first, &restart);
+    let (status, notes) = trim_status(request.mach, request.altitude_m, &first, agreed);
     Ok(TrimResult {
         mach: request.mach,
         altitude_m: request.altitude_m,
-        agreed: agree(&first, &restart),
+        agreed,
+        status,
+        notes,
         trim: first,
         restart,
         mass_kg: vehicle.mass_kg(),

@@ -2,12 +2,12 @@
 //! of the paper's Table 2: α, δe, φ, thrust, drag, J and each residual acceleration, with the
 //! restart check, evaluations and wall time.
 
-use anyhow::Result;
+use anyhow::{Result, bail};
 use clap::Args;
 use hsv_core::registry::Registry;
 
 use super::{ConfigArg, JsonFlag, load_config};
-use crate::analysis::trim::{TrimRequest, TrimResult, trim};
+use crate::analysis::trim::{TrimRequest, TrimResult, TrimStatus, trim};
 use crate::dynamics::GravityModel;
 use crate::outln;
 use crate::vehicle::assemble;
@@ -54,6 +54,17 @@ pub fn run(args: TrimArgs, registry: &Registry) -> Result<()> {
         )?;
     } else {
         print_table(&result, model)?;
+    }
+    for note in &result.notes {
+        eprintln!("warning: trim: {note}");
+    }
+    if result.status == TrimStatus::Failed {
+        bail!(
+            "the trim at Mach {}, {} m failed: {}",
+            result.mach,
+            result.altitude_m,
+            result.notes.join("; ")
+        );
     }
     Ok(())
 }
@@ -126,6 +137,9 @@ pub fn summary(r: &TrimResult, model: &str) -> serde_json::Value {
         "trim": point(&r.trim),
         "restart": point(&r.restart),
         "restart_agrees_within_1_percent": r.agreed,
+        // converged, converged-with-warnings or failed, and why.
+        "trim_status": r.status.name(),
+        "notes": r.notes,
         "wall_time_s": r.wall_time_s,
         // Trim prints; it writes no file.
         "status": crate::output::RunStatus::Completed.to_json(),
@@ -214,5 +228,6 @@ fn print_table(r: &TrimResult, model: &str) -> Result<()> {
             "does NOT agree within 1 % (both minima shown)"
         }
     )?;
+    outln!("status {}", r.status.name())?;
     Ok(())
 }

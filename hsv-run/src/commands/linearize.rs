@@ -19,7 +19,8 @@ use crate::output::{RunFolder, RunStatus, write_file};
 pub struct LinearizeArgs {
     #[command(flatten)]
     pub config: ConfigArg,
-    /// Perturbation relative to each trim value (paper Eq. 7: 1 %).
+    /// Perturbation relative to each trim value (paper Eq. 7: 1 %); positions take this fraction
+    /// of 100 m (1 m at 1 %), not of their value.
     #[arg(long, default_value_t = 0.01)]
     pub relative: f64,
     /// Perturbation of a trim value that is zero (state units).

@@ -190,10 +190,43 @@ impl LinearModel {
         G: FnMut(&DVector<f64>, &DVector<f64>, &mut DVector<f64>) -> Result<(), E>,
         E: From<DynamicsError>,
     {
+        let x_steps = rule.steps(x0)?;
+        let u_steps = rule.steps(u0)?;
+        Self::build_with_steps(
+            f,
+            g,
+            x0,
+            u0,
+            (&x_steps, &u_steps),
+            state_names,
+            input_names,
+            output_names,
+        )
+    }
+
+    /// [`Self::build`] with the perturbation of every state and input given (`steps`: states,
+    /// inputs), for states whose scale is not their operating value.
+    #[allow(clippy::too_many_arguments)]
+    pub fn build_with_steps<F, G, E>(
+        f: F,
+        g: G,
+        x0: &DVector<f64>,
+        u0: &DVector<f64>,
+        steps: (&DVector<f64>, &DVector<f64>),
+        state_names: Vec<String>,
+        input_names: Vec<String>,
+        output_names: Vec<String>,
+    ) -> Result<Self, E>
+    where
+        F: FnMut(&DVector<f64>, &DVector<f64>, &mut DVector<f64>) -> Result<(), E>,
+        G: FnMut(&DVector<f64>, &DVector<f64>, &mut DVector<f64>) -> Result<(), E>,
+        E: From<DynamicsError>,
+    {
         check_len(|| "state names".into(), x0.len(), state_names.len())?;
         check_len(|| "input names".into(), u0.len(), input_names.len())?;
-        let (a, b) = linearize(f, x0, u0, rule)?;
-        let (c, d) = linearize_outputs(g, x0, u0, output_names.len(), rule)?;
+        let (x_steps, u_steps) = steps;
+        let (a, b) = central_difference_jacobians(f, x0, u0, x0.len(), x_steps, u_steps)?;
+        let (c, d) = central_difference_jacobians(g, x0, u0, output_names.len(), x_steps, u_steps)?;
         Ok(Self {
             state_names,
             input_names,

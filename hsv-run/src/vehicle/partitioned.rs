@@ -261,6 +261,13 @@ impl Default for CouplingSettings {
     }
 }
 
+/// Where a coupling iteration starts: each surface's q̈ guess and its last Aitken step.
+#[derive(Debug, Clone, PartialEq)]
+pub struct CouplingGuess {
+    q_ddot: Vec<DVector<f64>>,
+    previous_step: Vec<DVector<f64>>,
+}
+
 /// Iterations and final residual of the last coupling iteration.
 #[derive(Debug, Clone, Copy, PartialEq, Default, serde::Serialize, serde::Deserialize)]
 pub struct CouplingReport {
@@ -1455,6 +1462,40 @@ impl PartitionedVehicle {
         }
         pressure.resize(mesh.panels.len(), f64::NAN);
         (mesh, pressure, wall)
+    }
+    /// The coupling iteration's guesses (each surface's q̈ and the last Aitken step), which the
+    /// next [`Self::derivative`] starts from.
+    pub fn coupling_guess(&self) -> CouplingGuess {
+        CouplingGuess {
+            q_ddot: self.q_ddot.clone(),
+            previous_step: self.previous_step.clone(),
+        }
+    }
+
+    /// Starts the next coupling iteration from `guess` (a linearization restores one guess
+    /// before every evaluation, so its derivative is a function of its arguments alone).
+    pub fn set_coupling_guess(&mut self, guess: &CouplingGuess) -> Result<(), VehicleError> {
+        let fits = |a: &[DVector<f64>], b: &[DVector<f64>]| {
+            a.len() == b.len() && a.iter().zip(b).all(|(x, y)| x.len() == y.len())
+        };
+        if !(fits(&guess.q_ddot, &self.q_ddot) && fits(&guess.previous_step, &self.previous_step)) {
+            return Err(VehicleError::Input(
+                "a coupling guess of another vehicle (surface mode counts differ)".to_owned(),
+            ));
+        }
+        self.q_ddot.clone_from(&guess.q_ddot);
+        self.previous_step.clone_from(&guess.previous_step);
+        Ok(())
+    }
+
+    /// How the coupling iteration converges.
+    pub fn coupling_settings(&self) -> CouplingSettings {
+        self.settings
+    }
+
+    /// Sets how the coupling iteration converges (a linearization tightens it).
+    pub fn set_coupling_settings(&mut self, settings: CouplingSettings) {
+        self.settings = settings;
     }
 
     /// The vehicle's own state for a restart file ([`VehicleRestart`]).

@@ -485,3 +485,83 @@ fn a_simulate_study_flies_what_simulate_flies() {
     let _ = std::fs::remove_dir_all(&sim_out);
     let _ = std::fs::remove_dir_all(config.parent().unwrap());
 }
+
+/// `compare` flies its partitioned case through the same setup as `simulate --no-heating`: on a
+/// config whose elevon steps 1 deg within the first 5 ms (`compare` used to fly the paper's
+/// doublet whatever `[simulation.inputs]` said), both end on the same state, to history.csv's
+/// ten digits.
+#[test]
+fn compare_flies_its_partitioned_case_as_simulate_does() {
+    let dir = scratch("compare-config");
+    std::fs::create_dir_all(&dir).unwrap();
+    let sample = hsv_run(&["config"]);
+    assert!(sample.status.success());
+    let config = dir.join("early-step.toml");
+    let text = format!(
+        "{}\n[simulation.inputs.symmetric_elevon_deg]\ntime_s = [0.0, 0.005]\nvalue = [0.0, 1.0]\n",
+        String::from_utf8_lossy(&sample.stdout)
+    );
+    std::fs::write(&config, text).unwrap();
+    let (cmp_out, sim_out) = (dir.join("compare"), dir.join("simulate"));
+    let config = config.to_str().unwrap();
+    let flight = ["--config", config, "--duration-s", "0.02"];
+    let mut compare_args = vec!["compare", "--out", cmp_out.to_str().unwrap()];
+    compare_args.extend(flight);
+    let run = hsv_run(&compare_args);
+    assert!(
+        run.status.success(),
+        "{}",
+        String::from_utf8_lossy(&run.stderr)
+    );
+    let mut sim_args = vec![
+        "simulate",
+        "--quiet",
+        "--no-heating",
+        "--record-every",
+        "10",
+        "--out",
+        sim_out.to_str().unwrap(),
+    ];
+    sim_args.extend(flight);
+    let sim = hsv_run(&sim_args);
+    assert!(
+        sim.status.success(),
+        "{}",
+        String::from_utf8_lossy(&sim.stderr)
+    );
+    let last_row = |path: PathBuf| {
+        let csv = std::fs::read_to_string(path).unwrap();
+        let mut lines = csv.lines();
+        let header: Vec<String> = lines
+            .next()
+            .unwrap()
+            .split(',')
+            .map(str::to_owned)
+            .collect();
+        let last: Vec<f64> = lines
+            .last()
+            .unwrap()
+            .split(',')
+            .map(|v| v.parse().unwrap())
+            .collect();
+        (header, last)
+    };
+    let (ch, cl) = last_row(cmp_out.join("history_partitioned.csv"));
+    let (sh, sl) = last_row(sim_out.join("history.csv"));
+    for channel in [
+        "time_s",
+        "altitude_m",
+        "airspeed_m_s",
+        "alpha_deg",
+        "pitch_deg",
+        "q_deg_s",
+    ] {
+        let c = cl[ch.iter().position(|h| h == channel).unwrap()];
+        let s = sl[sh.iter().position(|h| h == channel).unwrap()];
+        assert!(
+            (c - s).abs() <= 1e-9 * s.abs().max(1e-3),
+            "{channel}: compare {c}, simulate {s}"
+        );
+    }
+    let _ = std::fs::remove_dir_all(&dir);
+}

@@ -10,13 +10,14 @@ use clap::Args;
 use hsv_core::registry::Registry;
 
 use super::{ConfigArg, JsonFlag, load_config};
-use crate::analysis::simulate::{Inputs, RunSettings, Sample, simulate};
+use crate::analysis::flight::{Flight, FlightOptions};
+use crate::analysis::simulate::{RunSettings, Sample, simulate};
 use crate::analysis::trim::{TrimPoint, TrimRequest, trim};
 use crate::outln;
 use crate::output::{LinePlot, RunFolder, RunStatus, Series, write_csv, write_line_plots_png};
-use crate::vehicle::partitioned::{ElevonCommand, FlightControls, SurfaceModel};
+use crate::vehicle::assemble;
+use crate::vehicle::partitioned::SurfaceModel;
 use crate::vehicle::rigid::{RigidVehicle, rigid_needs};
-use crate::vehicle::{assemble, flexible_vehicle};
 
 /// Arguments of `hsv-run compare`.
 #[derive(Args, Debug, Clone)]
@@ -54,7 +55,9 @@ struct Case {
     failure: Option<String>,
 }
 
-/// Trims and flies the vehicle of `model`.
+/// Trims and flies the vehicle of `model` through the one flight setup (`analysis::flight`):
+/// unheated, so the partitioned and monolithic vehicles differ in their surfaces' structure and
+/// mass only, under the config's `[simulation]` inputs (the paper's doublet by default).
 fn fly(
     loaded: &hsv_core::config::LoadedConfig,
     registry: &Registry,
@@ -62,48 +65,35 @@ fn fly(
     label: &'static str,
     args: &CompareArgs,
 ) -> Result<Case> {
-    let mut vehicle = flexible_vehicle(loaded, registry, model, "hsv-run compare")?;
-    vehicle.set_body_load_rate(crate::analysis::flight::body_load_rate(loaded)?);
-    vehicle.set_body_friction_rate(crate::analysis::flight::body_friction_rate(loaded)?);
-    let (mach, altitude_m) = (loaded.config.flight.mach, loaded.config.flight.altitude_m);
-    let request = TrimRequest {
-        mach,
-        altitude_m,
-        ..TrimRequest::default()
-    };
-    let t = trim(&mut vehicle, &request)?.trim;
-    let controls = FlightControls {
-        elevon: ElevonCommand {
-            symmetric_rad: t.elevon_deg.to_radians(),
-            differential_rad: 0.0,
-        },
-        fuel_equivalence_ratio: t.fuel_equivalence_ratio,
-    };
-    let (mut state, _) =
-        vehicle.level_flight_state(mach, altitude_m, t.alpha_deg.to_radians(), &controls)?;
-    let settings = RunSettings {
+    let options = FlightOptions {
+        model,
+        heated: false,
+        controller: Some("schedule".to_owned()),
         dt_s: args.dt_s,
-        integrator: crate::analysis::flight::integrator(loaded)?,
+    };
+    let Flight {
+        mut vehicle,
+        mut state,
+        mut control,
+        trim,
+        settings,
+        ..
+    } = Flight::trimmed(loaded, registry, &options, |_| {})?;
+    let run = RunSettings {
+        dt_s: args.dt_s,
+        integrator: settings.integrator,
         duration_s: args.duration_s,
         record_every: 10,
         start_step: 0,
     };
     let mut samples = Vec::new();
-    let mut control =
-        crate::control::ControlLoop::schedule(Inputs::paper_doublet(), &controls, args.dt_s)?;
-    let outcome = simulate(
-        &mut vehicle,
-        &mut state,
-        &mut control,
-        &settings,
-        |s, _, _| {
-            samples.push(s.clone());
-            true
-        },
-    );
+    let outcome = simulate(&mut vehicle, &mut state, &mut control, &run, |s, _, _| {
+        samples.push(s.clone());
+        true
+    });
     Ok(Case {
         label,
-        trim: t,
+        trim: trim.result.trim,
         samples,
         failure: outcome.err().map(|e| e.to_string()),
     })

@@ -399,64 +399,31 @@ fn costs_file_sets_the_cost_column() {
     let _ = std::fs::remove_dir_all(&out);
 }
 
-/// Issue 25's defect: `trade --job simulate` flew its own setup (default integrator and body
-/// rate, no heating), whatever `[simulation]` said. It now flies `simulate`'s, so a
-/// one-combination study of the config's own models ends where `simulate` ends, to the digits
-/// `history.csv` prints, on a config whose surfaces start hot (700 K) and soften every 5 ms (the
-/// old setup, unheated, ended with α 2e-4 deg away).
-#[test]
-fn a_simulate_study_flies_what_simulate_flies() {
-    let out = scratch("simulate-study");
-    let sim_out = scratch("simulate-run");
-    let config = scratch("simulate-config");
-    std::fs::create_dir_all(&config).unwrap();
+/// The sample config with `extra` TOML appended, written to a scratch folder named `name`.
+fn sample_config_with(name: &str, extra: &str) -> PathBuf {
+    let dir = scratch(name);
+    std::fs::create_dir_all(&dir).unwrap();
     let sample = hsv_run(&["config"]);
     assert!(sample.status.success());
-    let config = config.join("hot-surfaces.toml");
-    let text = format!(
-        "{}\n[simulation]\ninitial_temperature_k = 700.0\nstiffness_interval_s = 0.005\n",
-        String::from_utf8_lossy(&sample.stdout)
-    );
-    std::fs::write(&config, text).unwrap();
-    let flight = [
-        "--config",
-        config.to_str().unwrap(),
-        "--duration-s",
-        "0.02",
-        "--dt-s",
-        "0.001",
-        "--record-every",
-        "1",
-    ];
-    let mut trade_args = vec![
-        "trade",
-        "--vary",
-        "main_body.aero=shock-expansion-piston",
-        "--job",
-        "simulate",
-        "--quiet",
-        "--out",
-        out.to_str().unwrap(),
-    ];
-    trade_args.extend(flight);
-    let run = hsv_run(&trade_args);
+    let path = dir.join("config.toml");
+    let text = format!("{}\n{extra}", String::from_utf8_lossy(&sample.stdout));
+    std::fs::write(&path, text).unwrap();
+    path
+}
+
+/// Runs `hsv-run args`, which must succeed.
+fn run_ok(args: &[&str]) {
+    let run = hsv_run(args);
     assert!(
         run.status.success(),
-        "{}",
+        "{args:?}: {}",
         String::from_utf8_lossy(&run.stderr)
     );
-    let mut sim_args = vec!["simulate", "--quiet", "--out", sim_out.to_str().unwrap()];
-    sim_args.extend(flight);
-    let sim = hsv_run(&sim_args);
-    assert!(
-        sim.status.success(),
-        "{}",
-        String::from_utf8_lossy(&sim.stderr)
-    );
+}
 
-    let table = json(&out.join("trade.json"));
-    let values = &table["rows"][0]["values"];
-    let csv = std::fs::read_to_string(sim_out.join("history.csv")).unwrap();
+/// The value of each of `channels` in the last row of a history CSV.
+fn last_row(path: &Path, channels: &[&str]) -> Vec<f64> {
+    let csv = std::fs::read_to_string(path).unwrap();
     let mut lines = csv.lines();
     let header: Vec<&str> = lines.next().unwrap().split(',').collect();
     let last: Vec<f64> = lines
@@ -465,25 +432,72 @@ fn a_simulate_study_flies_what_simulate_flies() {
         .split(',')
         .map(|v| v.parse().unwrap())
         .collect();
-    for channel in [
-        "altitude_m",
-        "airspeed_m_s",
-        "alpha_deg",
-        "pitch_deg",
-        "q_deg_s",
-    ] {
-        let column = header.iter().position(|h| *h == channel).unwrap();
-        let simulated = last[column];
+    channels
+        .iter()
+        .map(|c| last[header.iter().position(|h| h == c).unwrap()])
+        .collect()
+}
+
+/// Equal to the ten significant digits history.csv prints.
+fn assert_same_digits(channel: &str, a: f64, b: f64) {
+    assert!(
+        (a - b).abs() <= 1e-9 * b.abs().max(1e-3),
+        "{channel}: {a} against {b}"
+    );
+}
+
+const FINAL_CHANNELS: [&str; 5] = [
+    "altitude_m",
+    "airspeed_m_s",
+    "alpha_deg",
+    "pitch_deg",
+    "q_deg_s",
+];
+
+/// Issue 25's defect: `trade --job simulate` flew its own setup (default integrator and body
+/// rate, no heating), whatever `[simulation]` said. It now flies `simulate`'s, so a
+/// one-combination study of the config's own models ends where `simulate` ends, to the digits
+/// `history.csv` prints, on a config whose surfaces start hot (700 K) and soften every 5 ms (the
+/// old setup, unheated, ended with α 2e-4 deg away).
+#[test]
+fn a_simulate_study_flies_what_simulate_flies() {
+    let config = sample_config_with(
+        "hot-surfaces",
+        "[simulation]\ninitial_temperature_k = 700.0\nstiffness_interval_s = 0.005\n",
+    );
+    let dir = config.parent().unwrap();
+    let (study, flown) = (dir.join("study"), dir.join("simulate"));
+    let config = config.to_str().unwrap();
+    let flight = [
+        "--config",
+        config,
+        "--duration-s",
+        "0.02",
+        "--record-every",
+        "1",
+    ];
+    let trade = [
+        "trade",
+        "--vary",
+        "main_body.aero=shock-expansion-piston",
+        "--job",
+        "simulate",
+        "--quiet",
+        "--out",
+        study.to_str().unwrap(),
+    ];
+    run_ok(&[&trade[..], &flight[..]].concat());
+    let simulate = ["simulate", "--quiet", "--out", flown.to_str().unwrap()];
+    run_ok(&[&simulate[..], &flight[..]].concat());
+
+    let table = json(&study.join("trade.json"));
+    let values = &table["rows"][0]["values"];
+    let simulated = last_row(&flown.join("history.csv"), &FINAL_CHANNELS);
+    for (channel, s) in FINAL_CHANNELS.iter().zip(simulated) {
         let studied = values[format!("final_{channel}")].as_f64().unwrap();
-        // history.csv prints ten significant digits.
-        assert!(
-            (studied - simulated).abs() <= 1e-9 * simulated.abs().max(1e-3),
-            "{channel}: trade {studied}, simulate {simulated}"
-        );
+        assert_same_digits(channel, studied, s);
     }
-    let _ = std::fs::remove_dir_all(&out);
-    let _ = std::fs::remove_dir_all(&sim_out);
-    let _ = std::fs::remove_dir_all(config.parent().unwrap());
+    let _ = std::fs::remove_dir_all(dir);
 }
 
 /// `compare` flies its partitioned case through the same setup as `simulate --no-heating`: on a
@@ -492,76 +506,43 @@ fn a_simulate_study_flies_what_simulate_flies() {
 /// ten digits.
 #[test]
 fn compare_flies_its_partitioned_case_as_simulate_does() {
-    let dir = scratch("compare-config");
-    std::fs::create_dir_all(&dir).unwrap();
-    let sample = hsv_run(&["config"]);
-    assert!(sample.status.success());
-    let config = dir.join("early-step.toml");
-    let text = format!(
-        "{}\n[simulation.inputs.symmetric_elevon_deg]\ntime_s = [0.0, 0.005]\nvalue = [0.0, 1.0]\n",
-        String::from_utf8_lossy(&sample.stdout)
+    let config = sample_config_with(
+        "early-step",
+        "[simulation.inputs.symmetric_elevon_deg]\ntime_s = [0.0, 0.005]\nvalue = [0.0, 1.0]\n",
     );
-    std::fs::write(&config, text).unwrap();
-    let (cmp_out, sim_out) = (dir.join("compare"), dir.join("simulate"));
+    let dir = config.parent().unwrap();
+    let (compared, flown) = (dir.join("compare"), dir.join("simulate"));
     let config = config.to_str().unwrap();
     let flight = ["--config", config, "--duration-s", "0.02"];
-    let mut compare_args = vec!["compare", "--out", cmp_out.to_str().unwrap()];
-    compare_args.extend(flight);
-    let run = hsv_run(&compare_args);
-    assert!(
-        run.status.success(),
-        "{}",
-        String::from_utf8_lossy(&run.stderr)
+    run_ok(
+        &[
+            &["compare", "--out", compared.to_str().unwrap()][..],
+            &flight[..],
+        ]
+        .concat(),
     );
-    let mut sim_args = vec![
+    let simulate = [
         "simulate",
         "--quiet",
         "--no-heating",
         "--record-every",
         "10",
         "--out",
-        sim_out.to_str().unwrap(),
+        flown.to_str().unwrap(),
     ];
-    sim_args.extend(flight);
-    let sim = hsv_run(&sim_args);
-    assert!(
-        sim.status.success(),
-        "{}",
-        String::from_utf8_lossy(&sim.stderr)
-    );
-    let last_row = |path: PathBuf| {
-        let csv = std::fs::read_to_string(path).unwrap();
-        let mut lines = csv.lines();
-        let header: Vec<String> = lines
-            .next()
-            .unwrap()
-            .split(',')
-            .map(str::to_owned)
-            .collect();
-        let last: Vec<f64> = lines
-            .last()
-            .unwrap()
-            .split(',')
-            .map(|v| v.parse().unwrap())
-            .collect();
-        (header, last)
-    };
-    let (ch, cl) = last_row(cmp_out.join("history_partitioned.csv"));
-    let (sh, sl) = last_row(sim_out.join("history.csv"));
-    for channel in [
+    run_ok(&[&simulate[..], &flight[..]].concat());
+    let channels = [
         "time_s",
         "altitude_m",
         "airspeed_m_s",
         "alpha_deg",
         "pitch_deg",
         "q_deg_s",
-    ] {
-        let c = cl[ch.iter().position(|h| h == channel).unwrap()];
-        let s = sl[sh.iter().position(|h| h == channel).unwrap()];
-        assert!(
-            (c - s).abs() <= 1e-9 * s.abs().max(1e-3),
-            "{channel}: compare {c}, simulate {s}"
-        );
+    ];
+    let c = last_row(&compared.join("history_partitioned.csv"), &channels);
+    let s = last_row(&flown.join("history.csv"), &channels);
+    for ((channel, c), s) in channels.iter().zip(c).zip(s) {
+        assert_same_digits(channel, c, s);
     }
-    let _ = std::fs::remove_dir_all(&dir);
+    let _ = std::fs::remove_dir_all(dir);
 }

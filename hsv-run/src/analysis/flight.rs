@@ -8,7 +8,9 @@ use hsv_core::config::LoadedConfig;
 use hsv_core::control::ControlCommands;
 use hsv_core::registry::Registry;
 
-use super::simulate::{Inputs, Integrator, Sample, SimulationError, Stepper, record_sample};
+use super::simulate::{
+    Inputs, Integrator, RunSettings, Sample, SimulationError, Stepper, record_sample, simulate,
+};
 use super::trim::{TrimRequest, TrimResult, TrimStatus, trim};
 use crate::control::{ControlLoop, DesignFrom, DesignRecord};
 use crate::dynamics::VehicleState;
@@ -391,6 +393,31 @@ impl Flight {
         self.step = 0;
         self.stepper = None;
         Ok(())
+    }
+
+    /// Flies `duration_s` from the trim as `simulate` flies it (the `[simulation]` integrator,
+    /// Δt of the options), `observe` hearing every `record_every`-th sample and the last; the
+    /// steps taken, or where the flight went bad.
+    pub fn fly(
+        &mut self,
+        duration_s: f64,
+        record_every: usize,
+        observe: impl FnMut(&Sample, &VehicleState, &mut PartitionedVehicle) -> bool + Send,
+    ) -> Result<usize, SimulationError> {
+        let run = RunSettings {
+            dt_s: self.dt_s,
+            integrator: self.settings.integrator,
+            duration_s,
+            record_every: record_every.max(1),
+            start_step: 0,
+        };
+        simulate(
+            &mut self.vehicle,
+            &mut self.state,
+            &mut self.control,
+            &run,
+            observe,
+        )
     }
 
     /// Steps taken since t = 0.

@@ -11,7 +11,7 @@ use hsv_core::registry::Registry;
 
 use super::{ConfigArg, JsonFlag, load_config};
 use crate::analysis::flight::{Flight, FlightOptions};
-use crate::analysis::simulate::{RunSettings, Sample, simulate};
+use crate::analysis::simulate::Sample;
 use crate::analysis::trim::{TrimPoint, TrimRequest, trim};
 use crate::outln;
 use crate::output::{LinePlot, RunFolder, RunStatus, Series, write_csv, write_line_plots_png};
@@ -71,29 +71,15 @@ fn fly(
         controller: Some("schedule".to_owned()),
         dt_s: args.dt_s,
     };
-    let Flight {
-        mut vehicle,
-        mut state,
-        mut control,
-        trim,
-        settings,
-        ..
-    } = Flight::trimmed(loaded, registry, &options, |_| {})?;
-    let run = RunSettings {
-        dt_s: args.dt_s,
-        integrator: settings.integrator,
-        duration_s: args.duration_s,
-        record_every: 10,
-        start_step: 0,
-    };
+    let mut flight = Flight::trimmed(loaded, registry, &options, |_| {})?;
     let mut samples = Vec::new();
-    let outcome = simulate(&mut vehicle, &mut state, &mut control, &run, |s, _, _| {
+    let outcome = flight.fly(args.duration_s, 10, |s, _, _| {
         samples.push(s.clone());
         true
     });
     Ok(Case {
         label,
-        trim: trim.result.trim,
+        trim: flight.trim.result.trim,
         samples,
         failure: outcome.err().map(|e| e.to_string()),
     })

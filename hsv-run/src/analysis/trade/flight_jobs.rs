@@ -9,7 +9,6 @@ use hsv_core::registry::Registry;
 
 use super::{CaseResult, HISTORY_CHANNELS, StudySpec};
 use crate::analysis::flight::{Flight, FlightOptions};
-use crate::analysis::simulate::{RunSettings, simulate};
 use crate::analysis::trim::{TrimRequest, trim};
 use crate::vehicle::assemble;
 use crate::vehicle::rigid::{RigidVehicle, rigid_needs};
@@ -65,36 +64,26 @@ pub(super) fn simulate_case(
         dt_s: flight_spec.dt_s,
         ..FlightOptions::default()
     };
-    let Flight {
-        mut vehicle,
-        mut state,
-        mut control,
-        trim,
-        settings,
-        ..
-    } = Flight::trimmed(&loaded, registry, &options, |_| {})?;
-    let run = RunSettings {
-        dt_s: flight_spec.dt_s,
-        integrator: settings.integrator,
-        duration_s: flight_spec.duration_s,
-        record_every: flight_spec.record_every.max(1),
-        start_step: 0,
-    };
+    let mut flight = Flight::trimmed(&loaded, registry, &options, |_| {})?;
     let mut history: BTreeMap<String, Vec<f64>> = BTreeMap::new();
-    simulate(&mut vehicle, &mut state, &mut control, &run, |s, _, _| {
-        for (name, value) in [
-            ("time_s", s.time_s),
-            ("altitude_m", s.altitude_m),
-            ("airspeed_m_s", s.airspeed_m_s),
-            ("alpha_deg", s.alpha_deg),
-            ("pitch_deg", s.pitch_deg),
-            ("q_deg_s", s.q_deg_s),
-        ] {
-            history.entry(name.to_owned()).or_default().push(value);
-        }
-        true
-    })?;
-    let t = &trim.result.trim;
+    flight.fly(
+        flight_spec.duration_s,
+        flight_spec.record_every,
+        |s, _, _| {
+            for (name, value) in [
+                ("time_s", s.time_s),
+                ("altitude_m", s.altitude_m),
+                ("airspeed_m_s", s.airspeed_m_s),
+                ("alpha_deg", s.alpha_deg),
+                ("pitch_deg", s.pitch_deg),
+                ("q_deg_s", s.q_deg_s),
+            ] {
+                history.entry(name.to_owned()).or_default().push(value);
+            }
+            true
+        },
+    )?;
+    let t = &flight.trim.result.trim;
     out.values = BTreeMap::from([
         ("trim_alpha_deg".to_owned(), t.alpha_deg),
         ("trim_elevon_deg".to_owned(), t.elevon_deg),

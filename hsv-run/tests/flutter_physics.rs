@@ -168,8 +168,9 @@ fn flight(mach: f64, altitude_m: f64) -> FlightCondition {
 /// form above within 2 % (Frobenius, relative; the tolerance allows the panel-plane slope
 /// against the code's deformed-panel normals and the follower terms of order θ t/c both
 /// leave out): for a 0.2 % thin wedge at Mach 5 (M θ ≤ 0.005: first-order piston theory,
-/// 2 ρ∞ a∞ U ∫ φ_i ∂φ_j/∂x over both faces), and for the sample's 5 % wedge at Mach 10, where
-/// the third-order thickness factor f is 1.5 on the front wedge faces and 0.6 on the rear.
+/// 2 ρ∞ a∞ U ∫ φ_i ∂φ_j/∂x over both faces), and for a 5 % wedge at Mach 10 (thicker than the
+/// sample's 2.8 %, to exercise the thickness terms), where the third-order thickness factor f is
+/// 1.5 on the front wedge faces and 0.6 on the rear.
 /// A sign or factor error in the aero path of the flutter analysis shows here.
 #[test]
 fn aero_part_of_the_identified_matrix_is_piston_theory_on_the_sample_planform() {

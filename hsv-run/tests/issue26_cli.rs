@@ -169,3 +169,60 @@ fn a_sea_level_trim_converges_with_a_warning() {
     let paper = common::cli::json(&hsv_run(&["trim", "--json"]));
     assert_eq!(paper["trim_status"], "converged", "{paper}");
 }
+
+// ---- item 1 (in part): `config --check` builds the rigid vehicle's models -----------------
+
+/// A config whose models refuse their settings used to pass `config --check` and fail inside a
+/// job. The check now builds the models `trim` builds (body and surface aero, structures,
+/// friction, engine), so each of these fails there with one line naming the key path and the
+/// allowed range; the sample config passes.
+#[test]
+fn config_check_builds_the_models_and_names_the_bad_setting() {
+    let sample = common::cli::stdout(&hsv_run(&["config"]));
+    let dir = scratch_dir("config-check");
+    let cases = [
+        (
+            "forebody_mass_per_length_kg_m = 838.0",
+            "forebody_mass_per_length_kg_m = -838.0",
+            "models.free-free-beam.forebody_mass_per_length_kg_m",
+        ),
+        (
+            "vertical_bending_stiffness_n_m2 = 6.32e9",
+            "vertical_bending_stiffness_n_m2 = 0.0",
+            "models.free-free-beam.vertical_bending_stiffness_n_m2",
+        ),
+        (
+            "emissivity = 0.8 ",
+            "emissivity = -0.8 ",
+            "models.eckert.emissivity",
+        ),
+        (
+            "[models.eckert]\n",
+            "[models.eckert]\nbogus_key = 1\n",
+            "models.eckert.bogus_key",
+        ),
+        (
+            "free_vibration_modes = 10 ",
+            "free_vibration_modes = 0 ",
+            "free_vibration_modes = 0 is outside the model's range (1 to 50)",
+        ),
+    ];
+    for (k, (from, to, needle)) in cases.iter().enumerate() {
+        assert!(sample.contains(from), "{from}");
+        let path = dir.join(format!("bad-{k}.toml"));
+        std::fs::write(&path, sample.replacen(from, to, 1)).unwrap();
+        let output = hsv_run(&["config", "--check", path.to_str().unwrap()]);
+        let err = stderr(&output);
+        assert!(!output.status.success(), "{to}: passed the check");
+        assert!(
+            err.starts_with("error:") && err.contains(needle),
+            "{to}: {err}"
+        );
+        assert_eq!(err.trim_end().lines().count(), 1, "{err}");
+        assert_eq!(err.matches(needle).count(), 1, "said twice: {err}");
+    }
+    let good = dir.join("sample.toml");
+    std::fs::write(&good, &sample).unwrap();
+    let output = hsv_run(&["config", "--check", good.to_str().unwrap()]);
+    assert!(output.status.success(), "{}", stderr(&output));
+}

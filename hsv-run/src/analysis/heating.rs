@@ -70,7 +70,7 @@ fn build<M: ?Sized + hsv_core::registry::RoleModel>(
         .map_err(|e| AssemblyError::Model {
             file: region.file.clone(),
             region: region.name.clone(),
-            source: Box::new(e),
+            cause: Box::new(e),
         })
 }
 
@@ -90,7 +90,7 @@ impl SurfaceHeating {
         let model_error = |e: hsv_core::ModelError| AssemblyError::Model {
             file: region.file.clone(),
             region: region.name.clone(),
-            source: Box::new(e),
+            cause: Box::new(e),
         };
         let n_panels = region.mesh.panels.len();
         if conduction.n_surface_panels() != n_panels {

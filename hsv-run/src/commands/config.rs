@@ -7,6 +7,8 @@ use anyhow::Result;
 use hsv_core::config::{LoadedConfig, SAMPLE_CONFIG_TOML};
 use hsv_core::registry::Registry;
 
+use crate::vehicle::assemble;
+use crate::vehicle::rigid::{RigidVehicle, rigid_needs};
 use crate::{out, outln};
 
 /// Prints the embedded config verbatim (with its comments), or a user config as parsed.
@@ -23,10 +25,15 @@ pub fn print_config(path: Option<&Path>, json: bool) -> Result<()> {
 }
 
 /// Validates the config at `path` as every command would before running (parse, finite values,
-/// reference values, plugins, vehicle geometry, region model names and roles) and says OK; the
-/// first problem is the error.
+/// reference values, plugins, vehicle geometry, region model names and roles), then builds the
+/// rigid vehicle's models with their settings as `trim` would (the body's and surfaces' aero,
+/// structure and friction models and the engine: a negative mass, a zero modulus or a count the
+/// model refuses fails here, not inside a job), and says OK; the first problem is the error.
+/// The conduction models are not built: `pod` would train its basis.
 pub fn check_config(path: &Path, registry: &Registry, json: bool) -> Result<()> {
-    let (loaded, _) = super::load_config(Some(path), registry)?;
+    let (loaded, registry) = super::load_config(Some(path), registry)?;
+    let sets = assemble(&loaded, &registry, &rigid_needs("config --check"))?;
+    RigidVehicle::new(sets)?;
     if json {
         let summary = serde_json::json!({"config": loaded.file, "valid": true});
         outln!("{}", serde_json::to_string_pretty(&summary)?)?;

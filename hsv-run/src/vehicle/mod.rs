@@ -33,12 +33,13 @@ pub enum AssemblyError {
         key: &'static str,
         analysis: String,
     },
-    #[error("{file}: region `{region}`: {source}")]
+    // The model's error is part of this message, not a source: printed as a chain it would
+    // appear twice.
+    #[error("{file}: region `{region}`: {cause}")]
     Model {
         file: String,
         region: String,
-        #[source]
-        source: Box<dyn std::error::Error + Send + Sync>,
+        cause: Box<dyn std::error::Error + Send + Sync>,
     },
     #[error(transparent)]
     Config(#[from] hsv_core::config::ConfigError),
@@ -142,7 +143,7 @@ fn build<M: ?Sized + RoleModel>(
         .map_err(|e| AssemblyError::Model {
             file: region.file.clone(),
             region: region.name.clone(),
-            source: Box::new(e),
+            cause: Box::new(e),
         })
 }
 
@@ -226,7 +227,7 @@ fn friction_model(
         return Err(AssemblyError::Model {
             file: info.file.clone(),
             region: info.name.clone(),
-            source: format!(
+            cause: format!(
                 "heat-flux model `{name}` has no wall-shear law for skin friction; name one that \
                  has (eckert) or set `regions.{}.skin_friction = false`",
                 info.name
@@ -268,7 +269,7 @@ fn check_needs(
             AssemblyError::Model {
                 file: set.info.file.clone(),
                 region: set.info.name.clone(),
-                source: Box::new(e),
+                cause: Box::new(e),
             }
         })?;
     }

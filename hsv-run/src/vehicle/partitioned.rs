@@ -477,7 +477,7 @@ fn assembly_error(region: &str, message: String) -> AssemblyError {
     AssemblyError::Model {
         file: String::new(),
         region: region.to_owned(),
-        source: message.into(),
+        cause: message.into(),
     }
 }
 

@@ -126,7 +126,7 @@ fn missing(region: &str, what: &str) -> AssemblyError {
     AssemblyError::Model {
         file: String::new(),
         region: region.to_owned(),
-        source: format!("the rigid vehicle needs {what}").into(),
+        cause: format!("the rigid vehicle needs {what}").into(),
     }
 }
 

@@ -41,6 +41,10 @@ impl SteadyFlight for Linear {
     fn mass_kg(&self) -> f64 {
         1.0
     }
+
+    fn gas(&self) -> hsv_core::gas::PerfectGas {
+        hsv_core::gas::PerfectGas::AIR
+    }
 }
 
 #[test]
@@ -183,11 +187,15 @@ fn point(phi: f64, engine: hsv_core::propulsion::EngineStatus) -> TrimPoint {
 #[test]
 fn a_trim_outside_the_envelope_or_on_a_failed_engine_says_so() {
     use hsv_core::propulsion::EngineStatus::{Ok, Spillage, ThermalChoking, Unstart};
-    let (status, notes) = trim_status(6.0, 26_000.0, &point(0.3, Spillage), true);
+    let air = |mach: f64, altitude_m: f64| {
+        hsv_core::flow::Freestream::standard(mach, altitude_m, hsv_core::gas::PerfectGas::AIR)
+            .unwrap()
+    };
+    let (status, notes) = trim_status(&air(6.0, 26_000.0), &point(0.3, Spillage), true);
     assert_eq!(status, TrimStatus::Converged, "{notes:?}");
     assert!(notes.is_empty());
 
-    let (status, notes) = trim_status(6.0, 0.0, &point(0.3, Ok), true);
+    let (status, notes) = trim_status(&air(6.0, 0.0), &point(0.3, Ok), true);
     assert_eq!(status, TrimStatus::ConvergedWithWarnings);
     assert_eq!(notes.len(), 1, "{notes:?}");
     assert!(
@@ -195,12 +203,12 @@ fn a_trim_outside_the_envelope_or_on_a_failed_engine_says_so() {
         "{notes:?}"
     );
 
-    let (status, notes) = trim_status(25.0, 20_000.0, &point(0.3, Ok), true);
+    let (status, notes) = trim_status(&air(25.0, 20_000.0), &point(0.3, Ok), true);
     assert_eq!(status, TrimStatus::ConvergedWithWarnings);
     assert!(notes[0].contains("dynamic pressure"), "{notes:?}");
     assert!(notes[1].contains("stagnation temperature 27"), "{notes:?}");
 
-    let (status, notes) = trim_status(6.0, 26_000.0, &point(0.3, Ok), false);
+    let (status, notes) = trim_status(&air(6.0, 26_000.0), &point(0.3, Ok), false);
     assert_eq!(status, TrimStatus::ConvergedWithWarnings);
     assert!(notes[0].contains("local minimum"), "{notes:?}");
 
@@ -209,7 +217,7 @@ fn a_trim_outside_the_envelope_or_on_a_failed_engine_says_so() {
         (0.3, ThermalChoking, "thermally choked"),
         (1.0, Ok, "at the search's bound"),
     ] {
-        let (status, notes) = trim_status(6.0, 26_000.0, &point(phi, engine), true);
+        let (status, notes) = trim_status(&air(6.0, 26_000.0), &point(phi, engine), true);
         assert_eq!(status, TrimStatus::Failed, "{needle}: {notes:?}");
         assert!(notes[0].contains(needle), "{notes:?}");
     }

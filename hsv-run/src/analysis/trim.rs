@@ -12,6 +12,8 @@ use rand_xoshiro::Xoshiro256Plus;
 use rand_xoshiro::rand_core::{RngCore, SeedableRng};
 
 use crate::vehicle::rigid::{Accelerations, Controls, RigidLoads, RigidVehicle};
+use hsv_core::flow::Freestream;
+use hsv_core::gas::PerfectGas;
 use hsv_core::propulsion::EngineStatus;
 
 /// Cost of a point the models refuse (an unstarted engine, a detached inlet), above any real J.
@@ -100,10 +102,9 @@ pub const CORRIDOR_DYNAMIC_PRESSURE_PA: (f64, f64) = (23_940.0, 95_760.0);
 /// 800 K). Every aero and engine model here assumes γ = 1.4 air.
 pub const PERFECT_GAS_STAGNATION_LIMIT_K: f64 = 2500.0;
 
-/// The status of `trim` and what it rests on: failures first, then warnings.
+/// The status of a trim at `freestream` and what it rests on: failures first, then warnings.
 pub fn trim_status(
-    mach: f64,
-    altitude_m: f64,
+    freestream: &Freestream,
     trim: &TrimPoint,
     agreed: bool,
 ) -> (TrimStatus, Vec<String>) {
@@ -126,26 +127,23 @@ pub fn trim_status(
             PHI_RANGE.0, PHI_RANGE.1
         ));
     }
-    if let Ok(air) = hsv_core::atmosphere::us_standard_atmosphere_1976(altitude_m) {
-        let gamma = 1.4;
-        let q = 0.5 * gamma * air.pressure_pa * mach * mach;
-        let (lo, hi) = CORRIDOR_DYNAMIC_PRESSURE_PA;
-        if !(lo..=hi).contains(&q) {
-            warnings.push(format!(
-                "dynamic pressure {:.1} kPa is outside the air-breathing corridor {:.1}-{:.1} kPa \
-                 (500-2000 lbf/ft^2, Heiser & Pratt 1994)",
-                q / 1e3,
-                lo / 1e3,
-                hi / 1e3
-            ));
-        }
-        let t0 = air.temperature_k * (1.0 + 0.5 * (gamma - 1.0) * mach * mach);
-        if t0 > PERFECT_GAS_STAGNATION_LIMIT_K {
-            warnings.push(format!(
-                "stagnation temperature {t0:.0} K is above {PERFECT_GAS_STAGNATION_LIMIT_K:.0} K, \
-                 where air dissociates and the models' calorically perfect gas no longer holds"
-            ));
-        }
+    let q = freestream.dynamic_pressure_pa;
+    let (lo, hi) = CORRIDOR_DYNAMIC_PRESSURE_PA;
+    if !(lo..=hi).contains(&q) {
+        warnings.push(format!(
+            "dynamic pressure {:.1} kPa is outside the air-breathing corridor {:.1}-{:.1} kPa \
+             (500-2000 lbf/ft^2, Heiser & Pratt 1994)",
+            q / 1e3,
+            lo / 1e3,
+            hi / 1e3
+        ));
+    }
+    let t0 = freestream.total_temperature_k();
+    if t0 > PERFECT_GAS_STAGNATION_LIMIT_K {
+        warnings.push(format!(
+            "stagnation temperature {t0:.0} K is above {PERFECT_GAS_STAGNATION_LIMIT_K:.0} K, \
+             where air dissociates and the models' calorically perfect gas no longer holds"
+        ));
     }
     if !agreed {
         warnings.push(
@@ -224,6 +222,9 @@ pub trait SteadyFlight {
     /// Mass of the vehicle, kg (reported).
     fn mass_kg(&self) -> f64;
 
+    /// The gas the vehicle flies in (the trim's freestream, for its envelope checks).
+    fn gas(&self) -> PerfectGas;
+
     /// Body modal amplitudes at the last evaluated point (empty for a rigid vehicle).
     fn modal_amplitudes(&self) -> Vec<(String, f64)> {
         Vec::new()
@@ -242,6 +243,10 @@ impl SteadyFlight for RigidVehicle {
 
     fn mass_kg(&self) -> f64 {
         self.mass_properties().mass_kg
+    }
+
+    fn gas(&self) -> PerfectGas {
+        RigidVehicle::gas(self)
     }
 }
 
@@ -422,7 +427,13 @@ pub fn trim(
     }
     let (restart, _) = minimize(vehicle, request, perturbed(&first, request.seed))?;
     let agreed = agree(&first, &restart);
-    let (status, notes) = trim_status(request.mach, request.altitude_m, &first, agreed);
+    let freestream = Freestream::standard(request.mach, request.altitude_m, vehicle.gas())
+        .map_err(|e| TrimError::Search {
+            mach: request.mach,
+            altitude_m: request.altitude_m,
+            message: e.to_string(),
+        })?;
+    let (status, notes) = trim_status(&freestream, &first, agreed);
     Ok(TrimResult {
         mach: request.mach,
         altitude_m: request.altitude_m,

@@ -1893,6 +1893,10 @@ impl crate::analysis::trim::SteadyFlight for PartitionedVehicle {
         self.mass.mass_kg
     }
 
+    fn gas(&self) -> PerfectGas {
+        self.gas
+    }
+
     fn modal_amplitudes(&self) -> Vec<(String, f64)> {
         let names = &self.body_mode_names;
         names

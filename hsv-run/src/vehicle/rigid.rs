@@ -193,6 +193,11 @@ impl RigidVehicle {
         })
     }
 
+    /// The gas the vehicle flies in.
+    pub fn gas(&self) -> PerfectGas {
+        self.gas
+    }
+
     /// Mass, centre of mass and inertia of the whole vehicle.
     pub fn mass_properties(&self) -> &MassProperties {
         &self.mass

@@ -174,9 +174,7 @@ impl PodBasis {
     /// Writes the basis to `path` as a sealed cache ([`hsv_core::cache`]: checksummed, written
     /// atomically).
     pub fn save(&self, path: &Path) -> Result<(), ModelError> {
-        hsv_core::cache::save(path, self)
-            .map(|_: Self| ())
-            .map_err(|e| ModelError::inconsistent(NAME, e.to_string()))
+        hsv_core::cache::save(path, self).map_err(|e| ModelError::inconsistent(NAME, e.to_string()))
     }
 
     /// Reads a basis written by [`Self::save`]: refused when the file is missing, damaged (its

@@ -805,6 +805,5 @@ pub(crate) fn load(path: &Path, fingerprint: &str) -> Option<Identification> {
 /// identifying at the same time never leave a torn file).
 pub(crate) fn save(path: &Path, identification: &Identification) -> Result<(), ModelError> {
     hsv_core::cache::save(path, identification)
-        .map(|_: Identification| ())
         .map_err(|e| ModelError::inconsistent(NAME, e.to_string()))
 }

@@ -580,8 +580,11 @@ fn load(path: &Path, fingerprint: &str) -> Option<Surrogate> {
 /// Writes the training as a sealed cache, atomically, and returns it as the file holds it, so
 /// this run predicts exactly what a reloading run will.
 fn save(path: &Path, surrogate: &Surrogate) -> Result<Surrogate, ModelError> {
-    hsv_core::cache::save(path, surrogate)
-        .map_err(|e| ModelError::inconsistent(NAME, format!("saving the training: {e}")))
+    let fail = |e: hsv_core::cache::CacheError| {
+        ModelError::inconsistent(NAME, format!("saving the training: {e}"))
+    };
+    hsv_core::cache::save(path, surrogate).map_err(fail)?;
+    hsv_core::cache::load(path).map_err(fail)
 }
 
 /// One flat-plate panel of length 2x (so its running length is x) inclined by θ to a freestream

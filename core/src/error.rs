@@ -38,6 +38,9 @@ pub enum ModelError {
     /// Inputs do not fit together (buffer lengths, meshes, mode counts).
     #[error("{model}: {message}")]
     Inconsistent { model: String, message: String },
+    /// The model was asked to work on a region it is not made for (a plate model on the body).
+    #[error("{model}: {message}")]
+    WrongRegion { model: String, message: String },
     #[error(transparent)]
     Gas(#[from] GasError),
     #[error(transparent)]

@@ -117,13 +117,13 @@ impl RegionInfo {
             RegionGeometry::LiftingSurface { .. } => "a lifting-surface planform",
             RegionGeometry::Mesh => "a mesh without parametric geometry",
         };
-        ModelError::inconsistent(
-            model,
-            format!(
+        ModelError::WrongRegion {
+            model: model.to_owned(),
+            message: format!(
                 "region `{}` has {has}, but the model needs {needed}",
                 self.name
             ),
-        )
+        }
     }
 }
 

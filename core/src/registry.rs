@@ -146,6 +146,49 @@ impl<'a> ModelContext<'a> {
         )
     }
 
+    /// Checks model `name` of `role` in the same region with `settings` as building it would
+    /// ([`Registry::check`]): how a composite's [`SettingsCheck`] checks its base models.
+    pub fn check(
+        &self,
+        role: Role,
+        name: &str,
+        settings: &ModelSettings,
+    ) -> Result<(), RegistryError> {
+        self.registry.check(
+            role,
+            name,
+            &ModelContext::new(self.region, self.registry, settings),
+        )
+    }
+
+    /// `error` placed in the config: a constructor's out-of-range quantity that is one of the
+    /// model's own settings keys becomes a settings error at that key's path, so the message
+    /// names file and key whichever way the model phrased it.
+    pub fn locate(&self, error: ModelError) -> ModelError {
+        match error {
+            ModelError::OutOfRange {
+                quantity,
+                value,
+                allowed,
+                ..
+            } if self.settings.contains_key(&quantity) => self.settings_error(
+                &quantity,
+                format!("{value} is outside the allowed range ({allowed})"),
+            ),
+            other => other,
+        }
+    }
+
+    /// A base model's failure as this model's error: the base model's own error when it has
+    /// one (it names its own key path), else a settings error at `key`, the setting that names
+    /// the base model (an unknown name, a model of another role).
+    pub fn base_model_error(&self, key: &str, error: RegistryError) -> ModelError {
+        match error {
+            RegistryError::Model(error) => error,
+            other => self.settings_error(key, other.to_string()),
+        }
+    }
+
     /// A settings error at `key` under this model's table.
     pub fn settings_error(&self, key: &str, message: impl Into<String>) -> ModelError {
         ModelError::settings_at(self.file, self.key_path, key, message)
@@ -202,6 +245,29 @@ pub struct ModelDescriptor {
 }
 
 inventory::collect!(ModelDescriptor);
+
+/// Checks a model's settings in a region as its constructor would, without the costly work the
+/// constructor may do on a first run (training a POD basis or a surrogate, identifying a ROM):
+/// what `config --check` runs.
+pub type SettingsCheck = fn(&ModelContext<'_>) -> Result<(), ModelError>;
+
+/// What a built-in model with a costly constructor submits beside its [`ModelDescriptor`] with
+/// [`register_model_check!`]; models without one are checked by building them.
+pub struct ModelCheck {
+    /// The model's registered name.
+    pub name: &'static str,
+    pub check: SettingsCheck,
+}
+
+inventory::collect!(ModelCheck);
+
+/// Registers a built-in model's settings check: `hsv_core::register_model_check!(ModelCheck { .. });`
+#[macro_export]
+macro_rules! register_model_check {
+    ($check:expr) => {
+        $crate::inventory::submit! { $check }
+    };
+}
 
 /// Registers a built-in model: `hsv_core::register_model!(ModelDescriptor { .. });`
 #[macro_export]
@@ -331,6 +397,8 @@ pub enum RegistryError {
 #[derive(Clone, Default)]
 pub struct Registry {
     entries: BTreeMap<String, RegistryEntry>,
+    /// Settings checks of built-in models with costly constructors, by name.
+    checks: BTreeMap<String, SettingsCheck>,
 }
 
 impl fmt::Debug for Registry {
@@ -366,6 +434,11 @@ impl Registry {
                 origin: Origin::BuiltIn(descriptor.origin.to_owned()),
                 factory: descriptor.constructor.into(),
             })?;
+        }
+        for check in inventory::iter::<ModelCheck> {
+            if registry.entries.contains_key(check.name) {
+                registry.checks.insert(check.name.to_owned(), check.check);
+            }
         }
         Ok(registry)
     }
@@ -468,13 +541,39 @@ impl Registry {
     ) -> Result<Box<M>, RegistryError> {
         let entry = self.entry_for(name, M::ROLE)?;
         match M::constructor(&entry.factory) {
-            Some(build) => Ok(build(context)?),
+            Some(build) => build(context).map_err(|e| RegistryError::Model(context.locate(e))),
             None => Err(wrong_role(name, entry.role(), M::ROLE)),
         }
     }
 }
 
 impl Registry {
+    /// Checks model `name` of `role` in the region of `context` as building it would: its
+    /// registered [`SettingsCheck`] when it has one (a costly constructor), else by building it
+    /// and dropping the model. Controllers are built at run start, from the trimmed vehicle, and
+    /// are only looked up here.
+    pub fn check(
+        &self,
+        role: Role,
+        name: &str,
+        context: &ModelContext<'_>,
+    ) -> Result<(), RegistryError> {
+        let entry = self.entry_for(name, role)?;
+        let located = |e| RegistryError::Model(context.locate(e));
+        if let Some(check) = self.checks.get(name) {
+            return check(context).map_err(located);
+        }
+        match &entry.factory {
+            Factory::Aero(build) => drop(build(context).map_err(located)?),
+            Factory::HeatFlux(build) => drop(build(context).map_err(located)?),
+            Factory::Conduction(build) => drop(build(context).map_err(located)?),
+            Factory::Structure(build) => drop(build(context).map_err(located)?),
+            Factory::Propulsion(build) => drop(build(context).map_err(located)?),
+            Factory::Control(_) => {}
+        }
+        Ok(())
+    }
+
     /// Builds controller `name` (role `control`) for the run described by `context`.
     pub fn create_controller(
         &self,
@@ -615,6 +714,51 @@ mod tests {
                 .create::<dyn AeroModel>("shock-expansion", &context)
                 .is_ok()
         );
+    }
+
+    #[test]
+    fn a_constructors_out_of_range_setting_is_reported_at_its_key_path() {
+        let mut registry = Registry::empty();
+        let mut refusing = entry("refusing", "a");
+        refusing.factory = Factory::Aero(Arc::new(|_| {
+            Err(ModelError::out_of_range("refusing", "cells", 0.0, ">= 1"))
+        }));
+        registry.insert(refusing).unwrap();
+        let region = RegionInfo::standalone(
+            "test",
+            PanelMesh::default(),
+            crate::aero::ReferenceValues {
+                area_m2: 1.0,
+                chord_m: 1.0,
+                span_m: 1.0,
+                moment_point_m: [0.0; 3],
+            },
+            crate::gas::PerfectGas::AIR,
+            "test.toml",
+        );
+        let mut settings = region.model_settings("refusing");
+        let unset = ModelContext::new(&region, &registry, &settings);
+        let err = registry.check(Role::Aero, "refusing", &unset).unwrap_err();
+        assert!(
+            matches!(err, RegistryError::Model(ModelError::OutOfRange { .. })),
+            "{err}"
+        );
+        settings
+            .table
+            .insert("cells".into(), toml::Value::Integer(0));
+        let set = ModelContext::new(&region, &registry, &settings);
+        let err = registry.check(Role::Aero, "refusing", &set).unwrap_err();
+        assert_eq!(
+            err.to_string(),
+            format!(
+                "test.toml: key `{}.cells`: 0 is outside the allowed range (>= 1)",
+                settings.key_path
+            )
+        );
+        let err = registry
+            .check(Role::Structure, "refusing", &set)
+            .unwrap_err();
+        assert!(matches!(err, RegistryError::WrongRole { .. }), "{err}");
     }
 
     #[test]

@@ -170,59 +170,211 @@ fn a_sea_level_trim_converges_with_a_warning() {
     assert_eq!(paper["trim_status"], "converged", "{paper}");
 }
 
-// ---- item 1 (in part): `config --check` builds the rigid vehicle's models -----------------
+// ---- item 1: `config --check` checks every model with its settings ---------------------
 
-/// A config whose models refuse their settings used to pass `config --check` and fail inside a
-/// job. The check now builds the models `trim` builds (body and surface aero, structures,
-/// friction, engine), so each of these fails there with one line naming the key path and the
-/// allowed range; the sample config passes.
+/// A material table for `key = { ... }`, with one property of the first row or of the
+/// material replaced by the caller.
+fn material_table(density: f64, poisson: f64, modulus: f64, conductivity: f64) -> String {
+    format!(
+        "{{ name = \"edited\", density_kg_m3 = {density}, poisson_ratio = {poisson}, \
+         melting_point_k = 1877.0, table = [ \
+         {{ temperature_k = 250.0, youngs_modulus_pa = {modulus}, thermal_expansion_per_k = 9e-6, \
+         conductivity_w_m_k = {conductivity}, specific_heat_j_kg_k = 500.0 }}, \
+         {{ temperature_k = 1300.0, youngs_modulus_pa = 0.7e11, thermal_expansion_per_k = 11e-6, \
+         conductivity_w_m_k = 20.0, specific_heat_j_kg_k = 700.0 }} ] }} #"
+    )
+}
+
+/// Every config class of issue 26 item 1 used to pass `config --check` (or fail only inside a
+/// job). Each now fails the check, naming the key path (and the value and allowed range where
+/// there is one), with no panic; the sample config passes.
 #[test]
-fn config_check_builds_the_models_and_names_the_bad_setting() {
+fn config_check_rejects_every_class_with_its_key_path() {
     let sample = common::cli::stdout(&hsv_run(&["config"]));
     let dir = scratch_dir("config-check");
-    let cases = [
+    let plate_material = "material = \"ti-6al-4v\"             # DESIGN";
+    let conduction_material = "structure_material = \"ti-6al-4v\"";
+    let cases: Vec<(&str, &str, String, &str)> = vec![
         (
+            "negative mass",
             "forebody_mass_per_length_kg_m = 838.0",
-            "forebody_mass_per_length_kg_m = -838.0",
-            "models.free-free-beam.forebody_mass_per_length_kg_m",
+            "forebody_mass_per_length_kg_m = -838.0".into(),
+            "key `models.free-free-beam.forebody_mass_per_length_kg_m`",
         ),
         (
+            "zero density (zero plate mass)",
+            plate_material,
+            format!("material = {}", material_table(0.0, 0.3, 1.1e11, 7.0)),
+            "key `models.ritz-plate.material`: material edited: density_kg_m3 = 0",
+        ),
+        (
+            "negative density",
+            plate_material,
+            format!("material = {}", material_table(-4430.0, 0.3, 1.1e11, 7.0)),
+            "density_kg_m3 = -4430",
+        ),
+        (
+            "zero stiffness",
             "vertical_bending_stiffness_n_m2 = 6.32e9",
-            "vertical_bending_stiffness_n_m2 = 0.0",
-            "models.free-free-beam.vertical_bending_stiffness_n_m2",
+            "vertical_bending_stiffness_n_m2 = 0.0".into(),
+            "key `models.free-free-beam.vertical_bending_stiffness_n_m2`",
         ),
         (
+            "zero modulus",
+            plate_material,
+            format!("material = {}", material_table(4430.0, 0.3, 0.0, 7.0)),
+            "table[0].youngs_modulus_pa = 0",
+        ),
+        (
+            "negative modulus",
+            plate_material,
+            format!("material = {}", material_table(4430.0, 0.3, -1e9, 7.0)),
+            "table[0].youngs_modulus_pa = -1000000000",
+        ),
+        (
+            "Poisson ratio 0.5",
+            plate_material,
+            format!("material = {}", material_table(4430.0, 0.5, 1.1e11, 7.0)),
+            "poisson_ratio = 0.5: must be in (-1, 0.5)",
+        ),
+        (
+            "zero conductivity (conduction model, not built before)",
+            conduction_material,
+            format!(
+                "structure_material = {}",
+                material_table(4430.0, 0.3, 1.1e11, 0.0)
+            ),
+            "key `models.full-order.structure_material`: material edited: \
+             table[0].conductivity_w_m_k = 0",
+        ),
+        (
+            "negative emissivity",
             "emissivity = 0.8 ",
-            "emissivity = -0.8 ",
-            "models.eckert.emissivity",
+            "emissivity = -0.8 ".into(),
+            "key `models.eckert.emissivity`: -0.8 is outside the allowed range (0 to 1)",
         ),
         (
+            "negative damping",
+            "damping_ratio = 0.02               # our choice",
+            "damping_ratio = -0.02 #".into(),
+            "key `models.ritz-plate.damping_ratio`: -0.02 is outside the allowed range ([0, 1))",
+        ),
+        (
+            "zero strips (the engine no region names)",
+            "spanwise_strips = 5                    # our choice\n",
+            "spanwise_strips = 0\n".into(),
+            "region `propulsion`: key `models.scramjet-q1d.spanwise_strips`: 0 is out of range; allowed: 3 to 101",
+        ),
+        (
+            "zero structural modes",
+            "free_vibration_modes = 10 ",
+            "free_vibration_modes = 0 ".into(),
+            "key `models.ritz-plate.free_vibration_modes`: 0 is outside the allowed range (1 to 50)",
+        ),
+        (
+            "zero POD modes (conduction model, not built before)",
+            "modes = 32 ",
+            "modes = 0 ".into(),
+            "key `models.pod.modes`: 0 is outside the allowed range (1 to 1000)",
+        ),
+        (
+            "unknown key inside a model's table",
             "[models.eckert]\n",
-            "[models.eckert]\nbogus_key = 1\n",
+            "[models.eckert]\nbogus_key = 1\n".into(),
             "models.eckert.bogus_key",
         ),
         (
-            "free_vibration_modes = 10 ",
-            "free_vibration_modes = 0 ",
-            "free_vibration_modes = 0 is outside the model's range (1 to 50)",
+            "a region override naming an unknown model",
+            "[regions.propulsion]",
+            "[regions.left_surface]\naero = \"no-such-model\"\n\n[regions.propulsion]".into(),
+            "key `regions.left_surface.aero`: unknown hsv model `no-such-model`",
+        ),
+        (
+            "a missing role",
+            "aero = \"shock-expansion-piston\"    # paper §II.B",
+            "#".into(),
+            "region `main_body`: no aero model, which the aerothermoelastic simulation needs \
+             (set `regions.main_body.aero`)",
+        ),
+        (
+            "a model in the wrong role",
+            "propulsion = \"scramjet-1d\" ",
+            "propulsion = \"eckert\" ".into(),
+            "key `regions.propulsion.propulsion`: `eckert` is a heat-flux model, but this key \
+             names a propulsion model",
         ),
     ];
-    for (k, (from, to, needle)) in cases.iter().enumerate() {
-        assert!(sample.contains(from), "{from}");
+    for (k, (class, from, to, needle)) in cases.iter().enumerate() {
+        assert!(sample.contains(from), "{class}: `{from}` not in the sample");
         let path = dir.join(format!("bad-{k}.toml"));
         std::fs::write(&path, sample.replacen(from, to, 1)).unwrap();
         let output = hsv_run(&["config", "--check", path.to_str().unwrap()]);
         let err = stderr(&output);
-        assert!(!output.status.success(), "{to}: passed the check");
+        assert!(!output.status.success(), "{class}: passed the check");
+        assert!(!err.contains("panicked"), "{class}: {err}");
         assert!(
             err.starts_with("error:") && err.contains(needle),
-            "{to}: {err}"
+            "{class}: `{needle}` not in: {err}"
         );
-        assert_eq!(err.trim_end().lines().count(), 1, "{err}");
-        assert_eq!(err.matches(needle).count(), 1, "said twice: {err}");
+        assert_eq!(err.matches(needle).count(), 1, "{class}: said twice: {err}");
     }
-    let good = dir.join("sample.toml");
+    // In a folder without caches: the check trains no POD basis (it would write hsv-cache/).
+    let fresh = scratch_dir("config-check-fresh");
+    let good = fresh.join("sample.toml");
     std::fs::write(&good, &sample).unwrap();
-    let output = hsv_run(&["config", "--check", good.to_str().unwrap()]);
+    let output = hsv_run_in(Some(&fresh), &["config", "--check", "sample.toml"]);
     assert!(output.status.success(), "{}", stderr(&output));
+    assert!(
+        !fresh.join("hsv-cache").exists(),
+        "the check trained a model"
+    );
+}
+
+/// Problems in different models are reported together, one `error:` line each, with the
+/// count; a setting both surfaces share is one problem naming both regions; `--json` lists them.
+#[test]
+fn config_check_reports_every_problem_at_once() {
+    let sample = common::cli::stdout(&hsv_run(&["config"]));
+    let edits = [
+        (
+            "forebody_mass_per_length_kg_m = 838.0",
+            "forebody_mass_per_length_kg_m = -838.0",
+        ),
+        ("modes = 32 ", "modes = 0 "),
+        (
+            "spanwise_strips = 5                    # our choice\n",
+            "spanwise_strips = 0\n",
+        ),
+        (
+            "damping_ratio = 0.02               # our choice",
+            "damping_ratio = -0.02 #",
+        ),
+    ];
+    let mut text = sample.clone();
+    for (from, to) in edits {
+        assert!(text.contains(from), "{from}");
+        text = text.replacen(from, to, 1);
+    }
+    let path = scratch_dir("config-check-all").join("four.toml");
+    std::fs::write(&path, &text).unwrap();
+    let output = hsv_run(&["config", "--check", path.to_str().unwrap()]);
+    let err = stderr(&output);
+    assert!(!output.status.success());
+    let lines: Vec<&str> = err.trim_end().lines().collect();
+    assert_eq!(lines.len(), 5, "{err}");
+    assert!(lines.iter().all(|l| l.starts_with("error:")), "{err}");
+    for needle in [
+        "region `main_body`: key `models.free-free-beam.forebody_mass_per_length_kg_m`",
+        "regions `left_surface`, `right_surface`: key `models.pod.modes`",
+        "region `propulsion`: key `models.scramjet-q1d.spanwise_strips`",
+        "regions `left_surface`, `right_surface`: key `models.ritz-plate.damping_ratio`",
+        "4 problems found",
+    ] {
+        assert_eq!(err.matches(needle).count(), 1, "`{needle}`: {err}");
+    }
+    let output = hsv_run(&["config", "--json", "--check", path.to_str().unwrap()]);
+    let json: serde_json::Value =
+        serde_json::from_str(&common::cli::stdout(&output)).expect("JSON");
+    assert_eq!(json["valid"], false);
+    assert_eq!(json["problems"].as_array().map(Vec::len), Some(4), "{json}");
 }

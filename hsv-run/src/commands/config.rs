@@ -8,6 +8,7 @@ use hsv_core::config::{LoadedConfig, SAMPLE_CONFIG_TOML};
 use hsv_core::registry::Registry;
 
 use crate::vehicle::assemble;
+use crate::vehicle::check::check_models;
 use crate::vehicle::rigid::{RigidVehicle, rigid_needs};
 use crate::{out, outln};
 
@@ -25,20 +26,46 @@ pub fn print_config(path: Option<&Path>, json: bool) -> Result<()> {
 }
 
 /// Validates the config at `path` as every command would before running (parse, finite values,
-/// reference values, plugins, vehicle geometry, region model names and roles), then builds the
-/// rigid vehicle's models with their settings as `trim` would (the body's and surfaces' aero,
-/// structure and friction models and the engine: a negative mass, a zero modulus or a count the
-/// model refuses fails here, not inside a job), and says OK; the first problem is the error.
-/// The conduction models are not built: `pod` would train its basis.
+/// reference values, plugins, vehicle geometry, region model names and roles), then checks
+/// every model a job could build with its settings in its region (`pod` and the other models
+/// with costly constructors check their settings and base models without training), and the
+/// rigid vehicle `trim` assembles. Every problem is printed, each on its own `error:` line, and
+/// the command fails with their count; a sound config says OK.
 pub fn check_config(path: &Path, registry: &Registry, json: bool) -> Result<()> {
     let (loaded, registry) = super::load_config(Some(path), registry)?;
-    let sets = assemble(&loaded, &registry, &rigid_needs("config --check"))?;
-    RigidVehicle::new(sets)?;
-    if json {
-        let summary = serde_json::json!({"config": loaded.file, "valid": true});
-        outln!("{}", serde_json::to_string_pretty(&summary)?)?;
-    } else {
-        outln!("{}: OK", loaded.file)?;
+    let mut problems: Vec<String> = check_models(&loaded, &registry)
+        .iter()
+        .map(ToString::to_string)
+        .collect();
+    if problems.is_empty() {
+        // What the models cannot see alone: the vehicle they make together.
+        let rigid = assemble(&loaded, &registry, &rigid_needs("config --check"))
+            .map_err(anyhow::Error::from)
+            .and_then(|sets| Ok(RigidVehicle::new(sets)?));
+        if let Err(e) = rigid {
+            problems.push(format!("{e:#}"));
+        }
     }
-    Ok(())
+    if json {
+        let summary = serde_json::json!({
+            "config": loaded.file,
+            "valid": problems.is_empty(),
+            "problems": problems,
+        });
+        outln!("{}", serde_json::to_string_pretty(&summary)?)?;
+    } else if problems.is_empty() {
+        outln!("{}: OK", loaded.file)?;
+    } else {
+        for problem in &problems {
+            eprintln!("error: {problem}");
+        }
+    }
+    match problems.len() {
+        0 => Ok(()),
+        n => anyhow::bail!(
+            "{}: {n} problem{} found",
+            loaded.file,
+            if n == 1 { "" } else { "s" }
+        ),
+    }
 }

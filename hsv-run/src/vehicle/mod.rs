@@ -6,6 +6,7 @@
 //! declares at assembly ([`wire`] fails when a subscribed topic has no publisher).
 
 pub mod body_rate;
+pub mod check;
 pub mod friction;
 pub mod partitioned;
 pub mod rigid;

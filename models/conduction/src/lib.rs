@@ -11,7 +11,9 @@ pub mod training;
 
 use hsv_core::error::ModelError;
 use hsv_core::mesh::PanelMesh;
-use hsv_core::registry::{Constructor, ModelContext, ModelDescriptor};
+use std::path::PathBuf;
+
+use hsv_core::registry::{Constructor, ModelCheck, ModelContext, ModelDescriptor, Role};
 use hsv_core::surface_grid::SurfaceGrid;
 use hsv_core::thermal::ConductionModel;
 
@@ -67,6 +69,20 @@ fn full_order_settings(ctx: &ModelContext<'_>) -> Result<FullOrderSettings, Mode
     if let Some((key, value, allowed)) = settings.first_invalid() {
         return Err(settings_error(ctx, &key, value, allowed));
     }
+    // Resolved here for the key path of a bad table; the model resolves them again.
+    let materials = std::iter::once((
+        "structure_material".to_owned(),
+        &settings.structure_material,
+    ))
+    .chain(
+        (settings.layers.iter().enumerate())
+            .map(|(i, layer)| (format!("layers[{i}].material"), &layer.material)),
+    );
+    for (key, material) in materials {
+        material
+            .resolve()
+            .map_err(|e| ctx.settings_error(&key, e.to_string()))?;
+    }
     Ok(settings)
 }
 
@@ -85,30 +101,55 @@ pub fn full_order_for(ctx: &ModelContext<'_>) -> Result<FullOrder, ModelError> {
     FullOrder::new(&grid, &mesh, full_settings)
 }
 
+/// `[models.pod]` parsed and range-checked, with the basis file it reads: a missing file with
+/// no training table to build it from is an error.
+fn pod_settings(ctx: &ModelContext<'_>) -> Result<(PodSettings, PathBuf), ModelError> {
+    let settings: PodSettings = ctx.parse_settings()?;
+    if let Some((key, value, allowed)) = settings.first_invalid() {
+        return Err(settings_error(ctx, &key, value, allowed));
+    }
+    let path = settings.basis_path(&ctx.region.name);
+    if settings.training.is_none() && !path.exists() {
+        return Err(ctx.settings_error(
+            "basis_file",
+            format!(
+                "POD basis file `{}` does not exist; give a [models.pod.training] table to \
+                 train one, or build one from full-order snapshots \
+                 (hsv_model_conduction::collect_snapshots, PodBasis::from_snapshots, \
+                 PodBasis::save)",
+                path.display()
+            ),
+        ));
+    }
+    Ok((settings, path))
+}
+
+/// `config --check` of `pod`: its settings, the full-order model it projects and the training
+/// runs' base models, without training a basis.
+fn check_pod(ctx: &ModelContext<'_>) -> Result<(), ModelError> {
+    let (settings, _) = pod_settings(ctx)?;
+    full_order_for(ctx)?;
+    if let Some(training) = &settings.training {
+        let bases = [
+            ("training.heat_flux", Role::HeatFlux, &training.heat_flux),
+            ("training.aero", Role::Aero, &training.aero),
+        ];
+        for (key, role, name) in bases {
+            ctx.check(role, name, &ctx.settings_for(name))
+                .map_err(|e| ctx.base_model_error(key, e))?;
+        }
+    }
+    Ok(())
+}
+
 fn construct_pod(ctx: &ModelContext<'_>) -> Result<Box<dyn ConductionModel>, ModelError> {
-    let mut settings: PodSettings = ctx.parse_settings()?;
+    let (mut settings, path_buf) = pod_settings(ctx)?;
     let mut full = full_order_for(ctx)?;
-    let path_buf = settings.basis_path(&ctx.region.name);
     let path = path_buf.as_path();
     let mut reused = true;
     let basis = match &settings.training {
-        None if !path.exists() => {
-            return Err(ctx.settings_error(
-                "basis_file",
-                format!(
-                    "POD basis file `{}` does not exist; give a [models.pod.training] table to \
-                     train one, or build one from full-order snapshots \
-                     (hsv_model_conduction::collect_snapshots, PodBasis::from_snapshots, \
-                     PodBasis::save)",
-                    path.display()
-                ),
-            ));
-        }
         None => PodBasis::load(path)?,
         Some(training) => {
-            if let Some((key, value, allowed)) = training.first_invalid() {
-                return Err(settings_error(ctx, &key, value, allowed));
-            }
             let fingerprint = training::fingerprint(ctx, training, &full)?;
             let cached = PodBasis::load_cache(path);
             if let Err(e) = &cached
@@ -174,4 +215,9 @@ hsv_core::register_model!(ModelDescriptor {
               32), properties linear in T, online cost independent of the grid",
     settings_doc: pod::SETTINGS_DOC,
     constructor: Constructor::Conduction(construct_pod),
+});
+
+hsv_core::register_model_check!(ModelCheck {
+    name: pod::NAME,
+    check: check_pod,
 });

@@ -42,6 +42,10 @@ use crate::training::Training;
 /// Registered name.
 pub const NAME: &str = "pod";
 
+/// The most modes a basis may be asked for: far above the paper's 32, below a size whose
+/// Galerkin matrices would not fit the snapshot runs that train them.
+pub const MAX_MODES: usize = 1000;
+
 /// Tag of the basis file format.
 pub const BASIS_FORMAT: &str = "hsv-pod-basis-1";
 
@@ -370,6 +374,24 @@ pub struct Settings {
 }
 
 impl Settings {
+    /// The first setting outside its range, as (key, value, allowed), training included.
+    pub fn first_invalid(&self) -> Option<(String, f64, &'static str)> {
+        if !(1..=MAX_MODES).contains(&self.modes) {
+            return Some(("modes".to_owned(), self.modes as f64, "1 to 1000"));
+        }
+        if !(self.picard_tolerance_k.is_finite() && self.picard_tolerance_k > 0.0) {
+            return Some((
+                "picard_tolerance_k".to_owned(),
+                self.picard_tolerance_k,
+                "finite and > 0",
+            ));
+        }
+        if self.max_picard_iterations < 1 {
+            return Some(("max_picard_iterations".to_owned(), 0.0, ">= 1"));
+        }
+        self.training.as_ref().and_then(Training::first_invalid)
+    }
+
     /// The basis file of region `region`: [`Self::basis_file`] with `{region}` replaced.
     pub fn basis_path(&self, region: &str) -> std::path::PathBuf {
         std::path::PathBuf::from(self.basis_file.replace("{region}", region))

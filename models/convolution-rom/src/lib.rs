@@ -87,7 +87,7 @@ mod rom;
 
 use hsv_core::aero::AeroModel;
 use hsv_core::error::ModelError;
-use hsv_core::registry::{Constructor, ModelContext, ModelDescriptor};
+use hsv_core::registry::{Constructor, ModelCheck, ModelContext, ModelDescriptor};
 
 pub use check::{CheckOptions, CheckReport, MotionReport, check_against_source};
 pub use identify::{Identification, ReferenceCondition, ResponseBlock};
@@ -249,7 +249,7 @@ fn construct(ctx: &ModelContext<'_>) -> Result<Box<dyn AeroModel>, ModelError> {
         // A bare mesh (the `aero` command's whole vehicle, an STL) has no structure whose modes
         // could be identified: the ROM is its source's plain evaluation, as it is everywhere
         // outside a modal history.
-        let settings: Settings = ctx.parse_settings()?;
+        let settings = rom::checked_settings(ctx)?;
         let source_settings = ctx.settings_for(&settings.source);
         let source = ctx
             .build::<dyn AeroModel>(&settings.source, &source_settings)
@@ -290,6 +290,11 @@ hsv_core::register_model!(ModelDescriptor {
               amplitude and Mach; plain evaluation is the source model",
     settings_doc: SETTINGS_DOC,
     constructor: Constructor::Aero(construct),
+});
+
+hsv_core::register_model_check!(ModelCheck {
+    name: NAME,
+    check: rom::check,
 });
 
 #[cfg(test)]

@@ -13,7 +13,7 @@ use hsv_core::flow::{FlightCondition, Freestream};
 use hsv_core::gas::PerfectGas;
 use hsv_core::mesh::{ModeShapes, PanelMesh, RegionKind};
 use hsv_core::reduced_order::{CheckOptions, CheckReport, ReducedOrderAero, RomSummary};
-use hsv_core::registry::ModelContext;
+use hsv_core::registry::{ModelContext, RegistryError, Role};
 use hsv_core::structure::StructureModel;
 use nalgebra::{DMatrix, DVector, Point3};
 
@@ -67,24 +67,53 @@ pub struct ConvolutionRom {
     scratch: Scratch,
 }
 
+/// `[models.convolution-rom]` parsed and range-checked; the ROM cannot be its own source.
+pub fn checked_settings(ctx: &ModelContext<'_>) -> Result<Settings, ModelError> {
+    let settings: Settings = ctx.parse_settings()?;
+    if let Some((key, value, allowed)) = settings.first_invalid() {
+        return Err(ctx.settings_error(
+            &key,
+            format!("{value} is outside the allowed range ({allowed})"),
+        ));
+    }
+    if settings.source == NAME {
+        return Err(ctx.settings_error(
+            "source",
+            format!("`{NAME}` cannot be its own source; name a panel method or a plugin"),
+        ));
+    }
+    Ok(settings)
+}
+
+/// `config --check` of the ROM: its settings, its structure's modes on the region's mesh and
+/// its source model, without identifying the step responses.
+pub fn check(ctx: &ModelContext<'_>) -> Result<(), ModelError> {
+    let settings = checked_settings(ctx)?;
+    let source = ctx.settings_for(&settings.source);
+    ctx.check(Role::Aero, &settings.source, &source)
+        .map_err(|e| ctx.base_model_error("source", e))?;
+    if ctx.region.geometry == hsv_core::region::RegionGeometry::Mesh {
+        return Ok(());
+    }
+    let structure_settings = ctx.settings_for(&settings.structure);
+    let structure = ctx
+        .build::<dyn StructureModel>(&settings.structure, &structure_settings)
+        .map_err(|e| match e {
+            // A region without a structure for the ROM: the check looks for another region.
+            RegistryError::Model(wrong @ ModelError::WrongRegion { .. }) => wrong,
+            e => ctx.settings_error("structure", e.to_string()),
+        })?;
+    region_modes(structure.as_ref(), &ctx.region.mesh, settings.modes)
+        .map_err(|e| ctx.settings_error("modes", e.to_string()))?;
+    Ok(())
+}
+
 impl ConvolutionRom {
     /// Builds the source and the structure of the region by name through the host registry,
     /// and loads the cached identification if it was built from the same inputs, else
     /// identifies (and caches) it.
     pub fn new(ctx: &ModelContext<'_>) -> Result<Self, ModelError> {
-        let settings: Settings = ctx.parse_settings()?;
-        if let Some((key, value, allowed)) = settings.first_invalid() {
-            return Err(ctx.settings_error(
-                &key,
-                format!("{value} is outside the allowed range ({allowed})"),
-            ));
-        }
-        if settings.source == NAME {
-            return Err(ctx.settings_error(
-                "source",
-                format!("`{NAME}` cannot be its own source; name a panel method or a plugin"),
-            ));
-        }
+        let settings = checked_settings(ctx)?;
         let structure_settings = ctx.settings_for(&settings.structure);
         let structure = ctx
             .build::<dyn StructureModel>(&settings.structure, &structure_settings)

@@ -49,7 +49,7 @@ use hsv_core::flow::{FlightCondition, Freestream};
 use hsv_core::gas::PerfectGas;
 use hsv_core::material::Material;
 use hsv_core::mesh::{PanelMesh, PanelSpec, RegionKind, Strip, Surface};
-use hsv_core::registry::{Constructor, ModelContext, ModelDescriptor};
+use hsv_core::registry::{Constructor, ModelCheck, ModelContext, ModelDescriptor, Role};
 use hsv_core::thermal::{
     HeatFluxModel, STEFAN_BOLTZMANN_W_M2_K4, check_heat_flux_inputs, check_wall_temperature,
 };
@@ -230,6 +230,25 @@ fn construct(context: &ModelContext<'_>) -> Result<Box<dyn HeatFluxModel>, Model
     let settings: Settings = context.parse_settings()?;
     Ok(Box::new(KrigingStanton::new(settings, context)?))
 }
+
+/// `config --check` of `kriging-stanton`: its settings and its base model as the region sees
+/// it, without sampling or training the surrogate.
+fn check(context: &ModelContext<'_>) -> Result<(), ModelError> {
+    let settings: Settings = context.parse_settings()?;
+    check_settings(&settings, context)?;
+    if settings.training_csv.is_empty() {
+        context
+            .check(
+                Role::HeatFlux,
+                &settings.base_model,
+                &context.settings_for(&settings.base_model),
+            )
+            .map_err(|e| context.base_model_error("base_model", e))?;
+    }
+    Ok(())
+}
+
+hsv_core::register_model_check!(ModelCheck { name: NAME, check });
 
 type StantonGp = GaussianProcess<f64, ConstantMean, SquaredExponentialCorr>;
 

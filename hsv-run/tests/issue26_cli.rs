@@ -104,6 +104,21 @@ fn sideslip_beyond_ninety_degrees_warns_by_model_and_quantity_in_the_json() {
     assert!(stderr(&output).contains(&expected));
 }
 
+/// An angle of attack inside one turn but far outside the panel methods' validity runs, and
+/// the JSON `warnings` say which model left its range on how many panels, and why.
+#[test]
+fn angle_of_attack_near_ninety_degrees_warns_by_model_and_quantity() {
+    let output = hsv_run(&["aero", "--alpha-deg", "89.9", "--json"]);
+    assert!(output.status.success(), "{}", stderr(&output));
+    let summary: serde_json::Value = serde_json::from_slice(&output.stdout).expect("valid JSON");
+    let warnings = summary["warnings"].to_string();
+    assert!(
+        warnings.contains("panels turn the flow beyond the largest oblique-shock deflection")
+            && warnings.contains("angle of attack or deflection beyond the model's range"),
+        "{warnings}"
+    );
+}
+
 // ---- item 3: default commands on the default config ------------------------------------
 
 /// Piston theory expands some panels to vacuum (T_e = 0 K at panel 606 on the sample vehicle);
@@ -168,6 +183,25 @@ fn a_sea_level_trim_converges_with_a_warning() {
     assert!(stderr(&output).contains("warning: trim: dynamic pressure"));
     let paper = common::cli::json(&hsv_run(&["trim", "--json"]));
     assert_eq!(paper["trim_status"], "converged", "{paper}");
+    // Mach 25 at 20 km: q = 0.7 p M^2 = 2419 kPa and T0 = T (1 + 0.2 M^2) = 27300 K.
+    let output = hsv_run(&[
+        "trim",
+        "--rigid",
+        "--mach",
+        "25",
+        "--altitude-m",
+        "20000",
+        "--json",
+    ]);
+    assert!(output.status.success(), "{}", stderr(&output));
+    let hot: serde_json::Value = serde_json::from_slice(&output.stdout).expect("valid JSON");
+    assert_eq!(hot["trim_status"], "converged-with-warnings", "{hot}");
+    let notes = hot["notes"].to_string();
+    assert!(
+        notes.contains("outside the air-breathing corridor")
+            && notes.contains("stagnation temperature 27298 K is above 2500 K"),
+        "{notes}"
+    );
 }
 
 // ---- item 1: `config --check` checks every model with its settings ---------------------

@@ -9,23 +9,9 @@ use hsv_run::commands::engine::{EngineRequest, run_engine};
 use hsv_run::commands::validate_config;
 use proptest::prelude::*;
 
-/// A number from `range`, or one of the values that break naive code.
-fn awkward(range: std::ops::Range<f64>) -> impl Strategy<Value = f64> {
-    prop_oneof![
-        6 => range,
-        1 => prop::sample::select(vec![
-            0.0,
-            -0.0,
-            -1.0,
-            1e-300,
-            1e300,
-            -1e300,
-            f64::NAN,
-            f64::INFINITY,
-            f64::NEG_INFINITY,
-        ]),
-    ]
-}
+mod common;
+
+use common::strategies::awkward;
 
 /// A flight condition: Mach, altitude (m), angle of attack (deg).
 fn flight() -> impl Strategy<Value = (f64, f64, f64)> {

@@ -6,6 +6,7 @@
 #![allow(dead_code)]
 
 pub mod cli;
+pub mod strategies;
 
 use hsv_core::config::{LoadedConfig, SAMPLE_CONFIG_TOML, parse_config};
 use hsv_run::analysis::trim::{TrimPoint, TrimRequest, trim};

@@ -49,7 +49,8 @@ enum Command {
         #[command(flatten)]
         config: ConfigArg,
         /// Validate this config as every command would before running (keys, values, plugins,
-        /// geometry, region model names and roles); prints `FILE: OK` or the first error.
+        /// geometry, region model names and roles) and check every model a job could build with
+        /// its settings (without training any); prints `FILE: OK` or every problem found.
         #[arg(long, value_name = "FILE", conflicts_with = "config")]
         check: Option<PathBuf>,
         #[command(flatten)]

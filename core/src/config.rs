@@ -437,6 +437,15 @@ impl LoadedConfig {
     /// (`regions.left_surface.aero` names an aero model): the first that does not is an error
     /// naming the file and key path, before anything runs.
     pub fn check_models(&self, registry: &crate::registry::Registry) -> Result<(), ConfigError> {
+        match self.model_name_problems(registry).into_iter().next() {
+            Some(problem) => Err(problem),
+            None => Ok(()),
+        }
+    }
+
+    /// Every `[regions.*]` model name that is not a registered model of its key's role, each
+    /// an error naming the file and key path, in the order of the config's tables.
+    pub fn model_name_problems(&self, registry: &crate::registry::Registry) -> Vec<ConfigError> {
         let regions = &self.config.regions;
         let tables = [
             ("main_body", &regions.main_body),
@@ -445,6 +454,7 @@ impl LoadedConfig {
             ("right_surface", &regions.right_surface),
             ("propulsion", &regions.propulsion),
         ];
+        let mut problems = Vec::new();
         for (region, models) in tables {
             let named = [
                 &models.aero,
@@ -460,17 +470,20 @@ impl LoadedConfig {
                     key_path: format!("regions.{region}.{key}"),
                     message,
                 };
-                let entry = registry.get(name).map_err(|e| error(e.to_string()))?;
-                if entry.role() != *wanted {
-                    let known = registry.names(*wanted).join(", ");
-                    return Err(error(format!(
-                        "`{name}` is a {} model, but this key names a {wanted} model (known: {known})",
-                        entry.role()
-                    )));
+                match registry.get(name) {
+                    Err(e) => problems.push(error(e.to_string())),
+                    Ok(entry) if entry.role() != *wanted => {
+                        let known = registry.names(*wanted).join(", ");
+                        problems.push(error(format!(
+                            "`{name}` is a {} model, but this key names a {wanted} model (known: {known})",
+                            entry.role()
+                        )));
+                    }
+                    Ok(_) => {}
                 }
             }
         }
-        Ok(())
+        problems
     }
 }
 

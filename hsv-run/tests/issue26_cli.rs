@@ -364,8 +364,8 @@ fn config_check_rejects_every_class_with_its_key_path() {
     );
 }
 
-/// Problems in different models are reported together, one `error:` line each, with the
-/// count; a setting both surfaces share is one problem naming both regions; `--json` lists them.
+/// Problems in different models and model names are reported together, one `error:` line
+/// each, with the count; a setting both surfaces share is one problem naming both regions; `--json` lists them.
 #[test]
 fn config_check_reports_every_problem_at_once() {
     let sample = common::cli::stdout(&hsv_run(&["config"]));
@@ -383,6 +383,10 @@ fn config_check_reports_every_problem_at_once() {
             "damping_ratio = 0.02               # our choice",
             "damping_ratio = -0.02 #",
         ),
+        (
+            "[regions.propulsion]",
+            "[regions.left_surface]\naero = \"no-such-model\"\n\n[regions.propulsion]",
+        ),
     ];
     let mut text = sample.clone();
     for (from, to) in edits {
@@ -395,14 +399,15 @@ fn config_check_reports_every_problem_at_once() {
     let err = stderr(&output);
     assert!(!output.status.success());
     let lines: Vec<&str> = err.trim_end().lines().collect();
-    assert_eq!(lines.len(), 5, "{err}");
+    assert_eq!(lines.len(), 6, "{err}");
     assert!(lines.iter().all(|l| l.starts_with("error:")), "{err}");
     for needle in [
         "region `main_body`: key `models.free-free-beam.forebody_mass_per_length_kg_m`",
         "regions `left_surface`, `right_surface`: key `models.pod.modes`",
         "region `propulsion`: key `models.scramjet-q1d.spanwise_strips`",
         "regions `left_surface`, `right_surface`: key `models.ritz-plate.damping_ratio`",
-        "4 problems found",
+        "key `regions.left_surface.aero`: unknown hsv model `no-such-model`",
+        "5 problems found",
     ] {
         assert_eq!(err.matches(needle).count(), 1, "`{needle}`: {err}");
     }
@@ -410,5 +415,5 @@ fn config_check_reports_every_problem_at_once() {
     let json: serde_json::Value =
         serde_json::from_str(&common::cli::stdout(&output)).expect("JSON");
     assert_eq!(json["valid"], false);
-    assert_eq!(json["problems"].as_array().map(Vec::len), Some(4), "{json}");
+    assert_eq!(json["problems"].as_array().map(Vec::len), Some(5), "{json}");
 }

@@ -32,11 +32,19 @@ pub fn print_config(path: Option<&Path>, json: bool) -> Result<()> {
 /// rigid vehicle `trim` assembles. Every problem is printed, each on its own `error:` line, and
 /// the command fails with their count; a sound config says OK.
 pub fn check_config(path: &Path, registry: &Registry, json: bool) -> Result<()> {
-    let (loaded, registry) = super::load_config(Some(path), registry)?;
-    let mut problems: Vec<String> = check_models(&loaded, &registry)
-        .iter()
+    let (loaded, registry) = super::load_config_unchecked(Some(path), registry)?;
+    let mut problems: Vec<String> = (loaded.model_name_problems(&registry).iter())
         .map(ToString::to_string)
         .collect();
+    match loaded.vehicle() {
+        // Without the vehicle's geometry no region can be built.
+        Err(e) => problems.push(e.to_string()),
+        Ok(_) => problems.extend(
+            check_models(&loaded, &registry)
+                .iter()
+                .map(ToString::to_string),
+        ),
+    }
     if problems.is_empty() {
         // What the models cannot see alone: the vehicle they make together.
         let rigid = assemble(&loaded, &registry, &rigid_needs("config --check"))

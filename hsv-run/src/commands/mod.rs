@@ -74,7 +74,7 @@ pub fn validate_config(loaded: &LoadedConfig, registry: &Registry) -> Result<()>
 }
 
 /// [`load_config`] without [`validate_config`].
-fn load_config_unchecked(
+pub(crate) fn load_config_unchecked(
     path: Option<&Path>,
     registry: &Registry,
 ) -> Result<(LoadedConfig, Registry)> {

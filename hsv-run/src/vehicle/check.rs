@@ -133,9 +133,12 @@ pub fn check_models(loaded: &LoadedConfig, registry: &Registry) -> Vec<Problem> 
             match model {
                 Some(model) => {
                     named.insert(model.to_owned());
-                    if let Err(e) = check_model(&info, registry, role, model, need, &needs.analysis)
-                    {
-                        problems.push(region, e.to_string());
+                    match check_model(&info, registry, role, model, need, &needs.analysis) {
+                        // The config's names are checked apart, at their own key path
+                        // (`LoadedConfig::model_name_problems`).
+                        Err(RegistryError::Unknown { .. } | RegistryError::WrongRole { .. }) => {}
+                        Err(e) => problems.push(region, e.to_string()),
+                        Ok(()) => {}
                     }
                 }
                 None if need.is_some_and(|n| n.roles.contains(&role)) => problems.push(

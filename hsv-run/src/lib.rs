@@ -9,6 +9,7 @@ pub mod control;
 pub mod dynamics;
 pub mod limits;
 pub mod linked;
+pub mod npz;
 pub mod output;
 pub mod progress;
 pub mod steps;

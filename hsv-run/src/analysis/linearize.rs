@@ -62,6 +62,19 @@ pub fn linearize_configured(
     registry: &hsv_core::registry::Registry,
     rule: &PerturbationRule,
 ) -> anyhow::Result<(PartitionedVehicle, super::flight::LevelTrim, Linearization)> {
+    let flight = &loaded.config.flight;
+    linearize_at(loaded, registry, rule, flight.mach, flight.altitude_m)
+}
+
+/// [`linearize_configured`] at Mach `mach` and geometric altitude `altitude_m` instead of the
+/// config's flight condition: one point of a linear-model grid.
+pub fn linearize_at(
+    loaded: &hsv_core::config::LoadedConfig,
+    registry: &hsv_core::registry::Registry,
+    rule: &PerturbationRule,
+    mach: f64,
+    altitude_m: f64,
+) -> anyhow::Result<(PartitionedVehicle, super::flight::LevelTrim, Linearization)> {
     let sets = crate::vehicle::assemble(
         loaded,
         registry,
@@ -72,11 +85,7 @@ pub fn linearize_configured(
         crate::dynamics::GravityModel::default(),
         crate::vehicle::partitioned::CouplingSettings::default(),
     )?;
-    let trim = super::flight::trim_level_flight(
-        &mut vehicle,
-        loaded.config.flight.mach,
-        loaded.config.flight.altitude_m,
-    )?;
+    let trim = super::flight::trim_level_flight(&mut vehicle, mach, altitude_m)?;
     let lin = linearize(&mut vehicle, &trim.state, &trim.controls, rule)?;
     Ok((vehicle, trim, lin))
 }

@@ -3,6 +3,7 @@
 pub mod flight;
 pub mod flutter;
 pub mod heating;
+pub mod linear_grid;
 pub mod linearize;
 pub mod shards;
 pub mod simulate;

@@ -8,8 +8,12 @@ use anyhow::Result;
 use clap::Args;
 use hsv_core::registry::Registry;
 
+use hsv_core::config::LoadedConfig;
+
 use super::{ConfigArg, JsonFlag, load_config};
-use crate::analysis::linearize::linearize_configured;
+use crate::analysis::linear_grid::{LinearGridSpec, linearize_shard, write_grid_npz};
+use crate::analysis::linearize::linearize_at;
+use crate::analysis::shards::{Shard, ShardedStudy};
 use crate::dynamics::PerturbationRule;
 use crate::outln;
 use crate::output::{RunFolder, RunStatus, write_file};
@@ -34,8 +38,25 @@ pub struct LinearizeArgs {
     pub force: bool,
     /// Also close the loop with this controller (`lqr`) and print the closed-loop eigenvalues
     /// of the full flexible linear model.
-    #[arg(long, value_name = "NAME")]
+    #[arg(long, value_name = "NAME", conflicts_with = "grid")]
     pub controller: Option<String>,
+    /// Flight Mach number(s), comma separated (default: the config's `[flight] mach`); more
+    /// than one needs --grid.
+    #[arg(long, value_name = "LIST", value_delimiter = ',')]
+    pub mach: Vec<f64>,
+    /// Geometric altitude(s), m, comma separated (default: the config's `[flight]
+    /// altitude_m`); more than one needs --grid.
+    #[arg(long, value_name = "LIST", value_delimiter = ',')]
+    pub altitude_m: Vec<f64>,
+    /// Linearize at every --mach × --altitude-m point (side by side) and write them all to
+    /// `linear_models.npz` (numpy: A, B, C, D of shape (Mach, altitude, rows, columns), trim
+    /// values, names) for gain scheduling and LPV design.
+    #[arg(long)]
+    pub grid: bool,
+    /// With --grid: only shard K of N of the points (0-based; point i, Mach-major, belongs to
+    /// shard i mod N); join the shard folders with `hsv-run merge`.
+    #[arg(long, value_name = "K/N", requires = "grid")]
+    pub shard: Option<String>,
     #[command(flatten)]
     pub json: JsonFlag,
 }
@@ -50,7 +71,12 @@ fn matrix_csv(m: &nalgebra::DMatrix<f64>, rows: &[String], columns: &[String]) -
     text
 }
 
-/// Trims, linearizes and writes the run folder.
+/// Name of the per-point results file of a linear-model grid (what `hsv-run merge` joins).
+pub const GRID_CASES_FILE: &str = "linear-grid-cases.json";
+/// Name of a whole grid's numpy archive.
+pub const GRID_NPZ_FILE: &str = "linear_models.npz";
+
+/// Trims, linearizes and writes the run folder (a grid's with --grid).
 pub fn run(args: LinearizeArgs, registry: &Registry) -> Result<()> {
     let (loaded, registry) = load_config(args.config.config.as_deref(), registry)?;
     let rule = PerturbationRule {
@@ -58,7 +84,29 @@ pub fn run(args: LinearizeArgs, registry: &Registry) -> Result<()> {
         absolute: args.absolute,
     };
     rule.steps(&nalgebra::DVector::zeros(1))?;
-    let (mut vehicle, trimmed, lin) = linearize_configured(&loaded, &registry, &rule)?;
+    let flight = &loaded.config.flight;
+    let machs = if args.mach.is_empty() {
+        vec![flight.mach]
+    } else {
+        args.mach.clone()
+    };
+    let altitudes_m = if args.altitude_m.is_empty() {
+        vec![flight.altitude_m]
+    } else {
+        args.altitude_m.clone()
+    };
+    if args.grid {
+        return run_grid(&args, &loaded, &registry, &machs, &altitudes_m, rule);
+    }
+    let (&[mach], &[altitude_m]) = (machs.as_slice(), altitudes_m.as_slice()) else {
+        anyhow::bail!(
+            "--mach and --altitude-m take one value each without --grid (got {} and {}); add \
+             --grid to linearize over every pair",
+            machs.len(),
+            altitudes_m.len()
+        );
+    };
+    let (mut vehicle, trimmed, lin) = linearize_at(&loaded, &registry, &rule, mach, altitude_m)?;
     let (t, controls, state) = (&trimmed.result.trim, &trimmed.controls, &trimmed.state);
     let closed = match &args.controller {
         None => None,
@@ -118,8 +166,8 @@ pub fn run(args: LinearizeArgs, registry: &Registry) -> Result<()> {
     write_file(&path, serde_json::to_string_pretty(&lin.model)?)?;
     folder.record(path);
     let summary = serde_json::json!({
-        "mach": loaded.config.flight.mach,
-        "altitude_m": loaded.config.flight.altitude_m,
+        "mach": mach,
+        "altitude_m": altitude_m,
         "trim": {
             "alpha_deg": t.alpha_deg,
             "elevon_deg": t.elevon_deg,
@@ -178,5 +226,90 @@ pub fn run(args: LinearizeArgs, registry: &Registry) -> Result<()> {
         }
     }
     outln!("outputs in {}", folder.path.display())?;
+    Ok(())
+}
+
+/// `linearize --grid`: every point trimmed and linearized side by side, the points written to
+/// [`GRID_CASES_FILE`] and, for the whole grid (not a shard of it), to [`GRID_NPZ_FILE`].
+fn run_grid(
+    args: &LinearizeArgs,
+    loaded: &LoadedConfig,
+    registry: &Registry,
+    machs: &[f64],
+    altitudes_m: &[f64],
+    rule: PerturbationRule,
+) -> Result<()> {
+    let config = (args.config.config.as_deref())
+        .map(super::shard::absolute)
+        .transpose()?;
+    let spec = LinearGridSpec::new(machs, altitudes_m, rule, config, loaded)?;
+    let shard: Shard = args
+        .shard
+        .as_deref()
+        .map(str::parse)
+        .transpose()?
+        .unwrap_or(Shard::ALL);
+    let mut folder = RunFolder::create("linearize", args.out.as_deref(), args.force)?;
+    let total = shard.cases(spec.case_count()).len();
+    let done = std::sync::atomic::AtomicUsize::new(0);
+    let output = linearize_shard(&spec, loaded, registry, shard, |point| {
+        let k = done.fetch_add(1, std::sync::atomic::Ordering::Relaxed) + 1;
+        let how = point
+            .error
+            .as_deref()
+            .map_or_else(|| "linearized".to_owned(), |e| format!("no model: {e}"));
+        eprintln!(
+            "linearize: point {k}/{total} (Mach {}, {} m): {how}",
+            point.mach, point.altitude_m
+        );
+    });
+    write_grid_folder(&mut folder, &output, args.json.json)
+}
+
+/// Writes a grid's (or a shard's) points, the `.npz` when they are the whole grid, and the
+/// summary; prints where they are. `hsv-run merge` ends here too.
+pub fn write_grid_folder(
+    folder: &mut RunFolder,
+    output: &crate::analysis::linear_grid::LinearGridShard,
+    json: bool,
+) -> Result<()> {
+    let path = folder.join(GRID_CASES_FILE);
+    write_file(&path, serde_json::to_string_pretty(output)?)?;
+    folder.record(path);
+    let whole = output.shard.count == 1;
+    if whole {
+        let path = folder.join(GRID_NPZ_FILE);
+        write_grid_npz(&path, &output.spec, &output.cases)?;
+        folder.record(path);
+    }
+    let failed: Vec<serde_json::Value> = (output.cases.iter())
+        .filter_map(|p| {
+            let error = p.error.as_ref()?;
+            Some(serde_json::json!({"mach": p.mach, "altitude_m": p.altitude_m, "error": error}))
+        })
+        .collect();
+    let summary = serde_json::json!({
+        "command": "linearize",
+        "grid": {"mach": output.spec.machs, "altitude_m": output.spec.altitudes_m},
+        "shard": format!("{}/{}", output.shard.index, output.shard.count),
+        "points": output.cases.len(),
+        "failed": failed,
+    });
+    let written = folder.write_summary(summary, &RunStatus::Completed)?;
+    if json {
+        outln!("{}", serde_json::to_string_pretty(&written)?)?;
+        return Ok(());
+    }
+    outln!(
+        "{} of {} grid points linearized{}; outputs in {}",
+        output.cases.len() - failed.len(),
+        output.cases.len(),
+        if whole {
+            format!(" ({GRID_NPZ_FILE})")
+        } else {
+            "; join the shard folders with `hsv-run merge DIR...`".to_owned()
+        },
+        folder.path.display()
+    )?;
     Ok(())
 }

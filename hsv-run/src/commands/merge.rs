@@ -11,9 +11,11 @@ use hsv_core::registry::Registry;
 use serde::Serialize;
 use serde::de::DeserializeOwned;
 
+use super::linearize::{GRID_CASES_FILE, write_grid_folder};
 use super::shard::FLUTTER_CASES_FILE;
 use super::trade::{CASES_FILE, write_table};
 use super::{JsonFlag, OutArgs, load_config};
+use crate::analysis::linear_grid::LinearGridShard;
 use crate::analysis::shards::{FlutterShard, Shard, ShardOutput, map_from_columns, merge_shards};
 use crate::analysis::trade::{TradeCases, compare, merge_cases, read_costs};
 use crate::output::{RunFolder, write_file};
@@ -21,7 +23,8 @@ use crate::output::{RunFolder, write_file};
 /// Arguments of `hsv-run merge`.
 #[derive(Args, Debug, Clone)]
 pub struct MergeArgs {
-    /// Shard output folders (each holds trade-cases.json or flutter-cases.json), one per shard.
+    /// Shard output folders (each holds trade-cases.json, flutter-cases.json or
+    /// linear-grid-cases.json), one per shard.
     #[arg(value_name = "DIR", required = true)]
     pub folders: Vec<PathBuf>,
     /// Per-model cost CSV `model,seconds`, as for `hsv-run trade --costs` (trade studies).
@@ -75,6 +78,9 @@ pub fn run(args: MergeArgs, registry: &Registry) -> Result<()> {
     if flutter {
         return merge_flutter(&args, registry);
     }
+    if (args.folders.first()).is_some_and(|f| f.join(GRID_CASES_FILE).exists()) {
+        return merge_linear_grid(&args);
+    }
     let parts: Vec<(String, TradeCases)> = read_parts(&args.folders, CASES_FILE)?;
     let (spec, cases) = merge_cases(parts)?;
     let costs = args
@@ -120,4 +126,20 @@ fn merge_flutter(args: &MergeArgs, registry: &Registry) -> Result<()> {
         || serde_json::json!({"command": "merge"}),
     )?;
     super::flutter::write_run(&mut folder, &setup, &map, args.json.json)
+}
+
+/// Linear-model grid shards: the merged points and the `.npz` an unsharded grid writes.
+fn merge_linear_grid(args: &MergeArgs) -> Result<()> {
+    if args.costs.is_some() {
+        bail!("--costs is for trade studies; these are linear-model grid shards");
+    }
+    let parts: Vec<(String, LinearGridShard)> = read_parts(&args.folders, GRID_CASES_FILE)?;
+    let (spec, cases) = merge_shards(parts)?;
+    let mut folder = RunFolder::create("merge", args.output.out.as_deref(), args.output.force)?;
+    let merged = LinearGridShard {
+        spec,
+        shard: Shard::ALL,
+        cases,
+    };
+    write_grid_folder(&mut folder, &merged, args.json.json)
 }

@@ -31,6 +31,9 @@ __all__ = [
     "HsvError",
     "Simulation",
     "Vehicle",
+    "aero",
+    "flutter",
+    "linearize_grid",
     "models",
     "sample_config",
 ]
@@ -53,6 +56,29 @@ def _plain(value: Any) -> Any:
     if isinstance(value, np.ndarray):
         return value.tolist()
     raise TypeError(f"a value of type {type(value).__name__} is no config value")
+
+
+def _flags(options: Mapping[str, Any], repeated: tuple = ()) -> list:
+    """Keyword options as a command's flags: ``mach_range="4:8"`` is ``--mach-range 4:8``,
+    ``True`` a bare flag, ``False`` and ``None`` none, a list comma separated (or the flag
+    repeated for the names in ``repeated``)."""
+    flags = []
+    for key, value in options.items():
+        flag = "--" + key.replace("_", "-")
+        if value is None or value is False:
+            continue
+        if value is True:
+            flags.append(flag)
+        elif isinstance(value, (list, tuple, np.ndarray)):
+            items = [str(_plain(v) if isinstance(v, np.generic) else v) for v in value]
+            if key in repeated:
+                for item in items:
+                    flags += [flag, item]
+            else:
+                flags += [flag, ",".join(items)]
+        else:
+            flags += [flag, str(_plain(value) if isinstance(value, np.generic) else value)]
+    return flags
 
 
 class Vehicle:
@@ -107,6 +133,50 @@ class Vehicle:
         lin = self._native.linearize(relative=relative, absolute=absolute)
         lin["modes"] = json.loads(lin.pop("modes_json"))
         return lin
+
+
+    def aero(self, **options) -> dict:
+        """``hsv-run aero --json`` on this vehicle: forces, moments and coefficients per aero
+        model. Options are the command's flags as keywords (``mach=6``, ``alpha_deg=2``,
+        ``model=["shock-expansion", "newtonian-vector"]``, ``all=True``, ``friction=True``)."""
+        return json.loads(self._native.aero_json(_flags(options, repeated=("model",))))
+
+    def flutter(self, **options) -> dict:
+        """``hsv-run flutter --json`` on this vehicle: the flutter and divergence Mach of the
+        heated lifting surface versus time in the flow, its run folder written as the command
+        writes it (``out="dir"``). Options are the command's flags as keywords
+        (``mach_range="4:8"``, ``times_s=[0, 10]``, ``conduction="full-order"``)."""
+        return json.loads(self._native.flutter_json(_flags(options)))
+
+    def linearize_grid(self, machs, altitudes_m, relative: Optional[float] = None,
+                       absolute: Optional[float] = None) -> dict:
+        """Linear models at every Mach × altitude point (``hsv-run linearize --grid``), side by
+        side in Rust: a dict of numpy arrays ``A`` (Mach, altitude, states, states), ``B``,
+        ``C``, ``D``, ``x0``, ``u0``, ``trim_alpha_deg``, ``trim_elevon_deg``,
+        ``trim_fuel_equivalence_ratio``, ``ok`` (NaN and False where a point does not trim),
+        the axes ``mach`` and ``altitude_m``, the names, and ``errors`` by flat point index."""
+        return self._native.linearize_grid(
+            [float(m) for m in np.atleast_1d(machs)],
+            [float(h) for h in np.atleast_1d(altitudes_m)],
+            relative=relative, absolute=absolute)
+
+
+def aero(config: Union[None, str, os.PathLike, Mapping[str, Any]] = None, **options) -> dict:
+    """``Vehicle(config).aero(**options)``: picklable arguments in, a dict out."""
+    return Vehicle(config).aero(**options)
+
+
+def flutter(config: Union[None, str, os.PathLike, Mapping[str, Any]] = None, **options) -> dict:
+    """``Vehicle(config).flutter(**options)``: picklable arguments in, a dict out."""
+    return Vehicle(config).flutter(**options)
+
+
+def linearize_grid(config: Union[None, str, os.PathLike, Mapping[str, Any]], machs, altitudes_m,
+                   relative: Optional[float] = None, absolute: Optional[float] = None) -> dict:
+    """``Vehicle(config).linearize_grid(...)`` as a plain function of picklable arguments, for
+    Dask, Ray or submitit to map over chunks of a grid (the GIL is released while Rust runs)."""
+    return Vehicle(config).linearize_grid(machs, altitudes_m, relative=relative,
+                                          absolute=absolute)
 
 
 class Simulation:

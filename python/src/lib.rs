@@ -12,7 +12,7 @@ use hsv_run::analysis::flight::{Flight, FlightOptions};
 use hsv_run::analysis::simulate::Sample;
 use hsv_run::dynamics::{AttitudeCoordinates, PerturbationRule};
 use hsv_run::vehicle::partitioned::SurfaceModel;
-use numpy::{IntoPyArray, PyArray1, PyArray2};
+use numpy::{IntoPyArray, PyArray1, PyArray2, PyArrayMethods};
 use pyo3::exceptions::PyException;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
@@ -175,6 +175,81 @@ impl Vehicle {
         out.set_item(
             "modes_json",
             serde_json::to_string(&lin.modes).map_err(hsv_error)?,
+        )?;
+        Ok(out)
+    }
+
+    /// `hsv-run aero --json` on this vehicle with the command's `flags` (its `--config` is
+    /// this vehicle's): the JSON summary.
+    fn aero_json(&self, py: Python<'_>, flags: Vec<String>) -> PyResult<String> {
+        use hsv_run::commands::aero::{AeroArgs, evaluate, summary};
+        let args: AeroArgs =
+            hsv_run::commands::parse_flags("aero", &flags).map_err(config_error)?;
+        let report = py
+            .detach(|| evaluate(&args, &self.loaded, &self.registry))
+            .map_err(hsv_error)?;
+        serde_json::to_string(&summary(&report)).map_err(hsv_error)
+    }
+
+    /// `hsv-run flutter --json` on this vehicle with the command's `flags` (a flutter map; its
+    /// run folder is written as the command writes it): the JSON summary.
+    fn flutter_json(&self, py: Python<'_>, flags: Vec<String>) -> PyResult<String> {
+        use hsv_run::commands::flutter::{FlutterArgs, map_json};
+        let args: FlutterArgs =
+            hsv_run::commands::parse_flags("flutter", &flags).map_err(config_error)?;
+        let summary = py
+            .detach(|| map_json(&args, &self.loaded, &self.registry))
+            .map_err(hsv_error)?;
+        serde_json::to_string(&summary).map_err(hsv_error)
+    }
+
+    /// Linear models over `machs` × `altitudes_m` (`hsv-run linearize --grid`), points side by
+    /// side with the GIL released: a dict of the `.npz`'s arrays (`A` of shape (Mach, altitude,
+    /// states, states), ..., `ok`, names) and `errors`, the failed points' messages by index.
+    #[pyo3(signature = (machs, altitudes_m, relative=None, absolute=None))]
+    fn linearize_grid<'py>(
+        &self,
+        py: Python<'py>,
+        machs: Vec<f64>,
+        altitudes_m: Vec<f64>,
+        relative: Option<f64>,
+        absolute: Option<f64>,
+    ) -> PyResult<Bound<'py, PyDict>> {
+        use hsv_run::analysis::linear_grid::{LinearGridSpec, grid_arrays, linearize_shard};
+        use hsv_run::analysis::shards::Shard;
+        use hsv_run::npz::NpyData;
+        let mut rule = PerturbationRule::default();
+        if let Some(r) = relative {
+            rule.relative = r;
+        }
+        if let Some(a) = absolute {
+            rule.absolute = a;
+        }
+        let spec = LinearGridSpec::new(&machs, &altitudes_m, rule, None, &self.loaded)
+            .map_err(config_error)?;
+        let (arrays, errors) = py
+            .detach(|| {
+                let grid = linearize_shard(&spec, &self.loaded, &self.registry, Shard::ALL, |_| {});
+                let errors: Vec<(usize, String)> = (grid.cases.iter())
+                    .filter_map(|p| Some((p.index, p.error.clone()?)))
+                    .collect();
+                grid_arrays(&spec, &grid.cases).map(|arrays| (arrays, errors))
+            })
+            .map_err(hsv_error)?;
+        let out = PyDict::new(py);
+        for array in arrays {
+            let value = match array.data {
+                NpyData::F64(v) => v.into_pyarray(py).reshape(array.shape.clone())?.into_any(),
+                NpyData::Bool(v) => v.into_pyarray(py).reshape(array.shape.clone())?.into_any(),
+                NpyData::Str(v) => v.into_pyobject(py)?.into_any(),
+            };
+            out.set_item(array.name, value)?;
+        }
+        out.set_item(
+            "errors",
+            errors
+                .into_iter()
+                .collect::<std::collections::BTreeMap<_, _>>(),
         )?;
         Ok(out)
     }

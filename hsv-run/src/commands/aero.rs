@@ -6,6 +6,7 @@ use std::path::{Path, PathBuf};
 use anyhow::{Context, Result, bail};
 use clap::Args;
 use hsv_core::aero::AeroDiagnostics;
+use hsv_core::config::LoadedConfig;
 use hsv_core::registry::Registry;
 
 use super::{ConfigArg, JsonFlag, load_config};
@@ -81,14 +82,35 @@ pub struct AeroArgs {
     pub json: JsonFlag,
 }
 
-/// Evaluates the requested aero models and prints one row per model.
+/// What `aero` computed: the mesh, the request, a row per model, and the warnings.
+pub struct AeroReport {
+    pub mesh: AeroMesh,
+    pub request: AeroRequest,
+    pub rows: Vec<aero_job::AeroRow>,
+    pub warnings: Vec<String>,
+    pub flight_condition: hsv_core::flow::FlightCondition,
+}
+
+/// Evaluates the requested aero models and prints one row per model (the summary with
+/// `--json`).
 pub fn run(args: AeroArgs, registry: &Registry) -> Result<()> {
     let (loaded, registry) = load_config(args.config.config.as_deref(), registry)?;
-    let registry = &registry;
+    let report = evaluate(&args, &loaded, &registry)?;
+    if args.json.json {
+        outln!("{}", serde_json::to_string_pretty(&summary(&report))?)?;
+        return Ok(());
+    }
+    print_rows(&report)
+}
+
+/// Evaluates the aero models `args` asks for on `loaded`'s vehicle (or `--mesh`; `args.config`
+/// is not read), warnings on stderr as they arise: what `run` prints and Python's `hsv.aero`
+/// returns.
+pub fn evaluate(args: &AeroArgs, loaded: &LoadedConfig, registry: &Registry) -> Result<AeroReport> {
     let flight = loaded.config.flight;
     let mut warnings = Vec::new();
     let mesh = match &args.mesh {
-        None => aero_job::vehicle_mesh(&loaded)?,
+        None => aero_job::vehicle_mesh(loaded)?,
         Some(path) => AeroMesh {
             mesh: read_closed_mesh(path, args.allow_open, &mut warnings)?,
             source: path.display().to_string(),
@@ -145,7 +167,7 @@ pub fn run(args: AeroArgs, registry: &Registry) -> Result<()> {
     let friction = args.friction.then(|| {
         let t = args.wall_temperature_k;
         if t.is_finite() && t > 0.0 {
-            Ok(FrictionRequest::from_config(&loaded, t))
+            Ok(FrictionRequest::from_config(loaded, t))
         } else {
             Err(anyhow::anyhow!(
                 "--wall-temperature-k must be a positive number of kelvin, got {t}"
@@ -154,16 +176,33 @@ pub fn run(args: AeroArgs, registry: &Registry) -> Result<()> {
     });
     let friction = friction.transpose()?;
     let rows =
-        aero_job::run_aero_with_friction(&loaded, registry, &mesh, &request, friction.as_ref())?;
-    let flight_condition = aero_job::flight_condition(&loaded, &request)?;
+        aero_job::run_aero_with_friction(loaded, registry, &mesh, &request, friction.as_ref())?;
+    let flight_condition = aero_job::flight_condition(loaded, &request)?;
     for r in &rows {
         for warning in validity_warnings(&r.model, &flight_condition, &r.diagnostics) {
             let _ = writeln!(std::io::stderr(), "warning: {warning}");
             warnings.push(warning);
         }
     }
+    Ok(AeroReport {
+        mesh,
+        request,
+        rows,
+        warnings,
+        flight_condition,
+    })
+}
 
-    if args.json.json {
+/// The `--json` summary of a report.
+pub fn summary(report: &AeroReport) -> serde_json::Value {
+    let AeroReport {
+        mesh,
+        request,
+        rows,
+        warnings,
+        flight_condition,
+    } = report;
+    {
         let models: Vec<_> = rows
             .iter()
             .map(|r| {
@@ -181,12 +220,12 @@ pub fn run(args: AeroArgs, registry: &Registry) -> Result<()> {
                     "evaluation_time_s": r.evaluation_time_s,
                 });
                 if let Some(f) = &r.friction {
-                    add_friction_json(&mut row, r, f, &flight_condition);
+                    add_friction_json(&mut row, r, f, flight_condition);
                 }
                 row
             })
             .collect();
-        let summary = serde_json::json!({
+        serde_json::json!({
             "mesh": mesh.source,
             "panels": mesh.mesh.panels.len(),
             "mach": request.mach,
@@ -202,11 +241,20 @@ pub fn run(args: AeroArgs, registry: &Registry) -> Result<()> {
             "warnings": warnings,
             "status": output::RunStatus::Completed.to_json(),
             "files": Vec::<String>::new(),
-        });
-        outln!("{}", serde_json::to_string_pretty(&summary)?)?;
-        return Ok(());
+        })
     }
+}
 
+/// The table of a report.
+fn print_rows(report: &AeroReport) -> Result<()> {
+    let AeroReport {
+        mesh,
+        request,
+        rows,
+        flight_condition,
+        ..
+    } = report;
+    let reference = request.reference;
     outln!(
         "{} ({} panels) at Mach {}, {} m, alpha {} deg, beta {} deg",
         mesh.source,
@@ -244,7 +292,7 @@ pub fn run(args: AeroArgs, registry: &Registry) -> Result<()> {
         "Cm",
         "time"
     )?;
-    for r in &rows {
+    for r in rows {
         let f = r.loads.force_n;
         let m = r.loads.moment_nm;
         outln!(
@@ -278,7 +326,7 @@ pub fn run(args: AeroArgs, registry: &Registry) -> Result<()> {
             outln!("{:<24} note: {}", "", notes.join(", "))?;
         }
         if let Some(f) = &r.friction {
-            print_friction_rows(r, f, &flight_condition)?;
+            print_friction_rows(r, f, flight_condition)?;
         }
     }
     Ok(())

@@ -21,6 +21,7 @@ use std::path::Path;
 use anyhow::{Context, Result, bail};
 use clap::{Args, ValueEnum};
 use hsv_core::aero::AeroModel;
+use hsv_core::config::LoadedConfig;
 use hsv_core::registry::{ModelContext, Registry};
 use serde_json::json;
 
@@ -188,6 +189,43 @@ pub(super) fn check_times(times_s: &[f64], dt_s: f64) -> Result<()> {
 /// Runs the flutter analysis and writes the run folder.
 pub fn run(args: FlutterArgs, registry: &Registry) -> Result<()> {
     let (loaded, registry) = load_config(args.config.config.as_deref(), registry)?;
+    let machs = map_machs(&args)?;
+    if args.panel && args.shards.is_sharded() {
+        bail!("--shard and --emit-slurm split the flutter map over Mach; --panel is one check");
+    }
+    if args.panel {
+        return run_panel(&args, &loaded, &registry, &machs);
+    }
+    let (setup, times) = map_setup(&args, &loaded)?;
+    if args.shards.is_sharded() {
+        return super::shard::flutter(&args, &loaded, &registry, &setup, &machs, &times);
+    }
+    let (folder, map, summary) = map_run(&args, &setup, &registry, &machs, &times)?;
+    if args.json.json {
+        outln!("{}", serde_json::to_string_pretty(&summary)?)?;
+        return Ok(());
+    }
+    print_table(&setup, &map, &folder.path)
+}
+
+/// The flutter map `args` asks for on `loaded` (`args.config` is not read), its run folder
+/// written: the `--json` summary. What Python's `hsv.flutter` returns; `--panel` and shards
+/// are the command's alone.
+pub fn map_json(
+    args: &FlutterArgs,
+    loaded: &LoadedConfig,
+    registry: &Registry,
+) -> Result<serde_json::Value> {
+    if args.panel || args.shards.is_sharded() {
+        bail!("--panel, --shard and --emit-slurm are the flutter command's; run it for those");
+    }
+    let machs = map_machs(args)?;
+    let (setup, times) = map_setup(args, loaded)?;
+    Ok(map_run(args, &setup, registry, &machs, &times)?.2)
+}
+
+/// The Mach grid of `--mach-range` and `--mach-step` (and a finite `--altitude-m`).
+fn map_machs(args: &FlutterArgs) -> Result<Vec<f64>> {
     if !(args.altitude_m.is_finite()) {
         bail!(
             "--altitude-m must be a finite number, got {}",
@@ -195,13 +233,11 @@ pub fn run(args: FlutterArgs, registry: &Registry) -> Result<()> {
         );
     }
     let range = parse_mach_range(&args.mach_range)?;
-    let machs = grid(range, args.mach_step)?;
-    if args.panel && args.shards.is_sharded() {
-        bail!("--shard and --emit-slurm split the flutter map over Mach; --panel is one check");
-    }
-    if args.panel {
-        return run_panel(&args, &loaded, &registry, &machs);
-    }
+    grid(range, args.mach_step)
+}
+
+/// The analysis of a flutter map and its times in the flow, from the flags and the config.
+fn map_setup(args: &FlutterArgs, loaded: &LoadedConfig) -> Result<(FlutterSetup, Vec<f64>)> {
     let times = if args.times_s.is_empty() {
         DEFAULT_TIMES_S.to_vec()
     } else {
@@ -260,27 +296,45 @@ pub fn run(args: FlutterArgs, registry: &Registry) -> Result<()> {
         compare_methods: !args.no_compare,
         options: SurfaceOptions::default(),
     };
-    if args.shards.is_sharded() {
-        return super::shard::flutter(&args, &loaded, &registry, &setup, &machs, &times);
-    }
-    let mut folder = RunFolder::create("flutter", args.out.out.as_deref(), args.out.force)?;
-    let map = folder.run(
-        |_| flutter_map(&setup, &registry, &machs, &times).map_err(anyhow::Error::from),
-        || json!({"command": "flutter"}),
-    )?;
-    write_run(&mut folder, &setup, &map, args.json.json)
+    Ok((setup, times))
 }
 
-/// The map's CSVs, PNGs and summary, and the table (or the summary with `json`); shared with
-/// `hsv-run merge` of flutter shards.
+/// Computes the map into a new run folder: the folder, the map and its summary.
+fn map_run(
+    args: &FlutterArgs,
+    setup: &FlutterSetup,
+    registry: &Registry,
+    machs: &[f64],
+    times: &[f64],
+) -> Result<(RunFolder, FlutterMap, serde_json::Value)> {
+    let mut folder = RunFolder::create("flutter", args.out.out.as_deref(), args.out.force)?;
+    let map = folder.run(
+        |_| flutter_map(setup, registry, machs, times).map_err(anyhow::Error::from),
+        || json!({"command": "flutter"}),
+    )?;
+    let summary = write_map(&mut folder, setup, &map)?;
+    Ok((folder, map, summary))
+}
+
+/// The map's CSVs, PNGs and summary; the summary as written.
+fn write_map(
+    folder: &mut RunFolder,
+    setup: &FlutterSetup,
+    map: &FlutterMap,
+) -> Result<serde_json::Value> {
+    write_outputs(folder, map)?;
+    folder.write_summary(summary(setup, map), &RunStatus::Completed)
+}
+
+/// The map's outputs and the table (or the summary with `json`): `hsv-run merge` of flutter
+/// shards.
 pub(super) fn write_run(
     folder: &mut RunFolder,
     setup: &FlutterSetup,
     map: &FlutterMap,
     json: bool,
 ) -> Result<()> {
-    write_outputs(folder, map)?;
-    let summary = folder.write_summary(summary(setup, map), &RunStatus::Completed)?;
+    let summary = write_map(folder, setup, map)?;
     if json {
         outln!("{}", serde_json::to_string_pretty(&summary)?)?;
     } else {

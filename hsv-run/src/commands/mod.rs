@@ -73,6 +73,20 @@ pub fn validate_config(loaded: &LoadedConfig, registry: &Registry) -> Result<()>
     Ok(())
 }
 
+/// A command's arguments parsed from `flags` (no program or command name) exactly as the CLI
+/// parses them, checks and defaults included: how Python's `hsv.aero` and `hsv.flutter` take
+/// the commands' flags.
+pub fn parse_flags<A: clap::Args + clap::FromArgMatches>(
+    command: &'static str,
+    flags: &[String],
+) -> Result<A> {
+    let cli = A::augment_args(clap::Command::new(command).no_binary_name(true));
+    let matches = cli
+        .try_get_matches_from(flags)
+        .map_err(|e| anyhow::anyhow!("{command}: {}", e.render().to_string().trim_end()))?;
+    Ok(A::from_arg_matches(&matches)?)
+}
+
 /// [`load_config`] without [`validate_config`].
 pub(crate) fn load_config_unchecked(
     path: Option<&Path>,

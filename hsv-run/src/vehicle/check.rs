@@ -159,7 +159,7 @@ pub fn check_models(loaded: &LoadedConfig, registry: &Registry) -> Vec<Problem> 
         }
         regions.push(info);
     }
-    for (model, _) in &loaded.config.models {
+    for model in loaded.config.models.keys() {
         if named.contains(model) {
             continue;
         }

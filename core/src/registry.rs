@@ -686,11 +686,9 @@ mod tests {
         );
     }
 
-    #[test]
-    fn wrong_role_is_reported() {
-        let mut registry = Registry::empty();
-        registry.insert(entry("shock-expansion", "a")).unwrap();
-        let region = RegionInfo::standalone(
+    /// A region with an empty mesh, for contexts.
+    fn test_region() -> RegionInfo {
+        RegionInfo::standalone(
             "test",
             PanelMesh::default(),
             crate::aero::ReferenceValues {
@@ -701,7 +699,14 @@ mod tests {
             },
             crate::gas::PerfectGas::AIR,
             "test.toml",
-        );
+        )
+    }
+
+    #[test]
+    fn wrong_role_is_reported() {
+        let mut registry = Registry::empty();
+        registry.insert(entry("shock-expansion", "a")).unwrap();
+        let region = test_region();
         let settings = region.model_settings("shock-expansion");
         let context = ModelContext::new(&region, &registry, &settings);
         let err = registry
@@ -724,18 +729,7 @@ mod tests {
             Err(ModelError::out_of_range("refusing", "cells", 0.0, ">= 1"))
         }));
         registry.insert(refusing).unwrap();
-        let region = RegionInfo::standalone(
-            "test",
-            PanelMesh::default(),
-            crate::aero::ReferenceValues {
-                area_m2: 1.0,
-                chord_m: 1.0,
-                span_m: 1.0,
-                moment_point_m: [0.0; 3],
-            },
-            crate::gas::PerfectGas::AIR,
-            "test.toml",
-        );
+        let region = test_region();
         let mut settings = region.model_settings("refusing");
         let unset = ModelContext::new(&region, &registry, &settings);
         let err = registry.check(Role::Aero, "refusing", &unset).unwrap_err();

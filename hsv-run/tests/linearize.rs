@@ -8,6 +8,10 @@ use hsv_run::vehicle::partitioned::SurfaceModel;
 
 mod common;
 
+/// `linearize --grid` and its shards (issue 27 item 4).
+#[path = "linearize/grid_cli.rs"]
+mod grid_cli;
+
 fn linearized() -> (hsv_run::analysis::linearize::Linearization, f64) {
     linearized_by(&PerturbationRule::default())
 }

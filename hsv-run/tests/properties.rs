@@ -1,6 +1,7 @@
-//! Property tests of the `aero`, `engine`, `trim`, `modes` and `heat` jobs (issue 16): random flight conditions,
-//! including extreme and non-finite values, and random edits of the sample config give finite
-//! results or a clear error, never a panic or a NaN.
+//! Property tests: the `aero`, `engine`, `trim`, `modes` and `heat` jobs (issue 16) and, in
+//! `properties/commands.rs`, whole commands through the binary (issue 26). Random flight
+//! conditions, including extreme and non-finite values, and random edits of the sample config
+//! give finite results or a clear error, never a panic or a NaN.
 
 use hsv_core::config::{LoadedConfig, SAMPLE_CONFIG_TOML, parse_config};
 use hsv_core::registry::Registry;
@@ -10,6 +11,10 @@ use hsv_run::commands::validate_config;
 use proptest::prelude::*;
 
 mod common;
+
+/// Whole commands through the binary (issue 26 item 7).
+#[path = "properties/commands.rs"]
+mod commands;
 
 use common::strategies::awkward;
 

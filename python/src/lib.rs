@@ -144,15 +144,7 @@ impl Vehicle {
         relative: Option<f64>,
         absolute: Option<f64>,
     ) -> PyResult<Bound<'py, PyDict>> {
-        let mut rule = PerturbationRule::default();
-        if let Some(r) = relative {
-            rule.relative = r;
-        }
-        if let Some(a) = absolute {
-            rule.absolute = a;
-        }
-        rule.steps(&nalgebra::DVector::zeros(1))
-            .map_err(|e| ConfigError::new_err(e.to_string()))?;
+        let rule = perturbation_rule(relative, absolute)?;
         let (_, _, lin) = py
             .detach(|| {
                 hsv_run::analysis::linearize::linearize_configured(
@@ -218,13 +210,7 @@ impl Vehicle {
         use hsv_run::analysis::linear_grid::{LinearGridSpec, grid_arrays, linearize_shard};
         use hsv_run::analysis::shards::Shard;
         use hsv_run::npz::NpyData;
-        let mut rule = PerturbationRule::default();
-        if let Some(r) = relative {
-            rule.relative = r;
-        }
-        if let Some(a) = absolute {
-            rule.absolute = a;
-        }
+        let rule = perturbation_rule(relative, absolute)?;
         let spec = LinearGridSpec::new(&machs, &altitudes_m, rule, None, &self.loaded)
             .map_err(config_error)?;
         let (arrays, errors) = py
@@ -258,6 +244,20 @@ impl Vehicle {
     fn config_toml(&self) -> PyResult<String> {
         toml::to_string(&self.loaded.raw).map_err(hsv_error)
     }
+}
+
+/// The `linearize` perturbation rule with `relative` and `absolute` where given, checked.
+fn perturbation_rule(relative: Option<f64>, absolute: Option<f64>) -> PyResult<PerturbationRule> {
+    let mut rule = PerturbationRule::default();
+    if let Some(r) = relative {
+        rule.relative = r;
+    }
+    if let Some(a) = absolute {
+        rule.absolute = a;
+    }
+    rule.steps(&nalgebra::DVector::zeros(1))
+        .map_err(|e| ConfigError::new_err(e.to_string()))?;
+    Ok(rule)
 }
 
 /// A dense matrix as a C-ordered 2-D numpy array.

@@ -1,11 +1,9 @@
 //! `hsv-run linearize --grid` (issue 27 item 4): each grid point holds the model `linearize`
 //! gives at that point alone, a point that does not trim keeps its slot with its error, and
 //! shards merged by `hsv-run merge` equal the unsharded grid. The `.npz` is read back by numpy
-//! in the Python tests (`python/tests/test_linear_grid.py`).
+//! in the Python tests (`python/tests/test_commands.py`).
 
-mod common;
-
-use common::cli::{hsv_run, scratch_dir, stderr};
+use crate::common::cli::{hsv_run, scratch_dir, stderr};
 
 fn json(path: &std::path::Path) -> serde_json::Value {
     serde_json::from_str(&std::fs::read_to_string(path).expect("file")).expect("JSON")
@@ -21,7 +19,7 @@ fn ok(args: &[&str]) {
 fn grid_points_are_the_single_point_models_and_shards_merge_to_the_grid() {
     let dir = scratch_dir("grid");
     let config = dir.join("coarse.toml");
-    std::fs::write(&config, common::coarse_text()).unwrap();
+    std::fs::write(&config, crate::common::coarse_text()).unwrap();
     let config = config.to_str().unwrap();
     let path = |name: &str| dir.join(name).display().to_string();
     // Mach 6 at 25 and 26 km trims; 200 km is above the atmosphere model (86 km).

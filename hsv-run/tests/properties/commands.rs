@@ -6,13 +6,11 @@
 //! The runs stay tiny (a few steps, one or two Mach points, full-order conduction so no POD
 //! basis trains): the properties are about inputs, the physics is tested elsewhere.
 
-mod common;
-
 use std::sync::atomic::{AtomicUsize, Ordering};
 use std::time::{Duration, Instant};
 
-use common::cli::{hsv_run, scratch_dir, stderr, stdout};
-use common::strategies::awkward;
+use crate::common::cli::{hsv_run, scratch_dir, stderr, stdout};
+use crate::common::strategies::awkward;
 use proptest::prelude::*;
 
 /// The longest any run of the corpus may take.

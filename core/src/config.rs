@@ -75,6 +75,24 @@ pub struct RegionModels {
 }
 
 impl RegionModels {
+    /// The model each role key names: (key, role, name), in the table's key order.
+    pub fn named(&self) -> [(&'static str, crate::registry::Role, Option<&str>); 5] {
+        let names = [
+            &self.aero,
+            &self.heat_flux,
+            &self.conduction,
+            &self.structure,
+            &self.propulsion,
+        ];
+        std::array::from_fn(|k| {
+            (
+                REGION_ROLE_KEYS[k].0,
+                REGION_ROLE_KEYS[k].1,
+                names[k].as_deref(),
+            )
+        })
+    }
+
     /// `self` with every name and setting `over` gives replacing ours.
     fn overlaid(&self, over: &RegionModels) -> RegionModels {
         let pick = |a: &Option<String>, b: &Option<String>| b.clone().or_else(|| a.clone());
@@ -456,14 +474,7 @@ impl LoadedConfig {
         ];
         let mut problems = Vec::new();
         for (region, models) in tables {
-            let named = [
-                &models.aero,
-                &models.heat_flux,
-                &models.conduction,
-                &models.structure,
-                &models.propulsion,
-            ];
-            for ((key, wanted), name) in REGION_ROLE_KEYS.iter().zip(named) {
+            for (key, wanted, name) in models.named() {
                 let Some(name) = name else { continue };
                 let error = |message: String| ConfigError {
                     file: self.file.clone(),
@@ -472,8 +483,8 @@ impl LoadedConfig {
                 };
                 match registry.get(name) {
                     Err(e) => problems.push(error(e.to_string())),
-                    Ok(entry) if entry.role() != *wanted => {
-                        let known = registry.names(*wanted).join(", ");
+                    Ok(entry) if entry.role() != wanted => {
+                        let known = registry.names(wanted).join(", ");
                         problems.push(error(format!(
                             "`{name}` is a {} model, but this key names a {wanted} model (known: {known})",
                             entry.role()

@@ -62,6 +62,9 @@ def _flags(options: Mapping[str, Any], repeated: tuple = ()) -> list:
     """Keyword options as a command's flags: ``mach_range="4:8"`` is ``--mach-range 4:8``,
     ``True`` a bare flag, ``False`` and ``None`` none, a list comma separated (or the flag
     repeated for the names in ``repeated``)."""
+    def text(value: Any) -> str:
+        return str(value.item() if isinstance(value, np.generic) else value)
+
     flags = []
     for key, value in options.items():
         flag = "--" + key.replace("_", "-")
@@ -70,14 +73,14 @@ def _flags(options: Mapping[str, Any], repeated: tuple = ()) -> list:
         if value is True:
             flags.append(flag)
         elif isinstance(value, (list, tuple, np.ndarray)):
-            items = [str(_plain(v) if isinstance(v, np.generic) else v) for v in value]
+            items = [text(v) for v in value]
             if key in repeated:
                 for item in items:
                     flags += [flag, item]
             else:
                 flags += [flag, ",".join(items)]
         else:
-            flags += [flag, str(_plain(value) if isinstance(value, np.generic) else value)]
+            flags += [flag, text(value)]
     return flags
 
 

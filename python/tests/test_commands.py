@@ -68,8 +68,10 @@ def test_linearize_grid_is_the_cli_npz(cli, tmp_path):
 
 
 def test_linearize_grid_point_is_linearize_and_the_call_pickles(vehicle):
-    """The grid at the config's own point is `linearize` there; the function and its
-    arguments pickle, as Dask or Ray need."""
+    """A consistency check, not a validation (the linear model's physics is tested against
+    Lanchester's phugoid and the two-state short period in hsv-run/tests/linearize.rs): the
+    grid at the config's own point lands in its slot as `linearize` gives it there, and the
+    function and its arguments pickle, as Dask or Ray need."""
     call = pickle.loads(pickle.dumps((hsv.linearize_grid, (None, [6.0], [26_000.0]))))
     grid = call[0](*call[1])
     alone = vehicle.linearize()

@@ -51,6 +51,11 @@ impl Shard {
     /// The whole study.
     pub const ALL: Shard = Shard { index: 0, count: 1 };
 
+    /// The share a `--shard K/N` flag names, or the whole study without one.
+    pub fn from_flag(flag: Option<&str>) -> Result<Self> {
+        Ok(flag.map(str::parse).transpose()?.unwrap_or(Self::ALL))
+    }
+
     /// The cases of this shard among `cases`.
     pub fn cases(self, cases: usize) -> Vec<usize> {
         (self.index..cases).step_by(self.count).collect()

@@ -202,47 +202,45 @@ pub fn summary(report: &AeroReport) -> serde_json::Value {
         warnings,
         flight_condition,
     } = report;
-    {
-        let models: Vec<_> = rows
-            .iter()
-            .map(|r| {
-                let mut row = serde_json::json!({
-                    "model": r.model,
-                    "force_body_n": [r.loads.force_n.x, r.loads.force_n.y, r.loads.force_n.z],
-                    "moment_body_nm": [r.loads.moment_nm.x, r.loads.moment_nm.y, r.loads.moment_nm.z],
-                    "cl": r.coefficients.cl,
-                    "cd": r.coefficients.cd,
-                    "cy": r.coefficients.cy,
-                    "cm": r.coefficients.cm,
-                    "croll": r.coefficients.croll,
-                    "cn": r.coefficients.cn,
-                    "diagnostics": r.diagnostics,
-                    "evaluation_time_s": r.evaluation_time_s,
-                });
-                if let Some(f) = &r.friction {
-                    add_friction_json(&mut row, r, f, flight_condition);
-                }
-                row
-            })
-            .collect();
-        serde_json::json!({
-            "mesh": mesh.source,
-            "panels": mesh.mesh.panels.len(),
-            "mach": request.mach,
-            "altitude_m": request.altitude_m,
-            "alpha_deg": request.alpha_deg,
-            "beta_deg": request.beta_deg,
-            "sref_m2": request.reference.area_m2,
-            "lref_m": request.reference.chord_m,
-            "bref_m": request.reference.span_m,
-            "moment_point_m": request.reference.moment_point_m,
-            "engine_surfaces_included": request.include_engine_surfaces || !mesh.has_engine_surfaces,
-            "models": models,
-            "warnings": warnings,
-            "status": output::RunStatus::Completed.to_json(),
-            "files": Vec::<String>::new(),
+    let models: Vec<_> = rows
+        .iter()
+        .map(|r| {
+            let mut row = serde_json::json!({
+                "model": r.model,
+                "force_body_n": [r.loads.force_n.x, r.loads.force_n.y, r.loads.force_n.z],
+                "moment_body_nm": [r.loads.moment_nm.x, r.loads.moment_nm.y, r.loads.moment_nm.z],
+                "cl": r.coefficients.cl,
+                "cd": r.coefficients.cd,
+                "cy": r.coefficients.cy,
+                "cm": r.coefficients.cm,
+                "croll": r.coefficients.croll,
+                "cn": r.coefficients.cn,
+                "diagnostics": r.diagnostics,
+                "evaluation_time_s": r.evaluation_time_s,
+            });
+            if let Some(f) = &r.friction {
+                add_friction_json(&mut row, r, f, flight_condition);
+            }
+            row
         })
-    }
+        .collect();
+    serde_json::json!({
+        "mesh": mesh.source,
+        "panels": mesh.mesh.panels.len(),
+        "mach": request.mach,
+        "altitude_m": request.altitude_m,
+        "alpha_deg": request.alpha_deg,
+        "beta_deg": request.beta_deg,
+        "sref_m2": request.reference.area_m2,
+        "lref_m": request.reference.chord_m,
+        "bref_m": request.reference.span_m,
+        "moment_point_m": request.reference.moment_point_m,
+        "engine_surfaces_included": request.include_engine_surfaces || !mesh.has_engine_surfaces,
+        "models": models,
+        "warnings": warnings,
+        "status": output::RunStatus::Completed.to_json(),
+        "files": Vec::<String>::new(),
+    })
 }
 
 /// The table of a report.

@@ -6,9 +6,8 @@ use std::path::PathBuf;
 
 use anyhow::Result;
 use clap::Args;
-use hsv_core::registry::Registry;
-
 use hsv_core::config::LoadedConfig;
+use hsv_core::registry::Registry;
 
 use super::{ConfigArg, JsonFlag, load_config};
 use crate::analysis::linear_grid::{LinearGridSpec, linearize_shard, write_grid_npz};
@@ -243,12 +242,7 @@ fn run_grid(
         .map(super::shard::absolute)
         .transpose()?;
     let spec = LinearGridSpec::new(machs, altitudes_m, rule, config, loaded)?;
-    let shard: Shard = args
-        .shard
-        .as_deref()
-        .map(str::parse)
-        .transpose()?
-        .unwrap_or(Shard::ALL);
+    let shard = Shard::from_flag(args.shard.as_deref())?;
     let mut folder = RunFolder::create("linearize", args.out.as_deref(), args.force)?;
     let total = shard.cases(spec.case_count()).len();
     let done = std::sync::atomic::AtomicUsize::new(0);

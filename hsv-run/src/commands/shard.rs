@@ -54,12 +54,7 @@ impl ShardArgs {
 
     /// The `--shard` share, or the whole study.
     pub fn shard(&self) -> Result<Shard> {
-        Ok(self
-            .shard
-            .as_deref()
-            .map(str::parse)
-            .transpose()?
-            .unwrap_or(Shard::ALL))
+        Shard::from_flag(self.shard.as_deref())
     }
 }
 

@@ -15,7 +15,7 @@ use hsv_core::region::RegionInfo;
 use hsv_core::registry::{ModelContext, Registry, RegistryError, Role};
 use hsv_core::structure::{StructureModel, require};
 
-use super::{AnalysisNeeds, AssemblyError, RegionNeeds, friction_model, role_key};
+use super::{AnalysisNeeds, AssemblyError, RegionNeeds, friction_model};
 
 /// One problem of a config: the regions where it arises and what is wrong.
 #[derive(Debug, Clone, PartialEq, serde::Serialize)]
@@ -56,9 +56,10 @@ struct Problems {
 impl Problems {
     fn push(&mut self, region: &str, message: String) {
         // A model's message may start with the file it names; the problem names it once.
-        let message = message
-            .strip_prefix(&format!("{}: ", self.file))
-            .map_or(message.clone(), str::to_owned);
+        let message = match message.strip_prefix(&format!("{}: ", self.file)) {
+            Some(rest) => rest.to_owned(),
+            None => message,
+        };
         match self.list.iter_mut().find(|p| p.message == message) {
             Some(p) if !p.regions.iter().any(|r| r == region) => p.regions.push(region.to_owned()),
             Some(_) => {}
@@ -69,17 +70,6 @@ impl Problems {
             }),
         }
     }
-}
-
-/// The models each role key of a region names.
-fn named_models(names: &RegionModels) -> [(Role, Option<&str>); 5] {
-    [
-        (Role::Aero, names.aero.as_deref()),
-        (Role::HeatFlux, names.heat_flux.as_deref()),
-        (Role::Conduction, names.conduction.as_deref()),
-        (Role::Structure, names.structure.as_deref()),
-        (Role::Propulsion, names.propulsion.as_deref()),
-    ]
 }
 
 /// Checks model `name` of `role` in region `info` with the settings the region sees; a
@@ -114,7 +104,8 @@ pub fn check_models(loaded: &LoadedConfig, registry: &Registry) -> Vec<Problem> 
         list: Vec::new(),
     };
     let mut named = BTreeSet::new();
-    let mut regions = Vec::new();
+    // Each region built, with the model names it sees.
+    let mut regions: Vec<(RegionInfo, RegionModels)> = Vec::new();
     for region in REGION_NAMES {
         let info = match loaded.region(region) {
             Ok(info) => info,
@@ -129,7 +120,7 @@ pub fn check_models(loaded: &LoadedConfig, registry: &Registry) -> Vec<Problem> 
             .iter()
             .find(|(r, _)| *r == region)
             .map(|(_, n)| n);
-        for (role, model) in named_models(&names) {
+        for (key, role, model) in names.named() {
             match model {
                 Some(model) => {
                     named.insert(model.to_owned());
@@ -144,9 +135,8 @@ pub fn check_models(loaded: &LoadedConfig, registry: &Registry) -> Vec<Problem> 
                 None if need.is_some_and(|n| n.roles.contains(&role)) => problems.push(
                     region,
                     format!(
-                        "no {role} model, which {} needs (set `regions.{region}.{}`)",
-                        needs.analysis,
-                        role_key(role)
+                        "no {role} model, which {} needs (set `regions.{region}.{key}`)",
+                        needs.analysis
                     ),
                 ),
                 None => {}
@@ -157,7 +147,7 @@ pub fn check_models(loaded: &LoadedConfig, registry: &Registry) -> Vec<Problem> 
         {
             problems.push(region, strip_region(e));
         }
-        regions.push(info);
+        regions.push((info, names));
     }
     for model in loaded.config.models.keys() {
         if named.contains(model) {
@@ -171,14 +161,14 @@ pub fn check_models(loaded: &LoadedConfig, registry: &Registry) -> Vec<Problem> 
         let role = entry.role();
         // Regions that name a model of the same role come first: an engine is checked in
         // `propulsion`, a conduction model in a lifting surface.
-        let mut homes: Vec<&RegionInfo> = regions.iter().collect();
-        homes.sort_by_key(|info| {
-            let names = loaded.config.regions.region(&info.name).unwrap_or_default();
-            !named_models(&names)
+        let mut homes: Vec<&(RegionInfo, RegionModels)> = regions.iter().collect();
+        homes.sort_by_key(|(_, names)| {
+            !names
+                .named()
                 .iter()
-                .any(|(r, m)| *r == role && m.is_some())
+                .any(|(_, r, m)| *r == role && m.is_some())
         });
-        let outcome = homes.into_iter().find_map(|info| {
+        let outcome = homes.into_iter().find_map(|(info, _)| {
             match check_model(info, registry, role, model, None, &needs.analysis) {
                 Err(RegistryError::Model(ModelError::WrongRegion { .. })) => None,
                 outcome => Some((info.name.clone(), outcome)),

@@ -1,5 +1,6 @@
-//! `hsv-run linearize --grid` (issue 27 item 4): each grid point holds the model `linearize`
-//! gives at that point alone, a point that does not trim keeps its slot with its error, and
+//! `hsv-run linearize --grid` (issue 27 item 4), consistency checks rather than validation
+//! (the linear model's physics is tested in `linearize.rs` above): each grid point holds the
+//! model `linearize` gives at that point alone, a point that does not trim keeps its slot with its error, and
 //! shards merged by `hsv-run merge` equal the unsharded grid. The `.npz` is read back by numpy
 //! in the Python tests (`python/tests/test_commands.py`).
 

@@ -9,10 +9,10 @@ pub mod grid;
 pub mod pod;
 pub mod training;
 
-use hsv_core::error::ModelError;
-use hsv_core::mesh::PanelMesh;
 use std::path::PathBuf;
 
+use hsv_core::error::ModelError;
+use hsv_core::mesh::PanelMesh;
 use hsv_core::registry::{Constructor, ModelCheck, ModelContext, ModelDescriptor, Role};
 use hsv_core::surface_grid::SurfaceGrid;
 use hsv_core::thermal::ConductionModel;

@@ -499,21 +499,9 @@ impl Pod {
                 format!("1 to {}, the modes in the basis", basis.n_modes()),
             ));
         }
-        if !(settings.picard_tolerance_k.is_finite() && settings.picard_tolerance_k > 0.0) {
-            return Err(ModelError::out_of_range(
-                NAME,
-                "picard_tolerance_k",
-                settings.picard_tolerance_k,
-                "finite and > 0",
-            ));
-        }
-        if settings.max_picard_iterations < 1 {
-            return Err(ModelError::out_of_range(
-                NAME,
-                "max_picard_iterations",
-                0.0,
-                ">= 1",
-            ));
+        // The settings' own ranges, as the constructor checks them (a hand-built model too).
+        if let Some((key, value, allowed)) = settings.first_invalid() {
+            return Err(ModelError::out_of_range(NAME, &key, value, allowed));
         }
         let phi = basis.modes.columns(0, r).clone_owned();
         let (lo, hi) = basis.temperature_range_k;

@@ -95,17 +95,28 @@ pub fn check(ctx: &ModelContext<'_>) -> Result<(), ModelError> {
     if ctx.region.geometry == hsv_core::region::RegionGeometry::Mesh {
         return Ok(());
     }
+    structure_modes(ctx, &settings)?;
+    Ok(())
+}
+
+/// The region's structure (`settings.structure`, as the region sees its settings) and its
+/// first `settings.modes` modes on the region's mesh with their natural frequencies. A region
+/// the structure is not made for stays `WrongRegion`, so a check can look elsewhere.
+fn structure_modes(
+    ctx: &ModelContext<'_>,
+    settings: &Settings,
+) -> Result<(hsv_core::region::ModelSettings, ModeShapes, Vec<f64>), ModelError> {
     let structure_settings = ctx.settings_for(&settings.structure);
     let structure = ctx
         .build::<dyn StructureModel>(&settings.structure, &structure_settings)
         .map_err(|e| match e {
-            // A region without a structure for the ROM: the check looks for another region.
             RegistryError::Model(wrong @ ModelError::WrongRegion { .. }) => wrong,
             e => ctx.settings_error("structure", e.to_string()),
         })?;
-    region_modes(structure.as_ref(), &ctx.region.mesh, settings.modes)
-        .map_err(|e| ctx.settings_error("modes", e.to_string()))?;
-    Ok(())
+    let (shapes, frequencies_hz) =
+        region_modes(structure.as_ref(), &ctx.region.mesh, settings.modes)
+            .map_err(|e| ctx.settings_error("modes", e.to_string()))?;
+    Ok((structure_settings, shapes, frequencies_hz))
 }
 
 impl ConvolutionRom {
@@ -114,14 +125,8 @@ impl ConvolutionRom {
     /// identifies (and caches) it.
     pub fn new(ctx: &ModelContext<'_>) -> Result<Self, ModelError> {
         let settings = checked_settings(ctx)?;
-        let structure_settings = ctx.settings_for(&settings.structure);
-        let structure = ctx
-            .build::<dyn StructureModel>(&settings.structure, &structure_settings)
-            .map_err(|e| ctx.settings_error("structure", e.to_string()))?;
+        let (structure_settings, shapes, natural_frequencies_hz) = structure_modes(ctx, &settings)?;
         let mesh = ctx.region.mesh.clone();
-        let (shapes, natural_frequencies_hz) =
-            region_modes(structure.as_ref(), &mesh, settings.modes)
-                .map_err(|e| ctx.settings_error("modes", e.to_string()))?;
         let source_settings = ctx.settings_for(&settings.source);
         let mut source = ctx
             .build::<dyn AeroModel>(&settings.source, &source_settings)

@@ -8,7 +8,7 @@ use anyhow::Result;
 use clap::{Parser, Subcommand};
 use hsv_run::commands::{
     self, ConfigArg, JsonFlag, aero::AeroArgs, compare::CompareArgs, engine::EngineArgs,
-    flutter::FlutterArgs, heat::HeatArgs, linearize::LinearizeArgs, merge::MergeArgs,
+    flutter::FlutterArgs, fmu::FmuArgs, heat::HeatArgs, linearize::LinearizeArgs, merge::MergeArgs,
     modes::ModesArgs, rom::RomArgs, simulate::SimulateArgs, trade::TradeArgs, trim::TrimArgs,
     vehicle::VehicleArgs,
 };
@@ -87,6 +87,9 @@ enum Command {
     /// A region's reduced-order aero model (convolution ROM): identify it from a source model
     /// and cache it, or check it against its source (error, speed-up, histories).
     Rom(RomArgs),
+    /// Package the vehicle as an FMI 3.0 co-simulation FMU (inputs: elevon and fuel commands
+    /// around the trim; outputs: the flight state; parameters: the trim's Mach and altitude).
+    Fmu(FmuArgs),
 }
 
 /// Exit status when standard output was closed early: 128 + SIGPIPE, as a Unix tool killed by
@@ -175,5 +178,6 @@ fn run(cli: Cli) -> Result<()> {
         Command::Trade(args) => commands::trade::run(args, &registry),
         Command::Merge(args) => commands::merge::run(args, &registry),
         Command::Rom(args) => commands::rom::run(args, &registry),
+        Command::Fmu(args) => commands::fmu::run(args, &registry),
     }
 }

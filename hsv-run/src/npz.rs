@@ -5,7 +5,6 @@
 //! Written here rather than with `ndarray-npy`, whose writer has no string arrays: the state,
 //! input and output names belong in the archive beside the matrices they label.
 
-use std::io::Write;
 use std::path::Path;
 
 use anyhow::{Context, Result, bail};
@@ -112,25 +111,15 @@ impl NpyArray {
 }
 
 /// Writes `arrays` to the `.npz` archive at `path` (`name.npy` members, stored uncompressed),
-/// through a temporary file renamed into place so a reader never sees half an archive.
+/// whole or not at all.
 pub fn write_npz(path: &Path, arrays: &[NpyArray]) -> Result<()> {
-    let partial = path.with_extension("npz.partial");
-    let file = std::fs::File::create(&partial)
-        .with_context(|| format!("cannot create {}", partial.display()))?;
-    let mut zip = zip::ZipWriter::new(file);
-    let options = zip::write::SimpleFileOptions::default()
-        .compression_method(zip::CompressionMethod::Stored)
-        .large_file(false);
-    for array in arrays {
-        zip.start_file(format!("{}.npy", array.name), options)
-            .with_context(|| format!("writing {}", partial.display()))?;
-        zip.write_all(&array.to_npy()?)
-            .with_context(|| format!("writing {}", partial.display()))?;
-    }
-    zip.finish()
-        .with_context(|| format!("writing {}", partial.display()))?;
-    std::fs::rename(&partial, path)
-        .with_context(|| format!("cannot rename {} to {}", partial.display(), path.display()))
+    let members = arrays
+        .iter()
+        .map(|array| Ok((format!("{}.npy", array.name), array.to_npy()?)))
+        .collect::<Result<Vec<_>>>()?;
+    let archive = crate::output::zip_archive(&members)
+        .with_context(|| format!("writing {}", path.display()))?;
+    crate::output::write_file(path, archive)
 }
 
 #[cfg(test)]

@@ -79,6 +79,29 @@ pub fn write_file(path: &Path, bytes: impl AsRef<[u8]>) -> Result<()> {
     Ok(())
 }
 
+/// An uncompressed zip archive of `members` (name, bytes) in memory, in their order: the
+/// container of `.npz` files and FMUs.
+pub fn zip_archive(members: &[(String, Vec<u8>)]) -> Result<Vec<u8>> {
+    let mut zip = zip::ZipWriter::new(std::io::Cursor::new(Vec::new()));
+    let options = zip::write::SimpleFileOptions::default()
+        .compression_method(zip::CompressionMethod::Stored)
+        .large_file(
+            members
+                .iter()
+                .any(|(_, bytes)| bytes.len() >= u32::MAX as usize),
+        );
+    for (name, bytes) in members {
+        zip.start_file(name.as_str(), options)
+            .with_context(|| format!("zip member {name}"))?;
+        zip.write_all(bytes)
+            .with_context(|| format!("zip member {name}"))?;
+    }
+    Ok(zip
+        .finish()
+        .context("finishing the zip archive")?
+        .into_inner())
+}
+
 /// `.name.partial.ext` beside `path` (the extension kept: the PNG writer goes by it).
 fn partial_path(path: &Path) -> PathBuf {
     let stem = path

@@ -194,3 +194,42 @@ fn aero_runs_on_a_closed_stl_mesh() {
     assert!(output.status.success(), "{}", stderr(&output));
     assert!(stdout(&output).contains("newtonian-vector"));
 }
+
+#[test]
+fn fmu_refuses_a_missing_or_foreign_library_and_an_existing_archive() {
+    let dir = scratch_dir("fmu");
+    let out = dir.join("hsv.fmu");
+    let out_arg = out.to_str().expect("utf-8 path");
+    let missing = dir.join("libnothing.so");
+    expect_error(
+        &[
+            "fmu",
+            "--library",
+            missing.to_str().expect("utf-8 path"),
+            "--out",
+            out_arg,
+        ],
+        &["cannot read the FMU library", "libnothing.so"],
+    );
+    // A file that is no shared library at all.
+    let foreign = dir.join("libforeign.so");
+    std::fs::write(&foreign, b"not a library").expect("write scratch file");
+    expect_error(
+        &[
+            "fmu",
+            "--library",
+            foreign.to_str().expect("utf-8 path"),
+            "--out",
+            out_arg,
+        ],
+        &["libforeign.so", "is not an hsv FMU library"],
+    );
+    assert!(!out.exists(), "a refused FMU left {}", out.display());
+    std::fs::write(&out, b"earlier work").expect("write scratch file");
+    expect_error(&["fmu", "--out", out_arg], &["hsv.fmu exists", "--force"]);
+    assert_eq!(
+        std::fs::read(&out).expect("read scratch file"),
+        b"earlier work",
+        "the existing archive was touched"
+    );
+}

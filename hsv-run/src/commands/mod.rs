@@ -6,6 +6,7 @@ pub mod compare;
 pub mod config;
 pub mod engine;
 pub mod flutter;
+pub mod fmu;
 pub mod heat;
 pub mod linearize;
 pub mod merge;

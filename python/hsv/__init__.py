@@ -19,7 +19,7 @@ from __future__ import annotations
 
 import json
 import os
-from typing import Any, Mapping, Optional, Union
+from typing import Any, Callable, Mapping, Optional, Union
 
 import numpy as np
 
@@ -34,6 +34,7 @@ __all__ = [
     "aero",
     "flutter",
     "linearize_grid",
+    "save_mat",
     "models",
     "sample_config",
 ]
@@ -182,6 +183,28 @@ def linearize_grid(config: Union[None, str, os.PathLike, Mapping[str, Any]], mac
                                           absolute=absolute)
 
 
+def save_mat(grid: Mapping[str, Any], path: Union[str, os.PathLike]) -> None:
+    """Writes a ``linearize_grid`` result to a MATLAB ``.mat`` file (``scipy.io.savemat``,
+    format 5, compressed) for MATLAB and Simulink gain-scheduling users: the arrays as they are
+    (``A`` of shape (Mach, altitude, states, states), ...; ``ok`` as 0/1), the names as cell
+    arrays of strings, and ``errors`` as a cell array of ``"<flat point index>: <message>"``.
+    Needs scipy."""
+    from scipy.io import savemat
+
+    contents = {}
+    for key, value in grid.items():
+        if key == "errors":
+            contents[key] = np.array([f"{i}: {m}" for i, m in sorted(value.items())],
+                                     dtype=object).reshape(-1, 1)
+        elif isinstance(value, (list, tuple)) or np.asarray(value).dtype.kind == "U":
+            contents[key] = np.array([str(v) for v in value], dtype=object).reshape(-1, 1)
+        elif np.asarray(value).dtype == bool:
+            contents[key] = np.asarray(value, dtype=np.uint8)
+        else:
+            contents[key] = np.asarray(value)
+    savemat(os.fspath(path), contents, do_compression=True, oned_as="column")
+
+
 class Simulation:
     """The trimmed vehicle in flight, one aeroelastic step at a time (``hsv-run simulate``).
 
@@ -260,9 +283,32 @@ class Simulation:
             raise HsvError(f"n must be >= 0, got {n}")
         return self._native.step(u, int(n))
 
-    def run(self, duration_s: float, record_every: int = 1) -> dict:
+    def run(self, duration_s: float, record_every: int = 1,
+            inputs: Optional[Callable[[float, np.ndarray], Any]] = None) -> dict:
         """Flies ``duration_s`` under the flight's controller: a dict of numpy arrays, one per
         output (``history.csv``'s columns), sampled every ``record_every`` steps and at the
-        start and end."""
-        rows = self._native.run(float(duration_s), int(record_every))
-        return {name: rows[:, i].copy() for i, name in enumerate(self.output_names)}
+        start and end.
+
+        ``inputs(t_s, outputs)``, for a flight you command (``controller=None``), returns the
+        commands ``u`` of ``step`` for the next step (absolute, held over it): your control law
+        in the loop at the aeroelastic rate, the whole run in one call. Without it the last
+        commands are held and Rust runs the whole flight with the GIL released."""
+        if inputs is None:
+            rows = self._native.run(float(duration_s), int(record_every))
+            return {name: rows[:, i].copy() for i, name in enumerate(self.output_names)}
+        if self.controller != "external":
+            raise HsvError(f"inputs command only a flight built with controller=None; this one "
+                           f"is flown by `{self.controller}`")
+        steps = round(float(duration_s) / self.dt_s)
+        if steps < 0 or abs(steps * self.dt_s - float(duration_s)) > 1e-9 * self.dt_s:
+            raise HsvError(f"duration_s {duration_s} is not a whole number of steps of "
+                           f"{self.dt_s} s")
+        every = max(int(record_every), 1)
+        y = self.outputs()
+        rows = [y]
+        for k in range(steps):
+            y = self.step(inputs(self.time_s, y), n=1)
+            if (k + 1) % every == 0 or k + 1 == steps:
+                rows.append(y)
+        table = np.array(rows)
+        return {name: table[:, i].copy() for i, name in enumerate(self.output_names)}

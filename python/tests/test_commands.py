@@ -65,6 +65,18 @@ def test_linearize_grid_is_the_cli_npz(cli, tmp_path):
     assert grid["ok"].tolist() == [[True, False]]
     assert np.isnan(grid["A"][0, 1]).all()
     assert "outside the US Standard Atmosphere 1976" in grid["errors"][1]
+    # The same grid as MATLAB reads it (scipy's reader standing in for MATLAB).
+    from scipy.io import loadmat
+    hsv.save_mat(grid, tmp_path / "grid.mat")
+    mat = loadmat(tmp_path / "grid.mat")
+    for name in ("A", "B", "C", "D", "x0", "u0", "mach", "altitude_m"):
+        expected = np.asarray(grid[name])
+        if expected.ndim == 1:  # MATLAB has no 1-D arrays: axes are columns
+            expected = expected.reshape(-1, 1)
+        np.testing.assert_array_equal(mat[name], expected, err_msg=name)
+    assert mat["ok"].tolist() == [[1, 0]]
+    assert [c[0] for c in mat["state_names"][:, 0]] == list(grid["state_names"])
+    assert mat["errors"][0, 0][0].startswith("1: ")
 
 
 def test_linearize_grid_point_is_linearize_and_the_call_pickles(vehicle):

@@ -135,3 +135,28 @@ def test_linearize_gives_named_arrays(vehicle):
         s = complex(mode["real_per_s"], mode["imaginary_rad_s"])
         assert np.min(np.abs(eig - s)) <= 1e-6 * abs(s), mode
     assert lin["x0"].shape == (n,) and lin["u0"].shape == (m,)
+
+
+def test_run_with_inputs_is_the_same_steps_taken_one_by_one(external):
+    """`run(inputs=law)` asks the law once per aeroelastic step, at the step's start, and flies
+    exactly what `step` flies with those commands."""
+    external.reset()
+    trim = external.trim
+    u = [trim["elevon_deg"] + 0.5, 0.0, trim["fuel_equivalence_ratio"]]
+    asked = []
+
+    def law(t_s, outputs):
+        asked.append(t_s)
+        return u
+
+    history = external.run(0.01, record_every=5, inputs=law)
+    external.reset()
+    last = external.step(u, n=10)
+    assert np.array_equal([history[name][-1] for name in external.output_names], last)
+    assert len(history["time_s"]) == 3
+    assert asked == pytest.approx([k * 1e-3 for k in range(10)], abs=1e-15)
+
+
+def test_inputs_command_only_a_flight_you_command(scheduled):
+    with pytest.raises(hsv.HsvError, match="controller=None"):
+        scheduled.run(0.001, inputs=lambda t_s, outputs: None)

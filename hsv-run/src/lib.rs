@@ -6,6 +6,7 @@ pub mod aero_job;
 pub mod analysis;
 pub mod commands;
 pub mod control;
+pub mod disturbance;
 pub mod dynamics;
 pub mod limits;
 pub mod linked;

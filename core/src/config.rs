@@ -192,6 +192,10 @@ pub struct HsvConfig {
     /// the runner.
     #[serde(default)]
     pub trade: toml::Table,
+    /// `[disturbances]`: Dryden turbulence and discrete gusts every flight flies through,
+    /// checked by the runner.
+    #[serde(default)]
+    pub disturbances: toml::Table,
 }
 
 /// A parsed config together with its raw table (for model constructors) and its origin.

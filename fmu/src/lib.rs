@@ -159,6 +159,15 @@ pub struct HsvVehicle {
     /// Mean structure temperature over the heated surfaces, K.
     #[variable(causality = Output, variability = Continuous, initial = Calculated)]
     surface_mean_temperature_k: f64,
+    /// Gust velocity at the centre of mass along body x ([disturbances] of the config), m/s.
+    #[variable(causality = Output, variability = Continuous, initial = Calculated)]
+    gust_u_m_s: f64,
+    /// Gust velocity at the centre of mass along body y, m/s.
+    #[variable(causality = Output, variability = Continuous, initial = Calculated)]
+    gust_v_m_s: f64,
+    /// Gust velocity at the centre of mass along body z (down), m/s.
+    #[variable(causality = Output, variability = Continuous, initial = Calculated)]
+    gust_w_m_s: f64,
 
     /// The trimmed flight (None before initialization and after a failed step).
     #[variable(skip = true)]
@@ -297,6 +306,9 @@ impl HsvVehicle {
         self.surface_min_temperature_k = s.surface_min_temperature_k;
         self.surface_max_temperature_k = s.surface_max_temperature_k;
         self.surface_mean_temperature_k = s.surface_mean_temperature_k;
+        self.gust_u_m_s = s.gust_u_m_s;
+        self.gust_v_m_s = s.gust_v_m_s;
+        self.gust_w_m_s = s.gust_w_m_s;
         Ok(())
     }
 }

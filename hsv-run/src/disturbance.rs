@@ -54,7 +54,7 @@ pub const HIGH_ALTITUDE_FLOOR_M: f64 = 2000.0 * FT_M;
 
 /// Turbulence severity as MIL-F-8785C §3.7.2 names it: light, moderate and severe are the
 /// probabilities of exceedance 1e-2, 1e-3 and 1e-5.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, clap::ValueEnum)]
 #[serde(rename_all = "kebab-case")]
 pub enum Severity {
     Light,
@@ -86,7 +86,7 @@ pub fn high_altitude_intensity_m_s(altitude_m: f64, exceedance: f64) -> Result<f
             EXCEEDANCE_PROBABILITIES
         ));
     };
-    if !(altitude_m >= HIGH_ALTITUDE_FLOOR_M) {
+    if altitude_m.is_nan() || altitude_m < HIGH_ALTITUDE_FLOOR_M {
         return Err(format!(
             "Dryden turbulence is modelled above 2000 ft ({HIGH_ALTITUDE_FLOOR_M:.1} m) only, \
              got {altitude_m} m"
@@ -165,6 +165,119 @@ impl GustSettings {
         }
         let shape = 0.5 * (1.0 - (std::f64::consts::PI * distance_m / self.half_length_m).cos());
         Vector3::from(self.amplitude_m_s) * shape
+    }
+}
+
+/// `[disturbances]`: what a flight flies through (nothing when the table is absent).
+#[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct DisturbanceSettings {
+    #[serde(default)]
+    pub dryden: Option<DrydenSettings>,
+    #[serde(default)]
+    pub gusts: Vec<GustSettings>,
+}
+
+impl DisturbanceSettings {
+    /// The `[disturbances]` table of `loaded`, checked: errors name the file and key path.
+    pub fn from_config(loaded: &hsv_core::config::LoadedConfig) -> anyhow::Result<Self> {
+        let settings: Self = hsv_core::config::parse_table(
+            &loaded.config.disturbances,
+            &loaded.file,
+            "disturbances",
+        )?;
+        settings.check().map_err(|(key, why)| {
+            anyhow::anyhow!("{}: key `disturbances.{key}`: {why}", loaded.file)
+        })?;
+        Ok(settings)
+    }
+
+    /// The first invalid value as (key path below `disturbances`, why).
+    pub fn check(&self) -> Result<(), (String, String)> {
+        if let Some(d) = &self.dryden {
+            match (d.severity, d.sigma_m_s) {
+                (Some(_), Some(_)) => {
+                    return Err((
+                        "dryden".into(),
+                        "give `severity` or `sigma_m_s`, not both".into(),
+                    ));
+                }
+                (None, None) => {
+                    return Err((
+                        "dryden".into(),
+                        "give `severity` (light, moderate, severe) or `sigma_m_s`".into(),
+                    ));
+                }
+                (None, Some(s)) if !(s.is_finite() && s >= 0.0) => {
+                    return Err((
+                        "dryden.sigma_m_s".into(),
+                        format!("must be a finite number >= 0, got {s}"),
+                    ));
+                }
+                _ => {}
+            }
+            if !(d.scale_m.is_finite() && d.scale_m > 0.0) {
+                return Err((
+                    "dryden.scale_m".into(),
+                    format!("must be a positive length, got {}", d.scale_m),
+                ));
+            }
+        }
+        for (i, g) in self.gusts.iter().enumerate() {
+            if !(g.start_s.is_finite() && g.start_s >= 0.0) {
+                return Err((
+                    format!("gusts[{i}].start_s"),
+                    format!("must be a time >= 0, got {}", g.start_s),
+                ));
+            }
+            if !(g.half_length_m.is_finite() && g.half_length_m > 0.0) {
+                return Err((
+                    format!("gusts[{i}].half_length_m"),
+                    format!("must be a positive length, got {}", g.half_length_m),
+                ));
+            }
+            if !g.amplitude_m_s.iter().all(|v| v.is_finite()) {
+                return Err((
+                    format!("gusts[{i}].amplitude_m_s"),
+                    format!("must be finite, got {:?}", g.amplitude_m_s),
+                ));
+            }
+        }
+        Ok(())
+    }
+
+    /// The wind field of a flight at `altitude_m` and `airspeed_m_s` with aeroelastic step
+    /// `dt_s` (the turbulence intensity of a severity from MIL-F-8785C Fig. 7 at the altitude).
+    pub fn field(
+        &self,
+        altitude_m: f64,
+        airspeed_m_s: f64,
+        dt_s: f64,
+    ) -> Result<Disturbances, String> {
+        let dryden = match &self.dryden {
+            None => None,
+            Some(d) => {
+                let sigma = match (d.sigma_m_s, d.severity) {
+                    (Some(s), _) => s,
+                    (None, Some(severity)) => {
+                        high_altitude_intensity_m_s(altitude_m, severity.exceedance_probability())?
+                    }
+                    (None, None) => return Err("Dryden turbulence without an intensity".into()),
+                };
+                Some(DrydenRecord::new(
+                    sigma,
+                    d.scale_m,
+                    airspeed_m_s,
+                    dt_s,
+                    d.seed,
+                )?)
+            }
+        };
+        Ok(Disturbances {
+            dryden,
+            gusts: self.gusts.clone(),
+            airspeed_m_s,
+        })
     }
 }
 

@@ -233,3 +233,90 @@ fn fmu_refuses_a_missing_or_foreign_library_and_an_existing_archive() {
         "the existing archive was touched"
     );
 }
+
+/// `history.csv` of a short `simulate` with `extra` flags, as text.
+fn short_history(name: &str, extra: &[&str]) -> String {
+    let out = scratch_dir(name);
+    let out_arg = out.to_str().expect("utf-8 path");
+    let mut args = vec![
+        "simulate",
+        "--duration-s",
+        "0.05",
+        "--vtk-interval-s",
+        "0",
+        "--quiet",
+        "--force",
+        "--out",
+        out_arg,
+    ];
+    args.extend_from_slice(extra);
+    let output = hsv_run(&args);
+    assert!(output.status.success(), "{args:?}: {}", stderr(&output));
+    std::fs::read_to_string(out.join("history.csv")).expect("history.csv")
+}
+
+#[test]
+fn turbulence_is_reproducible_by_seed_and_recorded() {
+    let severe = ["--turbulence", "severe", "--turbulence-seed", "3"];
+    let first = short_history("turbulence-a", &severe);
+    assert_eq!(first, short_history("turbulence-b", &severe));
+    let other = short_history(
+        "turbulence-c",
+        &["--turbulence", "severe", "--turbulence-seed", "4"],
+    );
+    assert_ne!(first, other);
+    let header: Vec<&str> = first.lines().next().expect("header").split(',').collect();
+    let w = header
+        .iter()
+        .position(|c| *c == "gust_w_m_s")
+        .expect("a gust_w_m_s column");
+    let last: Vec<f64> = first
+        .lines()
+        .last()
+        .expect("a row")
+        .split(',')
+        .map(|v| v.parse().expect("number"))
+        .collect();
+    assert!(last[w] != 0.0, "no gust recorded: {}", last[w]);
+}
+
+#[test]
+fn bad_disturbances_name_their_key() {
+    let dir = scratch_dir("disturbances");
+    let sample = stdout(&hsv_run(&["config"]));
+    for (table, needles) in [
+        (
+            "[disturbances.dryden]\nseverity = \"severe\"\nsigma_m_s = 1.0\n",
+            &["disturbances.dryden", "not both"][..],
+        ),
+        (
+            "[[disturbances.gusts]]\nstart_s = 0.1\namplitude_m_s = [0.0, 0.0, 5.0]\nhalf_length_m = -3.0\n",
+            &["disturbances.gusts[0].half_length_m", "-3"][..],
+        ),
+        ("[disturbances]\nwind = 3\n", &["disturbances", "wind"][..]),
+        (
+            "[disturbances.dryden]\nseverity = \"extreme\"\n",
+            &["disturbances.dryden", "extreme"][..],
+        ),
+    ] {
+        let path = dir.join("bad.toml");
+        std::fs::write(&path, format!("{sample}\n{table}")).expect("write config");
+        expect_error(
+            &[
+                "simulate",
+                "--config",
+                path.to_str().expect("utf-8 path"),
+                "--duration-s",
+                "0.01",
+                "--quiet",
+                "--out",
+                dir.join("run").to_str().expect("utf-8 path"),
+            ],
+            needles,
+        );
+    }
+    expect_error(
+        &["simulate", "--gust", "ten", "--duration-s", "0.01"],
+        &["--gust ten", "W_M_S"],
+    );
+}

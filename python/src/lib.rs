@@ -312,6 +312,8 @@ impl Simulation {
             heated: heating,
             controller,
             dt_s,
+            // The config's [disturbances].
+            disturbances: None,
         };
         let flight = py
             .detach(|| Flight::trimmed(&vehicle.loaded, &vehicle.registry, &options, |_| {}))

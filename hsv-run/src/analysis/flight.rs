@@ -13,6 +13,7 @@ use super::simulate::{
 };
 use super::trim::{TrimRequest, TrimResult, TrimStatus, trim};
 use crate::control::{ControlLoop, DesignFrom, DesignRecord};
+use crate::disturbance::{DisturbanceSettings, Disturbances};
 use crate::dynamics::VehicleState;
 use crate::vehicle::body_rate::{BodyLoadRate, DEFAULT_BODY_FRICTION_DT_S};
 use crate::vehicle::flexible_vehicle_with;
@@ -237,6 +238,9 @@ pub struct FlightOptions {
     pub controller: Option<String>,
     /// Aeroelastic step, s (paper Table 3: 1 ms).
     pub dt_s: f64,
+    /// What the flight flies through, in place of the config's `[disturbances]` (None: the
+    /// config's).
+    pub disturbances: Option<DisturbanceSettings>,
 }
 
 impl Default for FlightOptions {
@@ -246,6 +250,7 @@ impl Default for FlightOptions {
             heated: true,
             controller: Some("schedule".to_owned()),
             dt_s: 1e-3,
+            disturbances: None,
         }
     }
 }
@@ -269,6 +274,27 @@ pub fn flight_vehicle(
     vehicle.set_body_load_rate(settings.body_loads);
     vehicle.set_body_friction_rate(settings.body_friction);
     Ok(vehicle)
+}
+
+/// The wind field a flight of `loaded` flies through: `options`' disturbances or the config's
+/// `[disturbances]`, frozen in the air mass at the airspeed of the config's flight condition.
+pub fn flight_disturbances(loaded: &LoadedConfig, options: &FlightOptions) -> Result<Disturbances> {
+    let settings = match &options.disturbances {
+        Some(d) => {
+            d.check()
+                .map_err(|(key, why)| anyhow::anyhow!("disturbances.{key}: {why}"))?;
+            d.clone()
+        }
+        None => DisturbanceSettings::from_config(loaded)?,
+    };
+    let flight = &loaded.config.flight;
+    let airspeed_m_s =
+        hsv_core::flow::Freestream::standard(flight.mach, flight.altitude_m, loaded.config.gas)
+            .map_err(|e| anyhow::anyhow!("{}: [flight]: {e}", loaded.file))?
+            .velocity_m_s;
+    settings
+        .field(flight.altitude_m, airspeed_m_s, options.dt_s)
+        .map_err(|e| anyhow::anyhow!("{}: key `disturbances`: {e}", loaded.file))
 }
 
 /// A trimmed vehicle in flight under a controller: the vehicle, its state and its control loop,
@@ -300,6 +326,8 @@ struct Initial {
     state: VehicleState,
     vehicle: crate::vehicle::partitioned::VehicleRestart,
     control: crate::control::ControlState,
+    /// The wind field from t = 0 (a vehicle assembled again on reset flies it again).
+    disturbances: Disturbances,
 }
 
 /// The name a flight under the host's commands reports as its controller.
@@ -322,6 +350,7 @@ impl Flight {
             );
         }
         let settings = FlightSettings::from_config(loaded)?;
+        let disturbances = flight_disturbances(loaded, options)?;
         let (controller_name, actuators) =
             crate::control::control_settings(loaded, options.controller.as_deref())?;
         let mut vehicle = flight_vehicle(loaded, registry, options, &settings)?;
@@ -355,12 +384,14 @@ impl Flight {
                 (control, design, controller_name)
             }
         };
+        vehicle.set_disturbances(disturbances);
         vehicle.start_heating(&settings.rates)?;
         vehicle.forget_body_loads();
         let initial = Initial {
             state: trim.state.clone(),
             vehicle: vehicle.restart(),
             control: control.state.clone(),
+            disturbances: vehicle.disturbances().clone(),
         };
         Ok(Self {
             vehicle,
@@ -386,6 +417,8 @@ impl Flight {
             self.vehicle = flight_vehicle(loaded, registry, options, &self.settings)
                 .map_err(|e| VehicleError::Input(format!("{e:#}")))?;
         }
+        self.vehicle
+            .set_disturbances(self.initial.disturbances.clone());
         self.vehicle.restore(&self.initial.vehicle)?;
         self.vehicle.forget_body_loads();
         self.control.restore(self.initial.control.clone())?;

@@ -213,12 +213,17 @@ pub struct Sample {
     pub surface_min_temperature_k: f64,
     pub surface_max_temperature_k: f64,
     pub surface_mean_temperature_k: f64,
+    /// The gust velocity at the centre of mass (`[disturbances]`), body axes, m/s; α, β and
+    /// airspeed above are relative to the air moving with it.
+    pub gust_u_m_s: f64,
+    pub gust_v_m_s: f64,
+    pub gust_w_m_s: f64,
 }
 
 impl Sample {
     /// The recorded quantities in `history.csv` order (units in the names; the saturation flags
     /// as 0 or 1): the columns of the history and of the Python `Simulation`'s outputs.
-    pub const COLUMNS: [&'static str; 30] = [
+    pub const COLUMNS: [&'static str; 33] = [
         "time_s",
         "north_m",
         "altitude_m",
@@ -249,10 +254,13 @@ impl Sample {
         "surface_min_temperature_k",
         "surface_max_temperature_k",
         "surface_mean_temperature_k",
+        "gust_u_m_s",
+        "gust_v_m_s",
+        "gust_w_m_s",
     ];
 
     /// The values in the order of [`Self::COLUMNS`].
-    pub fn values(&self) -> [f64; 30] {
+    pub fn values(&self) -> [f64; 33] {
         [
             self.time_s,
             self.north_m,
@@ -284,6 +292,9 @@ impl Sample {
             self.surface_min_temperature_k,
             self.surface_max_temperature_k,
             self.surface_mean_temperature_k,
+            self.gust_u_m_s,
+            self.gust_v_m_s,
+            self.gust_w_m_s,
         ]
     }
 }
@@ -492,7 +503,8 @@ pub fn record_sample(
             (t.min_k, t.max_k, t.mean_k)
         });
     let rigid = &state.rigid;
-    let (airspeed, alpha, beta) = rigid.air_data(&nalgebra::Vector3::zeros());
+    let gust = vehicle.gust_body_m_s();
+    let (airspeed, alpha, beta) = rigid.air_data(&(rigid.attitude * gust));
     let (roll, pitch, yaw) = rigid.euler_angles();
     let c = control.record(t)?;
     let w = rigid.angular_velocity_body_rad_s;
@@ -529,5 +541,8 @@ pub fn record_sample(
         surface_min_temperature_k: lo,
         surface_max_temperature_k: hi,
         surface_mean_temperature_k: mean,
+        gust_u_m_s: gust.x,
+        gust_v_m_s: gust.y,
+        gust_w_m_s: gust.z,
     })
 }

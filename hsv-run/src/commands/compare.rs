@@ -70,6 +70,7 @@ fn fly(
         heated: false,
         controller: Some("schedule".to_owned()),
         dt_s: args.dt_s,
+        disturbances: None,
     };
     let mut flight = Flight::trimmed(loaded, registry, &options, |_| {})?;
     let mut samples = Vec::new();

@@ -82,7 +82,71 @@ pub struct SimulateArgs {
     #[arg(long, value_name = "NAME")]
     pub controller: Option<String>,
     #[command(flatten)]
+    pub disturbances: DisturbanceArgs,
+    #[command(flatten)]
     pub json: JsonFlag,
+}
+
+/// `--turbulence` and `--gust`: disturbances on top of the config's `[disturbances]`.
+#[derive(Args, Debug, Clone, Default)]
+pub struct DisturbanceArgs {
+    /// Dryden turbulence of MIL-F-8785C severity light, moderate or severe (probability of
+    /// exceedance 1e-2, 1e-3, 1e-5; intensity from its Fig. 7 at the flight's altitude: above
+    /// 65 000 ft only `severe` is not zero), in place of `[disturbances.dryden]`.
+    #[arg(long, value_name = "SEVERITY")]
+    pub turbulence: Option<crate::disturbance::Severity>,
+    /// Seed of the turbulence (the same seed, the same run).
+    #[arg(long = "turbulence-seed", value_name = "N", requires = "turbulence")]
+    pub turbulence_seed: Option<u64>,
+    /// A vertical 1-cosine gust `W_M_S[,START_S[,HALF_LENGTH_M]]` (w down positive; default
+    /// from 0.5 s, rising over 533.4 m = the 1750 ft Dryden scale), added to `[disturbances]`.
+    #[arg(long, value_name = "W[,START[,D]]")]
+    pub gust: Option<String>,
+}
+
+impl DisturbanceArgs {
+    /// The config's `[disturbances]` with these flags applied, or None without flags.
+    pub fn settings(
+        &self,
+        loaded: &hsv_core::config::LoadedConfig,
+    ) -> Result<Option<crate::disturbance::DisturbanceSettings>> {
+        use crate::disturbance::{DisturbanceSettings, DrydenSettings, GustSettings};
+        if self.turbulence.is_none() && self.gust.is_none() {
+            return Ok(None);
+        }
+        let mut settings = DisturbanceSettings::from_config(loaded)?;
+        if let Some(severity) = self.turbulence {
+            settings.dryden = Some(DrydenSettings {
+                severity: Some(severity),
+                sigma_m_s: None,
+                scale_m: crate::disturbance::HIGH_ALTITUDE_SCALE_M,
+                seed: self.turbulence_seed.unwrap_or_default(),
+            });
+        }
+        if let Some(text) = &self.gust {
+            let numbers = text
+                .split(',')
+                .map(|p| p.trim().parse::<f64>())
+                .collect::<Result<Vec<_>, _>>()
+                .ok()
+                .filter(|v| (1..=3).contains(&v.len()))
+                .with_context(|| {
+                    format!("--gust {text}: expected W_M_S[,START_S[,HALF_LENGTH_M]], numbers")
+                })?;
+            settings.gusts.push(GustSettings {
+                amplitude_m_s: [0.0, 0.0, numbers[0]],
+                start_s: numbers.get(1).copied().unwrap_or(0.5),
+                half_length_m: numbers
+                    .get(2)
+                    .copied()
+                    .unwrap_or(crate::disturbance::HIGH_ALTITUDE_SCALE_M),
+            });
+        }
+        settings
+            .check()
+            .map_err(|(key, why)| anyhow::anyhow!("--turbulence/--gust: {key}: {why}"))?;
+        Ok(Some(settings))
+    }
 }
 
 /// Tag of the restart file format.
@@ -152,6 +216,7 @@ pub fn run(args: SimulateArgs, registry: &Registry) -> Result<()> {
         heated: !args.no_heating,
         controller: Some(crate::control::control_settings(&loaded, args.controller.as_deref())?.0),
         dt_s: args.dt_s,
+        disturbances: args.disturbances.settings(&loaded)?,
     };
     // From trim, or from where a restart file left off (bit for bit).
     let (
@@ -214,6 +279,9 @@ pub fn run(args: SimulateArgs, registry: &Registry) -> Result<()> {
             let (controller_name, actuators) =
                 crate::control::control_settings(&loaded, args.controller.as_deref())?;
             let mut vehicle = flight_vehicle(&loaded, &registry, &options, &settings)?;
+            vehicle.set_disturbances(crate::analysis::flight::flight_disturbances(
+                &loaded, &options,
+            )?);
             let stored_name = restart.controller.as_deref().unwrap_or("schedule");
             if stored_name != controller_name {
                 bail!(

@@ -41,6 +41,7 @@ use rayon::prelude::*;
 use super::body_rate::{BodyLoadHistory, BodyLoadRate, DEFAULT_BODY_FRICTION_DT_S};
 use super::friction::RegionFriction;
 use super::{AnalysisNeeds, AssemblyError, RegionModelSet, RegionNeeds};
+use crate::disturbance::Disturbances;
 use crate::dynamics::{
     GravityModel, RigidBody, SurfaceAttachment, VehicleDerivative, VehicleDynamics, VehicleLoads,
     VehicleState,
@@ -394,7 +395,15 @@ pub struct PartitionedVehicle {
     body_friction_rate: BodyLoadRate,
     body_history: BodyLoadHistory,
     in_step: bool,
+    /// The wind field the regions fly through (calm unless a flight sets one).
+    disturbances: Disturbances,
+    /// Each surface's flight condition in that field at the last evaluation (scratch).
+    surface_flights: Vec<FlightCondition>,
 }
+
+/// How far past a step's start the wind field is generated when it opens: the step's stages and
+/// the regions ahead of the centre of mass read no further, s.
+const DISTURBANCE_LOOKAHEAD_S: f64 = 0.1;
 
 fn model_error(region: &str) -> impl Fn(ModelError) -> VehicleError + '_ {
     move |source| VehicleError::Model {
@@ -775,31 +784,38 @@ fn heat_surface(
 }
 
 /// Every lifting surface's region loads, side by side (rayon).
+/// Each surface's loads in its own flight condition (`flights`, one per surface: the wind
+/// where it flies).
 fn surfaces_loads(
     surfaces: &mut [Surface],
     forces: &mut [DVector<f64>],
     state: &VehicleState,
     elevon: &ElevonCommand,
-    flight: &FlightCondition,
+    flights: &[FlightCondition],
     time_s: f64,
     hold_friction: bool,
 ) -> Result<(), VehicleError> {
     let each =
-        |((s, out), modes): (
-            (&mut Surface, &mut DVector<f64>),
-            &crate::dynamics::ModalState,
+        |(((s, out), modes), flight): (
+            (
+                (&mut Surface, &mut DVector<f64>),
+                &crate::dynamics::ModalState,
+            ),
+            &FlightCondition,
         )| { surface_region_loads(s, modes, elevon, flight, time_s, hold_friction, out) };
     if side_by_side() {
         surfaces
             .par_iter_mut()
             .zip(forces.par_iter_mut())
             .zip(state.surface_modes.par_iter())
+            .zip(flights.par_iter())
             .try_for_each(each)
     } else {
         surfaces
             .iter_mut()
             .zip(forces.iter_mut())
             .zip(state.surface_modes.iter())
+            .zip(flights.iter())
             .try_for_each(each)
     }
 }
@@ -1060,6 +1076,8 @@ impl PartitionedVehicle {
             body_friction_rate: BodyLoadRate::Interval(DEFAULT_BODY_FRICTION_DT_S),
             body_history: BodyLoadHistory::default(),
             in_step: false,
+            disturbances: Disturbances::default(),
+            surface_flights: Vec::new(),
         })
     }
 
@@ -1080,16 +1098,24 @@ impl PartitionedVehicle {
     /// Commits an accepted step ending at `time_s` with `state` into the surfaces' modal
     /// histories (aero models with memory; nothing for the others).
     pub fn commit_step(&mut self, state: &VehicleState, time_s: f64) -> Result<(), VehicleError> {
+        self.time_s = time_s;
         let flight = self.flight(state)?;
+        self.update_surface_flights(state, &flight)?;
         for (i, s) in self.surfaces.iter_mut().enumerate() {
             if let (Some(rom), Some(history)) = (s.aero.modal_history(), s.history.as_mut()) {
                 let dt = time_s - history.time_s;
                 let modes = &state.surface_modes[i];
-                rom.commit(history, &flight, dt, &modes.q, &modes.q_dot)
-                    .map_err(model_error(&s.name))?;
+                rom.commit(
+                    history,
+                    &self.surface_flights[i],
+                    dt,
+                    &modes.q,
+                    &modes.q_dot,
+                )
+                .map_err(model_error(&s.name))?;
             }
         }
-        self.advance_heating(&flight, time_s)?;
+        self.advance_heating(time_s)?;
         self.time_s = time_s;
         self.in_step = false;
         Ok(())
@@ -1128,6 +1154,9 @@ impl PartitionedVehicle {
         time_s: f64,
     ) -> Result<(), VehicleError> {
         self.in_step = false;
+        // The field a step reads (its stages and every region ahead of the centre of mass).
+        self.disturbances
+            .extend_to(time_s + DISTURBANCE_LOOKAHEAD_S, self.region_lead_max_m());
         if self.body_rate == BodyLoadRate::EveryStage {
             return Ok(());
         }
@@ -1166,11 +1195,73 @@ impl PartitionedVehicle {
         self.report
     }
 
-    /// The flight condition of a rigid state: airspeed, α, β and rates about the centre of
-    /// mass (no wind).
+    /// The flight condition of a rigid state at the centre of mass: airspeed, α, β relative
+    /// to the air (the disturbances' wind there) and rates about it.
     pub fn flight(&self, state: &VehicleState) -> Result<FlightCondition, VehicleError> {
+        self.flight_at(state, 0.0)
+    }
+
+    /// Sets the wind field the regions fly through from the next evaluation on.
+    pub fn set_disturbances(&mut self, disturbances: Disturbances) {
+        self.disturbances = disturbances;
+    }
+
+    pub fn disturbances(&self) -> &Disturbances {
+        &self.disturbances
+    }
+
+    /// The gust velocity at the centre of mass now, body axes, m/s.
+    pub fn gust_body_m_s(&self) -> Vector3<f64> {
+        if self.disturbances.is_calm() {
+            return Vector3::zeros();
+        }
+        self.disturbances.velocity_at(self.time_s, 0.0)
+    }
+
+    /// How far ahead of the centre of mass the foremost region flies, m (at least zero).
+    fn region_lead_max_m(&self) -> f64 {
+        let cg_x = self.mass.center_of_mass_m.x;
+        self.surfaces
+            .iter()
+            .map(|s| s.pivot_m.x - cg_x)
+            .fold(0.0, f64::max)
+    }
+
+    /// Each surface's flight condition into `surface_flights`: the wind at its pivot, `lead`
+    /// ahead of the centre of mass along the body axis (`flight`, the centre of mass's, when the
+    /// air is calm).
+    fn update_surface_flights(
+        &mut self,
+        state: &VehicleState,
+        flight: &FlightCondition,
+    ) -> Result<(), VehicleError> {
+        self.surface_flights.clear();
+        let cg_x = self.mass.center_of_mass_m.x;
+        for i in 0..self.surfaces.len() {
+            let f = if self.disturbances.is_calm() {
+                *flight
+            } else {
+                self.flight_at(state, self.surfaces[i].pivot_m.x - cg_x)?
+            };
+            self.surface_flights.push(f);
+        }
+        Ok(())
+    }
+
+    /// The flight condition `lead_m` ahead of the centre of mass along the body x axis: the
+    /// airspeed and wind angles of the centre of mass's velocity relative to the gust there.
+    fn flight_at(
+        &self,
+        state: &VehicleState,
+        lead_m: f64,
+    ) -> Result<FlightCondition, VehicleError> {
         let rigid = &state.rigid;
-        let (airspeed, alpha, beta) = rigid.air_data(&Vector3::zeros());
+        let wind_ned = if self.disturbances.is_calm() {
+            Vector3::zeros()
+        } else {
+            rigid.attitude * self.disturbances.velocity_at(self.time_s, lead_m)
+        };
+        let (airspeed, alpha, beta) = rigid.air_data(&wind_ned);
         let altitude = rigid.altitude_m();
         let freestream = Freestream::at_airspeed(airspeed, altitude, self.gas)
             .map_err(model_error("main_body"))?;
@@ -1189,6 +1280,7 @@ impl PartitionedVehicle {
         controls: &FlightControls,
         flight: &FlightCondition,
     ) -> Result<(), VehicleError> {
+        self.update_surface_flights(state, flight)?;
         if self.in_step
             && self.body_history.read(
                 self.time_s,
@@ -1202,7 +1294,7 @@ impl PartitionedVehicle {
                 &mut self.loads.surface_generalized_forces,
                 state,
                 &controls.elevon,
-                flight,
+                &self.surface_flights,
                 self.time_s,
                 true,
             );
@@ -1216,6 +1308,7 @@ impl PartitionedVehicle {
         let engine = self.engine.as_mut();
         let engine_solution = &mut self.engine_solution;
         let surfaces = &mut self.surfaces;
+        let surface_flights = &self.surface_flights;
         let surface_forces = &mut self.loads.surface_generalized_forces;
         let (body_loads, surfaces_done) = join(
             || {
@@ -1236,7 +1329,7 @@ impl PartitionedVehicle {
                     surface_forces,
                     state,
                     &elevon,
-                    flight,
+                    surface_flights,
                     time_s,
                     hold_friction,
                 )
@@ -1369,18 +1462,22 @@ impl PartitionedVehicle {
     /// Advances every heated surface to `time_s`: heat flux from the surface's latest aero
     /// solution every heat-flux interval, conduction steps, and the structure's stiffness (and
     /// the modal equations) from the temperature field every stiffness interval.
-    fn advance_heating(
-        &mut self,
-        flight: &FlightCondition,
-        time_s: f64,
-    ) -> Result<(), VehicleError> {
+    fn advance_heating(&mut self, time_s: f64) -> Result<(), VehicleError> {
         let rates = self.heating;
-        // Each surface heats on its own (heat flux, conduction, its stiffness): side by side.
-        let heat = |s: &mut Surface| heat_surface(s, flight, time_s, &rates);
+        // Each surface heats on its own (heat flux, conduction, its stiffness) in its own flight
+        // condition: side by side.
+        let heat =
+            |(s, flight): (&mut Surface, &FlightCondition)| heat_surface(s, flight, time_s, &rates);
         if side_by_side() {
-            self.surfaces.par_iter_mut().try_for_each(heat)?;
+            self.surfaces
+                .par_iter_mut()
+                .zip(self.surface_flights.par_iter())
+                .try_for_each(heat)?;
         } else {
-            self.surfaces.iter_mut().try_for_each(heat)?;
+            self.surfaces
+                .iter_mut()
+                .zip(self.surface_flights.iter())
+                .try_for_each(heat)?;
         }
         for (i, s) in self.surfaces.iter_mut().enumerate() {
             if let Some(t) = &mut s.thermal

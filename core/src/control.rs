@@ -16,7 +16,8 @@ use serde::de::DeserializeOwned;
 use crate::error::ModelError;
 use crate::registry::Registry;
 
-/// What the controller measures (sensor-free: the true values at the sample instant). SI,
+/// What the controller measures (the true values at the sample instant, or what the runner's
+/// sensors make of them: delayed, biased, noisy). SI,
 /// angles in radians, body axes x forward, y right, z down.
 #[derive(Debug, Clone, Copy, PartialEq, Default, serde::Serialize, serde::Deserialize)]
 pub struct MeasuredOutputs {
@@ -88,6 +89,28 @@ impl MeasuredOutputs {
             self.differential_elevon_rad,
             self.fuel_equivalence_ratio,
         ]
+    }
+
+    /// The outputs from their values in the order of [`Self::NAMES`].
+    pub fn from_values(v: [f64; 16]) -> Self {
+        Self {
+            time_s: v[0],
+            p_rad_s: v[1],
+            q_rad_s: v[2],
+            r_rad_s: v[3],
+            alpha_rad: v[4],
+            beta_rad: v[5],
+            airspeed_m_s: v[6],
+            mach: v[7],
+            altitude_m: v[8],
+            roll_rad: v[9],
+            pitch_rad: v[10],
+            yaw_rad: v[11],
+            flight_path_rad: v[12],
+            symmetric_elevon_rad: v[13],
+            differential_elevon_rad: v[14],
+            fuel_equivalence_ratio: v[15],
+        }
     }
 
     /// The output called `name` (one of [`Self::NAMES`]).

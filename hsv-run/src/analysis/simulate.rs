@@ -462,7 +462,7 @@ impl Stepper {
         end: f64,
     ) -> Result<(), VehicleError> {
         // The controller samples (at its rate) and the actuators move over the step.
-        control.begin_step(k, t, dt, state)?;
+        control.begin_step(k, t, dt, state, &vehicle.gust_body_m_s())?;
         // The body region at the accepted state, read by the step's stages (its rate).
         let start_controls = control.controls_at(t)?;
         vehicle.begin_step(state, &start_controls, t)?;

@@ -304,6 +304,7 @@ pub fn run(args: SimulateArgs, registry: &Registry) -> Result<()> {
                     crate::control::DesignFrom::Restart,
                 ),
             )?;
+            control.set_sensors(crate::control::sensor_settings(&loaded, args.dt_s)?);
             if let Some(c) = restart.control.clone() {
                 control.restore(c)?;
             }

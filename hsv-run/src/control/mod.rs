@@ -12,6 +12,7 @@ pub mod actuators;
 pub mod design;
 pub mod lqr;
 pub mod schedule;
+pub mod sensors;
 
 use hsv_core::control::{ControlCommands, Controller, MeasuredOutputs};
 use nalgebra::Vector3;
@@ -20,11 +21,18 @@ use crate::dynamics::VehicleState;
 use crate::vehicle::partitioned::{ElevonCommand, FlightControls, VehicleError};
 
 pub use actuators::{ActuatorSettings, Actuators, Saturation};
+pub use sensors::{SensorSettings, Sensors};
 
-/// The measured outputs of `state` with the actuators at `positions`, at time `time_s`.
-pub fn measure(state: &VehicleState, positions: &ControlCommands, time_s: f64) -> MeasuredOutputs {
+/// The measured outputs of `state` with the actuators at `positions`, at time `time_s`, in a
+/// gust `gust_body_m_s` at the centre of mass (body axes): air data relative to the air.
+pub fn measure(
+    state: &VehicleState,
+    positions: &ControlCommands,
+    time_s: f64,
+    gust_body_m_s: &Vector3<f64>,
+) -> MeasuredOutputs {
     let rigid = &state.rigid;
-    let (airspeed, alpha, beta) = rigid.air_data(&Vector3::zeros());
+    let (airspeed, alpha, beta) = rigid.air_data(&(rigid.attitude * gust_body_m_s));
     let (roll, pitch, yaw) = rigid.euler_angles();
     let w = rigid.angular_velocity_body_rad_s;
     let v_ned = rigid.velocity_ned_m_s();
@@ -91,12 +99,18 @@ pub struct ControlState {
     pub position_end: ControlCommands,
     /// Which limits the actuators met over the current step.
     pub saturation: Saturation,
+    /// The true outputs of the last steps, oldest first: the sensors' delay line (empty
+    /// without a delay).
+    #[serde(default)]
+    pub sensor_history: std::collections::VecDeque<MeasuredOutputs>,
 }
 
 /// A controller, its actuators and their state, sampled in the time loop.
 pub struct ControlLoop {
     controller: Box<dyn Controller>,
     actuators: Option<Actuators>,
+    /// What stands between the vehicle and the controller (None: the true outputs).
+    sensors: Option<Sensors>,
     /// Steps between samples (None: a law of time, evaluated at every instant).
     sample_steps: Option<usize>,
     pub state: ControlState,
@@ -141,11 +155,13 @@ impl ControlLoop {
             position_start: trim,
             position_end: trim,
             saturation: Saturation::default(),
+            sensor_history: std::collections::VecDeque::new(),
         };
         controller.initial_state(&mut state.controller);
         Ok(Self {
             controller,
             actuators,
+            sensors: None,
             sample_steps,
             state,
             step_start_s: 0.0,
@@ -178,6 +194,15 @@ impl ControlLoop {
         Self::new(Box::new(HostCommands), actuators, trim, dt_s)
     }
 
+    /// Puts `sensors` between the vehicle and the controller from the next sample on.
+    pub fn set_sensors(&mut self, sensors: Option<Sensors>) {
+        if let Some(s) = &sensors {
+            // The delay line's room, taken here and not in the time loop.
+            self.state.sensor_history.reserve(s.delay_steps + 1);
+        }
+        self.sensors = sensors;
+    }
+
     pub fn controller(&self) -> &dyn Controller {
         self.controller.as_ref()
     }
@@ -205,14 +230,16 @@ impl ControlLoop {
         VehicleError::Input(format!("controller `{}`: {e}", self.controller.name()))
     }
 
-    /// The start of step `step` at `t` (length `dt`) from the accepted `vehicle` state: the
-    /// controller samples if due, the actuators move towards the held command.
+    /// The start of step `step` at `t` (length `dt`) from the accepted `vehicle` state in the
+    /// gust `gust_body_m_s` at its centre of mass: the controller samples if due, the actuators
+    /// move towards the held command.
     pub fn begin_step(
         &mut self,
         step: usize,
         t: f64,
         dt: f64,
         vehicle: &VehicleState,
+        gust_body_m_s: &Vector3<f64>,
     ) -> Result<(), VehicleError> {
         self.step_start_s = t;
         self.step_dt_s = dt;
@@ -229,8 +256,29 @@ impl ControlLoop {
                 due
             }
         };
+        let delay = self.sensors.as_ref().map_or(0, |s| s.delay_steps);
+        if delay > 0 {
+            // The delay line holds the true outputs of this step and the `delay` before it.
+            let history = &mut self.state.sensor_history;
+            history.push_back(measure(
+                vehicle,
+                &self.state.position_start,
+                t,
+                gust_body_m_s,
+            ));
+            while history.len() > delay + 1 {
+                history.pop_front();
+            }
+        }
         if due {
-            let outputs = measure(vehicle, &self.state.position_start, t);
+            let truth = match self.state.sensor_history.front() {
+                Some(oldest) if delay > 0 => *oldest,
+                _ => measure(vehicle, &self.state.position_start, t, gust_body_m_s),
+            };
+            let outputs = match &self.sensors {
+                Some(s) => s.read(step, t, &truth),
+                None => truth,
+            };
             self.controller
                 .update(
                     &outputs,
@@ -349,6 +397,21 @@ impl ControlLoop {
 struct ControlTable {
     controller: Option<String>,
     actuators: Option<ActuatorSettings>,
+    sensors: Option<SensorSettings>,
+}
+
+/// The sensors of `[control.sensors]` for a loop of step `dt_s` (None without the table).
+pub fn sensor_settings(
+    loaded: &hsv_core::config::LoadedConfig,
+    dt_s: f64,
+) -> anyhow::Result<Option<Sensors>> {
+    let table: ControlTable =
+        hsv_core::config::parse_table(&loaded.config.control, &loaded.file, "control")?;
+    table
+        .sensors
+        .map(|s| Sensors::new(&s, dt_s, "control.sensors"))
+        .transpose()
+        .map_err(|e| anyhow::anyhow!("{}: {e}", loaded.file))
 }
 
 /// The design data a run's controller was built from: saved in restart files so a resumed run
@@ -461,7 +524,7 @@ pub fn build_control_loop(
 ) -> anyhow::Result<(ControlLoop, DesignRecord)> {
     let trim_commands = commands_of(trim_controls);
     let fresh = || DesignRecord {
-        trim_outputs: measure(trim_state, &trim_commands, 0.0),
+        trim_outputs: measure(trim_state, &trim_commands, 0.0, &Vector3::zeros()),
         trim_commands,
         longitudinal: None,
         lateral: None,

@@ -198,6 +198,9 @@ pub struct ControlContext<'a> {
     /// The `[simulation.inputs]`-style schedule of offsets from trim, as its raw table (empty
     /// when the config has none), for controllers that fly one.
     pub schedule: &'a toml::Table,
+    /// `[control.commands]`: the reference commands of a tracking controller (tables of
+    /// offsets from trim by time) as its raw table, empty when the config has none.
+    pub commands: &'a toml::Table,
     pub registry: &'a Registry,
 }
 

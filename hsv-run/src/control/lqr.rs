@@ -78,12 +78,26 @@ pilot_inputs = true  # add the [simulation.inputs] offsets (the doublet) to the 
 
 /// One axis's regulator.
 #[derive(Debug, Clone)]
-struct Regulator {
+pub(crate) struct Regulator {
     /// Indices into `MeasuredOutputs::values()` of the states, and into the command triple.
-    states: Vec<usize>,
-    inputs: Vec<usize>,
-    feedback: StateFeedback,
-    report: serde_json::Value,
+    pub(crate) states: Vec<usize>,
+    pub(crate) inputs: Vec<usize>,
+    pub(crate) feedback: StateFeedback,
+    pub(crate) report: serde_json::Value,
+}
+
+impl Regulator {
+    /// Adds −K (z − z_trim) to the commands `u` (z from the measured values `y`).
+    pub(crate) fn apply(&self, y: &[f64; 16], trim: &[f64; 16], u: &mut [f64; 3]) {
+        let k = &self.feedback.k;
+        for (i, &ui) in self.inputs.iter().enumerate() {
+            let mut sum = 0.0;
+            for (j, &zj) in self.states.iter().enumerate() {
+                sum += k[(i, j)] * (y[zj] - trim[zj]);
+            }
+            u[ui] -= sum;
+        }
+    }
 }
 
 /// A matrix as its rows, for the JSON design report.
@@ -91,7 +105,7 @@ fn rows(m: &DMatrix<f64>) -> Vec<Vec<f64>> {
     m.row_iter().map(|r| r.iter().copied().collect()).collect()
 }
 
-fn design(
+pub(crate) fn design(
     ctx: &ControlContext<'_>,
     axis: &str,
     model: &LinearDesignModel,
@@ -188,14 +202,7 @@ impl Controller for Lqr {
         let mut u = base.values();
         let y = outputs.values();
         for reg in &self.regulators {
-            let k = &reg.feedback.k;
-            for (i, &ui) in reg.inputs.iter().enumerate() {
-                let mut sum = 0.0;
-                for (j, &zj) in reg.states.iter().enumerate() {
-                    sum += k[(i, j)] * (y[zj] - self.trim_outputs[zj]);
-                }
-                u[ui] -= sum;
-            }
+            reg.apply(&y, &self.trim_outputs, &mut u);
         }
         *commands = ControlCommands::from_values(u);
         Ok(())

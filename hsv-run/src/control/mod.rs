@@ -13,6 +13,7 @@ pub mod design;
 pub mod lqr;
 pub mod schedule;
 pub mod sensors;
+pub mod tracking;
 
 use hsv_core::control::{ControlCommands, Controller, MeasuredOutputs};
 use nalgebra::Vector3;
@@ -398,6 +399,8 @@ struct ControlTable {
     controller: Option<String>,
     actuators: Option<ActuatorSettings>,
     sensors: Option<SensorSettings>,
+    /// Read by the controller that tracks them (`tracking`).
+    commands: Option<toml::Table>,
 }
 
 /// The sensors of `[control.sensors]` for a loop of step `dt_s` (None without the table).
@@ -549,6 +552,12 @@ pub fn build_control_loop(
         .get("inputs")
         .and_then(|v| v.as_table())
         .unwrap_or(&empty);
+    let commands = loaded
+        .config
+        .control
+        .get("commands")
+        .and_then(|v| v.as_table())
+        .unwrap_or(&empty);
     let key_path = format!("models.{name}");
     let context = hsv_core::control::ControlContext {
         settings: loaded.model_settings(name),
@@ -558,6 +567,7 @@ pub fn build_control_loop(
         trim_commands: &trim_commands,
         design: &source,
         schedule,
+        commands,
         registry,
     };
     let controller = registry

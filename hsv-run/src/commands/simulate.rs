@@ -596,5 +596,65 @@ fn write_history(
     let png = folder.join("history.png");
     write_line_plots_png(&png, &figures, 2, (1200, 1400))?;
     folder.record(png);
+    // What the controller asked for against what the actuators did, and the air it flew in.
+    let pair = |title: &str, y_label: &str, pairs: [(&str, Vec<f64>); 2]| LinePlot {
+        title: title.to_owned(),
+        x_label: "time (s)".to_owned(),
+        y_label: y_label.to_owned(),
+        series: pairs
+            .into_iter()
+            .map(|(label, y)| Series {
+                label: label.to_owned(),
+                x: time.clone(),
+                y,
+            })
+            .collect(),
+    };
+    let commands = [
+        pair(
+            "Symmetric elevon",
+            "elevon (deg)",
+            [
+                ("command", column(|s| s.command_elevon_deg)),
+                ("position", column(|s| s.elevon_deg)),
+            ],
+        ),
+        pair(
+            "Differential elevon",
+            "differential elevon (deg)",
+            [
+                ("command", column(|s| s.command_differential_elevon_deg)),
+                ("position", column(|s| s.differential_elevon_deg)),
+            ],
+        ),
+        pair(
+            "Fuel equivalence ratio",
+            "phi",
+            [
+                ("command", column(|s| s.command_fuel_equivalence_ratio)),
+                ("position", column(|s| s.fuel_equivalence_ratio)),
+            ],
+        ),
+        LinePlot {
+            title: "Gust at the centre of mass (body axes)".to_owned(),
+            x_label: "time (s)".to_owned(),
+            y_label: "gust (m/s)".to_owned(),
+            series: [
+                ("u", column(|s| s.gust_u_m_s)),
+                ("v", column(|s| s.gust_v_m_s)),
+                ("w", column(|s| s.gust_w_m_s)),
+            ]
+            .into_iter()
+            .map(|(label, y)| Series {
+                label: label.to_owned(),
+                x: time.clone(),
+                y,
+            })
+            .collect(),
+        },
+    ];
+    let png = folder.join("commands.png");
+    write_line_plots_png(&png, &commands, 2, (1200, 800))?;
+    folder.record(png);
     Ok(())
 }

@@ -29,6 +29,7 @@ fn registry_holds_every_builtin_model() {
         ("scramjet-q1d", Role::Propulsion),
         ("shock-expansion", Role::Aero),
         ("shock-expansion-piston", Role::Aero),
+        ("tracking", Role::Control),
     ];
     assert_eq!(names, expected);
     for entry in registry.iter() {

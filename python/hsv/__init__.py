@@ -210,16 +210,20 @@ class Simulation:
 
     ``controller``: None to command the vehicle yourself with ``step(u)`` (held from the trim
     commands), or a registered controller's name (``"schedule"``: the config's
-    ``[simulation.inputs]``, default the paper's doublet; ``"lqr"``). ``dt_s`` is the
-    aeroelastic step (paper Table 3: 1 ms). Construction trims the vehicle (seconds).
+    ``[simulation.inputs]``, default the paper's doublet; ``"lqr"``, ``"tracking"``). ``dt_s``
+    is the aeroelastic step (paper Table 3: 1 ms). ``disturbances``: a ``[disturbances]`` table
+    as a dict (``{"dryden": {"severity": "severe", "seed": 3}, "gusts": [...]}``) in place of
+    the config's. Construction trims the vehicle (seconds).
     """
 
     def __init__(self, vehicle: Vehicle, dt_s: float = 0.001, controller: Optional[str] = None,
                  heating: bool = True, monolithic: bool = False,
-                 lumped_surface_mass: bool = False):
-        self._native = _hsv.Simulation(vehicle._native, dt_s=dt_s, controller=controller,
-                                       heating=heating, monolithic=monolithic,
-                                       lumped_surface_mass=lumped_surface_mass)
+                 lumped_surface_mass: bool = False,
+                 disturbances: Optional[Mapping[str, Any]] = None):
+        self._native = _hsv.Simulation(
+            vehicle._native, dt_s=dt_s, controller=controller, heating=heating,
+            monolithic=monolithic, lumped_surface_mass=lumped_surface_mass,
+            disturbances_json=None if disturbances is None else json.dumps(dict(disturbances)))
         self.output_names = list(self._native.output_names)
         self.input_names = list(self._native.input_names)
         self._index = {name: i for i, name in enumerate(self.output_names)}

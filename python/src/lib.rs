@@ -289,9 +289,11 @@ fn outputs(flight: &mut Flight) -> PyResult<Vec<f64>> {
 impl Simulation {
     /// Trims `vehicle` at its flight condition and starts the flight there. `controller`: a
     /// registered controller's name (`schedule`, `lqr`, ...) or None for the host's commands
-    /// (`step(u)`), held from the trim commands.
+    /// (`step(u)`), held from the trim commands. `disturbances_json`: a `[disturbances]` table
+    /// as JSON in place of the config's (None: the config's).
     #[new]
-    #[pyo3(signature = (vehicle, dt_s=0.001, controller=None, heating=true, monolithic=false, lumped_surface_mass=false))]
+    #[pyo3(signature = (vehicle, dt_s=0.001, controller=None, heating=true, monolithic=false, lumped_surface_mass=false, disturbances_json=None))]
+    #[allow(clippy::too_many_arguments)]
     fn new(
         py: Python<'_>,
         vehicle: &Vehicle,
@@ -300,7 +302,16 @@ impl Simulation {
         heating: bool,
         monolithic: bool,
         lumped_surface_mass: bool,
+        disturbances_json: Option<&str>,
     ) -> PyResult<Self> {
+        let disturbances = disturbances_json
+            .map(|text| {
+                let table = toml_of_json(text, "disturbances")?;
+                let table: toml::Table = toml::from_str(&table).map_err(config_error)?;
+                hsv_core::config::parse_table(&table, "<disturbances>", "disturbances")
+                    .map_err(config_error)
+            })
+            .transpose()?;
         let options = FlightOptions {
             model: if monolithic {
                 SurfaceModel::Monolithic {
@@ -312,8 +323,7 @@ impl Simulation {
             heated: heating,
             controller,
             dt_s,
-            // The config's [disturbances].
-            disturbances: None,
+            disturbances,
         };
         let flight = py
             .detach(|| Flight::trimmed(&vehicle.loaded, &vehicle.registry, &options, |_| {}))

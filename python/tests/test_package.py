@@ -160,3 +160,25 @@ def test_run_with_inputs_is_the_same_steps_taken_one_by_one(external):
 def test_inputs_command_only_a_flight_you_command(scheduled):
     with pytest.raises(hsv.HsvError, match="controller=None"):
         scheduled.run(0.001, inputs=lambda t_s, outputs: None)
+
+
+def test_turbulence_from_python_is_the_cli_run(cli, tmp_path, vehicle):
+    """`disturbances=` is `[disturbances]`: severe Dryden turbulence with seed 3 flies as
+    `hsv-run simulate --turbulence severe --turbulence-seed 3` (ten significant digits)."""
+    sim = hsv.Simulation(vehicle, controller="schedule",
+                         disturbances={"dryden": {"severity": "severe", "seed": 3}})
+    ours = sim.run(0.05, record_every=1)
+    out = tmp_path / "turbulence"
+    cli("simulate", "--duration-s", "0.05", "--record-every", "1", "--vtk-interval-s", "0",
+        "--turbulence", "severe", "--turbulence-seed", "3", "--quiet", "--out", str(out))
+    theirs = _history(out / "history.csv")
+    assert np.abs(theirs["gust_w_m_s"]).max() > 0.0
+    for name, column in theirs.items():
+        np.testing.assert_allclose(ours[name], column, rtol=6e-10, atol=1e-300, err_msg=name)
+
+
+def test_bad_disturbances_name_their_key(vehicle):
+    with pytest.raises(hsv.HsvError, match="disturbances.dryden"):
+        hsv.Simulation(vehicle, disturbances={"dryden": {"severity": "severe", "sigma_m_s": 1.0}})
+    with pytest.raises(hsv.HsvError, match="wind"):
+        hsv.Simulation(vehicle, disturbances={"wind": 3})

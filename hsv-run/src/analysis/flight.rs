@@ -385,8 +385,6 @@ impl Flight {
             }
         };
         vehicle.set_disturbances(disturbances);
-        let mut control = control;
-        control.set_sensors(crate::control::sensor_settings(loaded, options.dt_s)?);
         vehicle.start_heating(&settings.rates)?;
         vehicle.forget_body_loads();
         let initial = Initial {

@@ -304,7 +304,6 @@ pub fn run(args: SimulateArgs, registry: &Registry) -> Result<()> {
                     crate::control::DesignFrom::Restart,
                 ),
             )?;
-            control.set_sensors(crate::control::sensor_settings(&loaded, args.dt_s)?);
             if let Some(c) = restart.control.clone() {
                 control.restore(c)?;
             }
@@ -546,16 +545,22 @@ fn write_history(
     let csv = folder.join("history.csv");
     write_csv(&csv, &headers, &data)?;
     folder.record(csv);
-    let plot = |title: &str, y_label: &str, y: Vec<f64>| LinePlot {
+    // A panel of labelled series against time, and of the one partitioned series.
+    let lines = |title: &str, y_label: &str, series: Vec<(&str, Vec<f64>)>| LinePlot {
         title: title.to_owned(),
         x_label: "time (s)".to_owned(),
         y_label: y_label.to_owned(),
-        series: vec![Series {
-            label: "partitioned".to_owned(),
-            x: time.clone(),
-            y,
-        }],
+        series: series
+            .into_iter()
+            .map(|(label, y)| Series {
+                label: label.to_owned(),
+                x: time.clone(),
+                y,
+            })
+            .collect(),
     };
+    let plot =
+        |title: &str, y_label: &str, y: Vec<f64>| lines(title, y_label, vec![("partitioned", y)]);
     let figures = [
         plot(
             "Altitude (paper Fig. 11)",
@@ -575,83 +580,54 @@ fn write_history(
             column(|s| s.alpha_deg),
         ),
         plot("Elevon (Fig. 10)", "elevon (deg)", column(|s| s.elevon_deg)),
-        LinePlot {
-            title: "Lifting-surface structure temperature (Fig. 14)".to_owned(),
-            x_label: "time (s)".to_owned(),
-            y_label: "temperature (K)".to_owned(),
-            series: [
+        lines(
+            "Lifting-surface structure temperature (Fig. 14)",
+            "temperature (K)",
+            vec![
                 ("max", column(|s| s.surface_max_temperature_k)),
                 ("mean", column(|s| s.surface_mean_temperature_k)),
                 ("min", column(|s| s.surface_min_temperature_k)),
-            ]
-            .into_iter()
-            .map(|(label, y)| Series {
-                label: label.to_owned(),
-                x: time.clone(),
-                y,
-            })
-            .collect(),
-        },
+            ],
+        ),
     ];
     let png = folder.join("history.png");
     write_line_plots_png(&png, &figures, 2, (1200, 1400))?;
     folder.record(png);
     // What the controller asked for against what the actuators did, and the air it flew in.
-    let pair = |title: &str, y_label: &str, pairs: [(&str, Vec<f64>); 2]| LinePlot {
-        title: title.to_owned(),
-        x_label: "time (s)".to_owned(),
-        y_label: y_label.to_owned(),
-        series: pairs
-            .into_iter()
-            .map(|(label, y)| Series {
-                label: label.to_owned(),
-                x: time.clone(),
-                y,
-            })
-            .collect(),
-    };
     let commands = [
-        pair(
+        lines(
             "Symmetric elevon",
             "elevon (deg)",
-            [
+            vec![
                 ("command", column(|s| s.command_elevon_deg)),
                 ("position", column(|s| s.elevon_deg)),
             ],
         ),
-        pair(
+        lines(
             "Differential elevon",
             "differential elevon (deg)",
-            [
+            vec![
                 ("command", column(|s| s.command_differential_elevon_deg)),
                 ("position", column(|s| s.differential_elevon_deg)),
             ],
         ),
-        pair(
+        lines(
             "Fuel equivalence ratio",
             "phi",
-            [
+            vec![
                 ("command", column(|s| s.command_fuel_equivalence_ratio)),
                 ("position", column(|s| s.fuel_equivalence_ratio)),
             ],
         ),
-        LinePlot {
-            title: "Gust at the centre of mass (body axes)".to_owned(),
-            x_label: "time (s)".to_owned(),
-            y_label: "gust (m/s)".to_owned(),
-            series: [
+        lines(
+            "Gust at the centre of mass (body axes)",
+            "gust (m/s)",
+            vec![
                 ("u", column(|s| s.gust_u_m_s)),
                 ("v", column(|s| s.gust_v_m_s)),
                 ("w", column(|s| s.gust_w_m_s)),
-            ]
-            .into_iter()
-            .map(|(label, y)| Series {
-                label: label.to_owned(),
-                x: time.clone(),
-                y,
-            })
-            .collect(),
-        },
+            ],
+        ),
     ];
     let png = folder.join("commands.png");
     write_line_plots_png(&png, &commands, 2, (1200, 800))?;

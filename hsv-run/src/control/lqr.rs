@@ -8,7 +8,7 @@
 //! excites the regulated vehicle).
 
 use hsv_core::ModelError;
-use hsv_core::control::riccati::solve_care;
+use hsv_core::control::riccati::{RiccatiSolution, solve_care};
 use hsv_core::control::{
     ControlCommands, ControlContext, Controller, LinearDesignModel, MeasuredOutputs, StateFeedback,
 };
@@ -87,13 +87,14 @@ pub(crate) struct Regulator {
 }
 
 impl Regulator {
-    /// Adds −K (z − z_trim) to the commands `u` (z from the measured values `y`).
-    pub(crate) fn apply(&self, y: &[f64; 16], trim: &[f64; 16], u: &mut [f64; 3]) {
+    /// Adds −K (z − z_ref) to the commands `u` (z from the measured values `y`, z_ref from
+    /// `reference`: the trim, or a tracking controller's commanded state).
+    pub(crate) fn apply(&self, y: &[f64; 16], reference: &[f64; 16], u: &mut [f64; 3]) {
         let k = &self.feedback.k;
         for (i, &ui) in self.inputs.iter().enumerate() {
             let mut sum = 0.0;
             for (j, &zj) in self.states.iter().enumerate() {
-                sum += k[(i, j)] * (y[zj] - trim[zj]);
+                sum += k[(i, j)] * (y[zj] - reference[zj]);
             }
             u[ui] -= sum;
         }
@@ -101,8 +102,65 @@ impl Regulator {
 }
 
 /// A matrix as its rows, for the JSON design report.
-fn rows(m: &DMatrix<f64>) -> Vec<Vec<f64>> {
+pub(crate) fn rows(m: &DMatrix<f64>) -> Vec<Vec<f64>> {
     m.row_iter().map(|r| r.iter().copied().collect()).collect()
+}
+
+/// The LQR of ẋ = A x + B u weighted by Bryson's rule (Q_ii = 1/x_max², R_jj = 1/u_max²): the
+/// CARE solution and the closed-loop poles of A − B K as (re, im).
+pub(crate) fn bryson_lqr(
+    ctx: &ControlContext<'_>,
+    axis: &str,
+    a: &DMatrix<f64>,
+    b: &DMatrix<f64>,
+    state_max: &[f64],
+    input_max: &[f64],
+) -> Result<(RiccatiSolution, Vec<[f64; 2]>), ModelError> {
+    let weights = |max: &[f64]| {
+        DMatrix::from_diagonal(&nalgebra::DVector::from_iterator(
+            max.len(),
+            max.iter().map(|m| 1.0 / (m * m)),
+        ))
+    };
+    let s = solve_care(a, b, &weights(state_max), &weights(input_max))
+        .map_err(|e| ctx.settings_error("", format!("{axis} LQR design: {e}")))?;
+    let poles = hsv_core::linalg::general_eigen(&(a - b * &s.k))
+        .map_err(|e| ctx.settings_error("", format!("{axis} closed-loop poles: {e}")))?;
+    let poles = poles.values.iter().map(|c| [c.re, c.im]).collect();
+    Ok((s, poles))
+}
+
+/// The regulator u −= K (z − z_ref) on the named design states (measured outputs) and inputs
+/// (commands).
+pub(crate) fn regulator(
+    ctx: &ControlContext<'_>,
+    state_names: &[String],
+    input_names: &[String],
+    k: DMatrix<f64>,
+    report: serde_json::Value,
+) -> Result<Regulator, ModelError> {
+    let index = |names: &[&str], n: &String, what: &str| {
+        names
+            .iter()
+            .position(|m| m == n)
+            .ok_or_else(|| ctx.settings_error("", format!("design {what} `{n}` is unknown")))
+    };
+    Ok(Regulator {
+        states: state_names
+            .iter()
+            .map(|n| index(&MeasuredOutputs::NAMES, n, "state (measured output)"))
+            .collect::<Result<_, _>>()?,
+        inputs: input_names
+            .iter()
+            .map(|n| index(&ControlCommands::NAMES, n, "input (command)"))
+            .collect::<Result<_, _>>()?,
+        feedback: StateFeedback {
+            state_names: state_names.to_vec(),
+            input_names: input_names.to_vec(),
+            k,
+        },
+        report,
+    })
 }
 
 pub(crate) fn design(
@@ -112,41 +170,7 @@ pub(crate) fn design(
     state_max: &[f64],
     input_max: &[f64],
 ) -> Result<Regulator, ModelError> {
-    let q = DMatrix::from_diagonal(&nalgebra::DVector::from_iterator(
-        state_max.len(),
-        state_max.iter().map(|m| 1.0 / (m * m)),
-    ));
-    let r = DMatrix::from_diagonal(&nalgebra::DVector::from_iterator(
-        input_max.len(),
-        input_max.iter().map(|m| 1.0 / (m * m)),
-    ));
-    let s = solve_care(&model.a, &model.b, &q, &r)
-        .map_err(|e| ctx.settings_error("", format!("{axis} LQR design: {e}")))?;
-    let closed = &model.a - &model.b * &s.k;
-    let poles = hsv_core::linalg::general_eigen(&closed)
-        .map_err(|e| ctx.settings_error("", format!("{axis} closed-loop poles: {e}")))?;
-    let states = model
-        .state_names
-        .iter()
-        .map(|n| {
-            MeasuredOutputs::NAMES
-                .iter()
-                .position(|m| m == n)
-                .ok_or_else(|| {
-                    ctx.settings_error("", format!("design state `{n}` is not measured"))
-                })
-        })
-        .collect::<Result<Vec<_>, _>>()?;
-    let inputs = model
-        .input_names
-        .iter()
-        .map(|n| {
-            ControlCommands::NAMES
-                .iter()
-                .position(|c| c == n)
-                .ok_or_else(|| ctx.settings_error("", format!("design input `{n}` is no command")))
-        })
-        .collect::<Result<Vec<_>, _>>()?;
+    let (s, poles) = bryson_lqr(ctx, axis, &model.a, &model.b, state_max, input_max)?;
     let report = serde_json::json!({
         "states": model.state_names,
         "inputs": model.input_names,
@@ -157,18 +181,9 @@ pub(crate) fn design(
         "care_relative_residual": s.relative_residual,
         "sign_iterations": s.sign_iterations,
         "newton_kleinman_steps": s.newton_steps,
-        "closed_loop_poles": poles.values.iter().map(|c| [c.re, c.im]).collect::<Vec<_>>(),
+        "closed_loop_poles": poles,
     });
-    Ok(Regulator {
-        states,
-        inputs,
-        feedback: StateFeedback {
-            state_names: model.state_names.clone(),
-            input_names: model.input_names.clone(),
-            k: s.k,
-        },
-        report,
-    })
+    regulator(ctx, &model.state_names, &model.input_names, s.k, report)
 }
 
 /// The regulators and the pilot schedule.

@@ -512,7 +512,7 @@ pub fn control_settings(
 }
 
 /// Builds controller `name` at the trim (`trim_state`, `trim_controls`) of `vehicle`, its design
-/// model from `from`; the loop and the design it used.
+/// model from `from`, behind the config's `[control.sensors]`; the loop and the design it used.
 #[allow(clippy::too_many_arguments)]
 pub fn build_control_loop(
     loaded: &hsv_core::config::LoadedConfig,
@@ -545,19 +545,16 @@ pub fn build_control_loop(
         full: std::cell::RefCell::new(full),
         record: std::cell::RefCell::new(record),
     };
-    let empty = toml::Table::new();
-    let schedule = loaded
-        .config
-        .simulation
-        .get("inputs")
-        .and_then(|v| v.as_table())
-        .unwrap_or(&empty);
-    let commands = loaded
-        .config
-        .control
-        .get("commands")
-        .and_then(|v| v.as_table())
-        .unwrap_or(&empty);
+    // `[simulation.inputs]` and `[control.commands]` (empty when the config has none).
+    let sub_table = |table: &toml::Table, key: &str| {
+        table
+            .get(key)
+            .and_then(|v| v.as_table())
+            .cloned()
+            .unwrap_or_default()
+    };
+    let schedule = &sub_table(&loaded.config.simulation, "inputs");
+    let commands = &sub_table(&loaded.config.control, "commands");
     let key_path = format!("models.{name}");
     let context = hsv_core::control::ControlContext {
         settings: loaded.model_settings(name),
@@ -573,6 +570,8 @@ pub fn build_control_loop(
     let controller = registry
         .create_controller(name, &context)
         .map_err(|e| anyhow::anyhow!("{}: controller `{name}`: {e}", loaded.file))?;
-    let control = ControlLoop::new(controller, actuators, trim_controls, dt_s)?;
+    let mut control = ControlLoop::new(controller, actuators, trim_controls, dt_s)?;
+    // Sensors stand between the vehicle and every controller that measures it.
+    control.set_sensors(sensor_settings(loaded, dt_s)?);
     Ok((control, source.record.into_inner()))
 }

@@ -15,13 +15,13 @@
 //! "Advanced PID Control", 2006, §3.5), so a large step is flown on the proportional law.
 
 use hsv_core::ModelError;
-use hsv_core::control::riccati::solve_care;
 use hsv_core::control::{
     ControlCommands, ControlContext, Controller, MeasuredOutputs, StateFeedback,
 };
 use hsv_core::registry::{Constructor, ModelDescriptor};
-use nalgebra::{DMatrix, DVector};
+use nalgebra::DMatrix;
 
+use super::lqr::{Regulator, bryson_lqr, design, regulator, rows};
 use crate::analysis::simulate::InputTable;
 
 /// `[models.tracking]`.
@@ -107,37 +107,31 @@ pub struct Tracking {
     interval_s: f64,
     trim_outputs: [f64; 16],
     trim: ControlCommands,
-    /// Indices into `MeasuredOutputs::values()` of the design states, then of the tracked ones.
-    states: Vec<usize>,
+    /// The proportional law −K_x (x − x_ref) on the longitudinal design states.
+    longitudinal: Regulator,
+    /// Indices into `MeasuredOutputs::values()` of the tracked outputs.
     tracked: [usize; 2],
-    inputs: Vec<usize>,
     /// Errors are integrated only below these (altitude m, airspeed m/s).
     integrate_within: [f64; 2],
     /// Which design input is φ (the one with a hard range, [0, 1]).
     phi_input: Option<usize>,
-    /// Gains on the design states and on the two integrals.
-    k_x: DMatrix<f64>,
+    /// Gains on the two integrals.
     k_xi: DMatrix<f64>,
     commands: [InputTable; 2],
     /// The lateral axis held at trim (its open loop diverges: a spiral/roll root).
-    lateral: super::lqr::Regulator,
+    lateral: Regulator,
     report: serde_json::Value,
-    feedback: StateFeedback,
 }
 
 impl Tracking {
     /// u = u_trim − K_x (x − x_ref) − K_ξ ξ, as the command triple.
     fn law(&self, y: &[f64; 16], reference: &[f64; 16], xi: &[f64]) -> [f64; 3] {
         let mut u = self.trim.values();
-        for (i, &ui) in self.inputs.iter().enumerate() {
-            let mut sum = 0.0;
-            for (j, &zj) in self.states.iter().enumerate() {
-                sum += self.k_x[(i, j)] * (y[zj] - reference[zj]);
-            }
-            for (j, x) in xi.iter().enumerate() {
-                sum += self.k_xi[(i, j)] * x;
-            }
-            u[ui] -= sum;
+        self.longitudinal.apply(y, reference, &mut u);
+        for (i, &ui) in self.longitudinal.inputs.iter().enumerate() {
+            u[ui] -= (0..xi.len())
+                .map(|j| self.k_xi[(i, j)] * xi[j])
+                .sum::<f64>();
         }
         self.lateral.apply(y, &self.trim_outputs, &mut u);
         u
@@ -183,7 +177,7 @@ impl Controller for Tracking {
         // Clamping anti-windup (Åström & Hägglund, "Advanced PID Control", 2006, §3.5): an
         // integral whose step pushes φ further past [0, 1] keeps its previous value.
         if let Some(i) = self.phi_input {
-            let phi = u[self.inputs[i]];
+            let phi = u[self.longitudinal.inputs[i]];
             let excess = if phi > 1.0 {
                 phi - 1.0
             } else if phi < 0.0 {
@@ -215,7 +209,10 @@ impl Controller for Tracking {
 
     fn state_feedback(&self) -> Vec<StateFeedback> {
         // The proportional parts; the integrals are the controller's own state.
-        vec![self.feedback.clone(), self.lateral.feedback.clone()]
+        vec![
+            self.longitudinal.feedback.clone(),
+            self.lateral.feedback.clone(),
+        ]
     }
 }
 
@@ -307,49 +304,26 @@ fn build(ctx: &ControlContext<'_>) -> Result<Box<dyn Controller>, ModelError> {
     a[(n + 1, v)] = 1.0;
     let mut b = DMatrix::zeros(n + 2, m);
     b.view_mut((0, 0), (n, m)).copy_from(&model.b);
-    let weights = state_max
+    let servo_max: Vec<f64> = state_max
         .iter()
         .copied()
         .chain([s.max_altitude_integral_m_s, s.max_airspeed_integral_m])
-        .map(|x| 1.0 / (x * x));
-    let q = DMatrix::from_diagonal(&DVector::from_iterator(n + 2, weights));
-    let r = DMatrix::from_diagonal(&DVector::from_iterator(
-        m,
-        input_max.iter().map(|x| 1.0 / (x * x)),
-    ));
-    let care = solve_care(&a, &b, &q, &r)
-        .map_err(|e| ctx.settings_error("", format!("tracking LQR design: {e}")))?;
-    let closed = &a - &b * &care.k;
-    let poles = hsv_core::linalg::general_eigen(&closed)
-        .map_err(|e| ctx.settings_error("", format!("tracking closed-loop poles: {e}")))?;
-    let k_x = care.k.columns(0, n).into_owned();
-    let k_xi = care.k.columns(n, 2).into_owned();
-    let index = |name: &str, list: &[&str], what: &str| {
-        position(list, name)
-            .ok_or_else(|| ctx.settings_error("", format!("{what} `{name}` unknown")))
-    };
-    let states = names
-        .iter()
-        .map(|n| index(n, &MeasuredOutputs::NAMES, "design state"))
-        .collect::<Result<Vec<_>, _>>()?;
-    let inputs = model
-        .input_names
-        .iter()
-        .map(|n| index(n, &ControlCommands::NAMES, "design input"))
-        .collect::<Result<Vec<_>, _>>()?;
-    let tracked = [
-        index(TRACKED[0], &MeasuredOutputs::NAMES, "tracked output")?,
-        index(TRACKED[1], &MeasuredOutputs::NAMES, "tracked output")?,
-    ];
-    let rows = |m: &DMatrix<f64>| -> Vec<Vec<f64>> {
-        m.row_iter().map(|r| r.iter().copied().collect()).collect()
-    };
+        .collect();
+    let (care, poles) = bryson_lqr(ctx, "tracking", &a, &b, &servo_max, &input_max)?;
     let servo_states: Vec<&str> = names
         .iter()
         .copied()
         .chain(["altitude_error_integral_m_s", "airspeed_error_integral_m"])
         .collect();
-    let lateral = super::lqr::design(
+    let longitudinal = regulator(
+        ctx,
+        &model.state_names,
+        &model.input_names,
+        care.k.columns(0, n).into_owned(),
+        serde_json::Value::Null,
+    )?;
+    let tracked = [longitudinal.states[h], longitudinal.states[v]];
+    let lateral = design(
         ctx,
         "lateral",
         &ctx.design.lateral()?,
@@ -367,27 +341,20 @@ fn build(ctx: &ControlContext<'_>) -> Result<Box<dyn Controller>, ModelError> {
         "inputs": model.input_names,
         "gain_k": rows(&care.k),
         "care_relative_residual": care.relative_residual,
-        "closed_loop_poles": poles.values.iter().map(|c| [c.re, c.im]).collect::<Vec<_>>(),
+        "closed_loop_poles": poles,
     }});
     Ok(Box::new(Tracking {
         interval_s: s.sample_interval_s,
         trim_outputs: ctx.trim_outputs.values(),
         trim: *ctx.trim_commands,
-        states,
         tracked,
         integrate_within: [s.integrate_within_m, s.integrate_within_m_s],
         phi_input: model
             .input_names
             .iter()
             .position(|n| n == "fuel_equivalence_ratio"),
-        inputs,
-        feedback: StateFeedback {
-            state_names: model.state_names.clone(),
-            input_names: model.input_names.clone(),
-            k: k_x.clone(),
-        },
-        k_x,
-        k_xi,
+        k_xi: care.k.columns(n, 2).into_owned(),
+        longitudinal,
         commands,
         lateral,
         report,

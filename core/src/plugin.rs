@@ -8,19 +8,20 @@
 //! header layout is the same in every ABI version, so the host reads `abi_version` before it
 //! decides what `models` points at:
 //!
-//! * **ABI 2** ([`PluginModel`], module [`abi`]): any number of models of the five roles (aero,
-//!   heat flux, conduction, structure, propulsion). Each entry has a role code, descriptor
+//! * **ABI 2** ([`PluginModel`], module [`abi`]): any number of models of the six roles (aero,
+//!   heat flux, conduction, structure, propulsion and, since API 2.1, control). Each entry has a role code, descriptor
 //!   strings, `create` (settings as JSON plus the region's name, kind, side, mesh, reference
 //!   values, gas and parametric geometry as plain data), `destroy`, `last_error`,
 //!   `capabilities`, and a pointer to its role's function table ([`AeroFunctions`],
 //!   [`HeatFluxFunctions`], [`ConductionFunctions`], [`StructureFunctions`],
-//!   [`PropulsionFunctions`]) carrying what coupling needs: panel geometry and elastic panel
+//!   [`PropulsionFunctions`], [`ControlFunctions`]) carrying what coupling needs: panel geometry and elastic panel
 //!   velocities in and pressures and edge states out (aero); edge states and wall temperatures
 //!   in, heat flux or wall shear out (heat flux); state, surface heat flux and the three
 //!   temperature read-outs (conduction); modal matrices, mode names, frequencies, mode shapes on
 //!   a mesh's vertices, temperature updates, thermal generalized forces, root loads, mass
 //!   properties and rigid-body coupling (structure); engine loads, mass flow, status, owned-panel
-//!   pressures and station states (propulsion).
+//!   pressures and station states (propulsion); the trim point, the linear design models on
+//!   request, measured outputs, the host-owned state and commands (control).
 //! * **ABI 1** ([`v1`]): one or more aero models over panel geometry; still loaded.
 //!
 //! The host checks magic, ABI and API versions before calling anything else, never unloads the
@@ -43,12 +44,14 @@ use std::sync::Arc;
 
 pub use abi::*;
 pub use host::{
-    AeroAdapter, ConductionAdapter, HeatFluxAdapter, PropulsionAdapter, StructureAdapter,
+    AeroAdapter, ConductionAdapter, ControllerAdapter, HeatFluxAdapter, PropulsionAdapter,
+    StructureAdapter,
 };
 /// The ABI-1 plugin-side trait and views, kept so v1 plugin sources compile.
 pub use v1::{PluginAero, PluginAeroInput, PluginAeroOutput};
 
 use crate::aero::AeroModel;
+use crate::control::Controller;
 use crate::propulsion::PropulsionModel;
 use crate::registry::{Factory, Origin, Registry, RegistryEntry, RegistryError};
 use crate::structure::StructureModel;
@@ -61,7 +64,8 @@ pub const PLUGIN_MAGIC: [u8; 8] = *b"HSVPLUG\0";
 pub const PLUGIN_ABI_VERSION: u32 = 2;
 /// Semver of the ABI-2 plugin API (the meaning of the fields): the host accepts the same major
 /// and a minor up to its own.
-pub const PLUGIN_API_VERSION: (u32, u32, u32) = (2, 0, 0);
+/// 2.1 added the control role ([`PLUGIN_ROLE_CONTROL`], [`ControlFunctions`]).
+pub const PLUGIN_API_VERSION: (u32, u32, u32) = (2, 1, 0);
 /// Name of the entry point a plugin exports: `extern "C" fn() -> *const PluginHeader`.
 pub const PLUGIN_ENTRY_SYMBOL: &str = "hsv_plugin_entry";
 
@@ -336,11 +340,18 @@ unsafe fn entry(model: &'static PluginModel, origin: &str) -> Result<RegistryEnt
                     .map(|m| Box::new(m) as Box<dyn PropulsionModel>)
             }))
         }
+        PLUGIN_ROLE_CONTROL => {
+            let f: &'static ControlFunctions = unsafe { &*(functions as *const ControlFunctions) };
+            Factory::Control(Arc::new(move |context| {
+                ControllerAdapter::create(model, f, &model_name, context)
+                    .map(|m| Box::new(m) as Box<dyn Controller>)
+            }))
+        }
         other => {
             return Err(bad_header(
                 origin,
                 format!(
-                    "model `{name}` has role code {other}; ABI {PLUGIN_ABI_VERSION} knows 0 aero, 1 heat flux, 2 conduction, 3 structure, 4 propulsion"
+                    "model `{name}` has role code {other}; ABI {PLUGIN_ABI_VERSION} knows 0 aero, 1 heat flux, 2 conduction, 3 structure, 4 propulsion, 5 control"
                 ),
             ));
         }

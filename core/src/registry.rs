@@ -282,6 +282,10 @@ macro_rules! register_model {
 pub type SharedConstructor<M> =
     Arc<dyn Fn(&ModelContext<'_>) -> Result<Box<M>, ModelError> + Send + Sync>;
 
+/// A shared controller constructor (a built-in function or a plugin adapter's closure).
+pub type SharedControllerConstructor =
+    Arc<dyn Fn(&ControlContext<'_>) -> Result<Box<dyn Controller>, ModelError> + Send + Sync>;
+
 /// Constructors as the registry stores them.
 #[derive(Clone)]
 pub enum Factory {
@@ -290,7 +294,7 @@ pub enum Factory {
     Conduction(SharedConstructor<dyn ConductionModel>),
     Structure(SharedConstructor<dyn StructureModel>),
     Propulsion(SharedConstructor<dyn PropulsionModel>),
-    Control(ControllerConstructor),
+    Control(SharedControllerConstructor),
 }
 
 impl Factory {
@@ -314,7 +318,7 @@ impl From<Constructor> for Factory {
             Constructor::Conduction(f) => Factory::Conduction(Arc::new(f)),
             Constructor::Structure(f) => Factory::Structure(Arc::new(f)),
             Constructor::Propulsion(f) => Factory::Propulsion(Arc::new(f)),
-            Constructor::Control(f) => Factory::Control(f),
+            Constructor::Control(f) => Factory::Control(Arc::new(f)),
         }
     }
 }

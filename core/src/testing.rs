@@ -95,3 +95,22 @@ pub fn mirror_panel_pairs(mesh: &crate::mesh::PanelMesh) -> Vec<(usize, usize)> 
     assert_eq!(pairs.len(), lower.len(), "every lower panel has its mirror");
     pairs
 }
+
+/// The cdylib of example plugin crate `crate_name` (`hsv_plugin_ackeret`, ...): built as a
+/// dev-dependency of the calling test crate, so it sits in `target/<profile>/deps/` next to the
+/// test binary (or one level up after `cargo build`). Panics when it is missing.
+pub fn plugin_path(crate_name: &str) -> std::path::PathBuf {
+    let exe = std::env::current_exe().expect("test binary path");
+    let deps_dir = exe.parent().expect("target/<profile>/deps/<test>");
+    let file = format!(
+        "{}{crate_name}{}",
+        std::env::consts::DLL_PREFIX,
+        std::env::consts::DLL_SUFFIX
+    );
+    let candidates = [deps_dir.join(&file), deps_dir.join("..").join(&file)];
+    candidates
+        .iter()
+        .find(|path| path.exists())
+        .cloned()
+        .unwrap_or_else(|| panic!("{file} not found next to {}", deps_dir.display()))
+}

@@ -5,8 +5,7 @@
 //! bit for bit; and every failure at the boundary (not a library, not a plugin, wrong ABI or API
 //! version, a panic, a NaN) is a clear error that leaves the host running.
 
-use std::path::PathBuf;
-
+use hsv_core::testing::plugin_path;
 use approx::assert_relative_eq;
 use hsv_core::aero::{AeroModel, AeroSolution, EdgeState, PanelMotion, integrate_pressure};
 use hsv_core::error::ModelError;
@@ -20,25 +19,6 @@ use hsv_core::registry::{ModelContext, Registry, RoleModel};
 use hsv_core::structure::StructureModel;
 use hsv_core::thermal::{ConductionModel, HeatFluxModel};
 use nalgebra::{DVector, Point3, Vector3};
-
-/// The cdylib of example plugin crate `crate_name`: built as a dev-dependency of this crate, so
-/// it sits in `target/<profile>/deps/` next to this test binary (or one level up after
-/// `cargo build`).
-fn plugin_path(crate_name: &str) -> PathBuf {
-    let exe = std::env::current_exe().expect("test binary path");
-    let deps_dir = exe.parent().expect("target/<profile>/deps/<test>");
-    let file = format!(
-        "{}{crate_name}{}",
-        std::env::consts::DLL_PREFIX,
-        std::env::consts::DLL_SUFFIX
-    );
-    let candidates = [deps_dir.join(&file), deps_dir.join("..").join(&file)];
-    candidates
-        .iter()
-        .find(|path| path.exists())
-        .cloned()
-        .unwrap_or_else(|| panic!("{file} not found next to {}", deps_dir.display()))
-}
 
 /// A 1 m x 1 m flat plate of zero thickness in the x-y plane: upper face (normal -z) and lower
 /// face (normal +z).
@@ -818,7 +798,7 @@ fn a_library_without_the_entry_point_is_a_clear_error() {
     ];
     let libm = candidates
         .iter()
-        .map(PathBuf::from)
+        .map(std::path::PathBuf::from)
         .find(|p| p.exists())
         .expect("a C maths library in a standard place");
     let mut registry = Registry::empty();

@@ -20,6 +20,8 @@ pub const PLUGIN_ROLE_CONDUCTION: u32 = 2;
 pub const PLUGIN_ROLE_STRUCTURE: u32 = 3;
 /// Role code of a propulsion model.
 pub const PLUGIN_ROLE_PROPULSION: u32 = 4;
+/// Role code of a controller (plugin API 2.1).
+pub const PLUGIN_ROLE_CONTROL: u32 = 5;
 
 /// Status a function returns when the model lacks the optional output asked for (not an error).
 pub const PLUGIN_STATUS_NONE: i32 = -1;
@@ -100,8 +102,8 @@ pub struct PluginModel {
     pub destroy: DestroyFn,
     pub last_error: LastErrorFn,
     pub capabilities: CapabilitiesFn,
-    /// `&AeroFunctions`, `&HeatFluxFunctions`, `&ConductionFunctions`, `&StructureFunctions` or
-    /// `&PropulsionFunctions` by `role`; static.
+    /// `&AeroFunctions`, `&HeatFluxFunctions`, `&ConductionFunctions`, `&StructureFunctions`,
+    /// `&PropulsionFunctions` or `&ControlFunctions` by `role`; static.
     pub functions: *const c_void,
 }
 
@@ -109,7 +111,10 @@ pub struct PluginModel {
 unsafe impl Sync for PluginModel {}
 unsafe impl Send for PluginModel {}
 
-/// What `create` gets: the model's settings, where they come from, and its region.
+/// What `create` gets: the model's settings, where they come from, and its region. A
+/// controller belongs to no region: its `region` is named `control`, of kind
+/// [`REGION_OTHER`], with an empty mesh and zero reference and gas values; it gets the
+/// operating point from [`ControlFunctions::start`].
 #[repr(C)]
 pub struct CreateArgs {
     /// `[models.<name>]` overlaid by the region's override, as JSON.
@@ -415,4 +420,74 @@ pub struct PropulsionFunctions {
         input: *const EngineInputAbi,
         output: *mut EngineOutputAbi,
     ) -> i32,
+}
+
+/// Where a controller asks the host for its linear design model during
+/// [`ControlFunctions::start`]: the host linearizes the trimmed vehicle on the first request.
+#[repr(C)]
+pub struct DesignSourceAbi {
+    /// The host's context, passed back to `model`.
+    pub context: *mut c_void,
+    /// Points `out` at the design model `which` ([`DESIGN_LONGITUDINAL`] or
+    /// [`DESIGN_LATERAL`]) as JSON (`{"state_names": [..], "input_names": [..], "a": [[row],
+    /// ..], "b": [[row], ..], "reduction": ".."}`, rows of `a` and `b` by state), valid until
+    /// `start` returns; on a non-zero status `out` holds the host's error message instead.
+    pub model: unsafe extern "C" fn(context: *mut c_void, which: u32, out: *mut StrAbi) -> i32,
+}
+
+/// [`DesignSourceAbi::model`]: the rigid longitudinal design model (inputs symmetric elevon, φ).
+pub const DESIGN_LONGITUDINAL: u32 = 0;
+/// [`DesignSourceAbi::model`]: the rigid lateral design model (input differential elevon).
+pub const DESIGN_LATERAL: u32 = 1;
+
+/// Number of measured outputs a controller reads ([`crate::control::MeasuredOutputs::NAMES`]).
+pub const CONTROL_OUTPUTS: usize = 16;
+/// Number of commands a controller writes ([`crate::control::ControlCommands::NAMES`]).
+pub const CONTROL_COMMANDS: usize = 3;
+
+/// What a controller's `start` gets: the operating point it is designed about.
+#[repr(C)]
+pub struct ControlStartAbi {
+    /// Measured outputs at trim, in the order of `MeasuredOutputs::NAMES`.
+    pub trim_outputs: [f64; CONTROL_OUTPUTS],
+    /// Trim commands: symmetric elevon rad, differential elevon rad, φ.
+    pub trim_commands: [f64; CONTROL_COMMANDS],
+    /// `[simulation.inputs]` as JSON (`{}` when the config has none).
+    pub schedule_json: StrAbi,
+    /// `[control.commands]` as JSON (`{}` when the config has none).
+    pub commands_json: StrAbi,
+    pub design: DesignSourceAbi,
+}
+
+/// Controller functions. `start` is called once, after `create` and before any other; the
+/// controller's state is the host's `n_state` numbers (written into restart files).
+#[repr(C)]
+pub struct ControlFunctions {
+    /// Designs the controller about the operating point.
+    pub start: unsafe extern "C" fn(handle: *mut c_void, args: *const ControlStartAbi) -> i32,
+    /// Interval between samples, s; 0 for a stateless law of time evaluated at every instant.
+    pub sample_interval_s: unsafe extern "C" fn(handle: *mut c_void) -> f64,
+    /// Length of the controller's state; fixed after `start`.
+    pub state_len: unsafe extern "C" fn(handle: *mut c_void) -> usize,
+    /// The state at trim, `n_state` values.
+    pub initial_state:
+        unsafe extern "C" fn(handle: *mut c_void, state: *mut f64, n_state: usize) -> i32,
+    /// One sample: [`CONTROL_OUTPUTS`] measured outputs in, the state advanced in place,
+    /// [`CONTROL_COMMANDS`] absolute commands out.
+    pub update: unsafe extern "C" fn(
+        handle: *mut c_void,
+        outputs: *const f64,
+        state: *mut f64,
+        n_state: usize,
+        commands: *mut f64,
+    ) -> i32,
+    /// Copies the design report (JSON; `null` for none) into `buffer` (at most `capacity`
+    /// bytes); returns its full length.
+    pub design_report:
+        unsafe extern "C" fn(handle: *mut c_void, buffer: *mut u8, capacity: usize) -> usize,
+    /// Copies the static state-feedback laws u = −K z as JSON (`[{"state_names": [..],
+    /// "input_names": [..], "k": [[row], ..]}, ..]`, rows of `k` by input; `[]` for none)
+    /// into `buffer`; returns its full length.
+    pub state_feedback:
+        unsafe extern "C" fn(handle: *mut c_void, buffer: *mut u8, capacity: usize) -> usize,
 }

@@ -4,10 +4,11 @@
 
 use std::collections::BTreeMap;
 
-use nalgebra::{Point3, Vector3};
+use nalgebra::{DMatrix, Point3, Vector3};
 
 use super::abi::*;
 use crate::aero::{EdgeState, ReferenceValues};
+use crate::control::{LinearDesignModel, StateFeedback};
 use crate::flow::{FlightCondition, Freestream};
 use crate::gas::PerfectGas;
 use crate::mesh::{Panel, PanelMesh, RegionKind, Strip, Surface};
@@ -267,6 +268,116 @@ impl RegionBuffers {
             geometry_json: StrAbi::new(&self.geometry),
         }
     }
+}
+
+/// The region a controller is created with: named `control`, kind other, no mesh, zero
+/// reference and gas values (a controller belongs to the vehicle, not to a region).
+pub(crate) fn control_region(empty_mesh: &MeshBuffers) -> RegionAbi {
+    RegionAbi {
+        name: StrAbi::new("control"),
+        kind: REGION_OTHER,
+        side: SIDE_NONE,
+        mesh: empty_mesh.abi(),
+        reference: [0.0; 6],
+        gamma: 0.0,
+        gas_constant_j_kg_k: 0.0,
+        geometry_json: StrAbi::new("\"mesh\""),
+    }
+}
+
+/// A matrix as JSON rows.
+fn matrix_rows(m: &DMatrix<f64>) -> serde_json::Value {
+    m.row_iter()
+        .map(|row| row.iter().copied().collect::<Vec<f64>>())
+        .collect::<Vec<_>>()
+        .into()
+}
+
+/// A matrix from JSON rows of equal length.
+fn matrix_from_rows(value: &serde_json::Value, what: &str) -> Result<DMatrix<f64>, String> {
+    let rows: Vec<Vec<f64>> = serde_json::from_value(value.clone())
+        .map_err(|e| format!("`{what}` is not a list of rows of numbers: {e}"))?;
+    let ncols = rows.first().map_or(0, Vec::len);
+    if let Some(bad) = rows.iter().position(|r| r.len() != ncols) {
+        return Err(format!(
+            "`{what}` row {bad} has {} values, row 0 has {ncols}",
+            rows[bad].len()
+        ));
+    }
+    Ok(DMatrix::from_fn(rows.len(), ncols, |i, j| rows[i][j]))
+}
+
+fn names_from(value: &serde_json::Value, what: &str) -> Result<Vec<String>, String> {
+    serde_json::from_value(value.clone()).map_err(|e| format!("`{what}` is not a list of names: {e}"))
+}
+
+/// A design model as the JSON of [`DesignSourceAbi::model`].
+pub(crate) fn design_model_json(model: &LinearDesignModel) -> String {
+    serde_json::json!({
+        "state_names": model.state_names,
+        "input_names": model.input_names,
+        "a": matrix_rows(&model.a),
+        "b": matrix_rows(&model.b),
+        "reduction": model.reduction,
+    })
+    .to_string()
+}
+
+/// A design model from the JSON of [`DesignSourceAbi::model`], its shapes checked.
+pub(crate) fn design_model_from_json(json: &str) -> Result<LinearDesignModel, String> {
+    let v: serde_json::Value =
+        serde_json::from_str(json).map_err(|e| format!("design model is not JSON: {e}"))?;
+    let model = LinearDesignModel {
+        state_names: names_from(&v["state_names"], "state_names")?,
+        input_names: names_from(&v["input_names"], "input_names")?,
+        a: matrix_from_rows(&v["a"], "a")?,
+        b: matrix_from_rows(&v["b"], "b")?,
+        reduction: v["reduction"].as_str().unwrap_or_default().to_owned(),
+    };
+    let (n, m) = (model.state_names.len(), model.input_names.len());
+    if model.a.shape() != (n, n) || model.b.nrows() != n || (m > 0 && model.b.ncols() != m) {
+        return Err(format!(
+            "design model of {n} states and {m} inputs has A {:?} and B {:?}",
+            model.a.shape(),
+            model.b.shape()
+        ));
+    }
+    Ok(model)
+}
+
+/// State-feedback laws as the JSON of [`ControlFunctions::state_feedback`].
+pub(crate) fn state_feedback_json(laws: &[StateFeedback]) -> String {
+    let laws = laws.iter().map(|law| {
+        serde_json::json!({
+            "state_names": law.state_names,
+            "input_names": law.input_names,
+            "k": matrix_rows(&law.k),
+        })
+    });
+    serde_json::Value::Array(laws.collect()).to_string()
+}
+
+/// State-feedback laws from the JSON of [`ControlFunctions::state_feedback`], shapes checked.
+pub(crate) fn state_feedback_from_json(json: &str) -> Result<Vec<StateFeedback>, String> {
+    let v: serde_json::Value =
+        serde_json::from_str(json).map_err(|e| format!("state feedback is not JSON: {e}"))?;
+    let laws = v
+        .as_array()
+        .ok_or("state feedback is not a JSON list")?;
+    laws.iter()
+        .map(|law| {
+            let law = StateFeedback {
+                state_names: names_from(&law["state_names"], "state_names")?,
+                input_names: names_from(&law["input_names"], "input_names")?,
+                k: matrix_from_rows(&law["k"], "k")?,
+            };
+            let shape = (law.input_names.len(), law.state_names.len());
+            if law.k.shape() != shape {
+                return Err(format!("gain K is {:?}, not {shape:?}", law.k.shape()));
+            }
+            Ok(law)
+        })
+        .collect()
 }
 
 /// A slice from an ABI pointer and count; a null pointer is an error unless `len` is 0.

@@ -36,7 +36,8 @@ pub struct LinearizeArgs {
     #[arg(long)]
     pub force: bool,
     /// Also close the loop with this controller (`lqr`) and print the closed-loop eigenvalues
-    /// of the full flexible linear model.
+    /// of the full flexible linear model, with the `[control.actuators]` lags and the sample
+    /// hold's and sensors' delay in the loop.
     #[arg(long, value_name = "NAME", conflicts_with = "grid")]
     pub controller: Option<String>,
     /// Flight Mach number(s), comma separated (default: the config's `[flight] mach`); more
@@ -125,9 +126,11 @@ pub fn run(args: LinearizeArgs, registry: &Registry) -> Result<()> {
             if laws.is_empty() {
                 anyhow::bail!("controller `{name}` is no linear state feedback: no closed loop");
             }
-            let values = crate::control::design::closed_loop_eigenvalues(&lin.model, &laws)
-                .map_err(|e| anyhow::anyhow!("closing the loop with `{name}`: {e}"))?;
-            Some((name.clone(), values, control.controller().design_report()))
+            let dynamics = crate::control::loop_dynamics(&loaded, name, control.controller())?;
+            let values =
+                crate::control::design::closed_loop_eigenvalues(&lin.model, &laws, &dynamics)
+                    .map_err(|e| anyhow::anyhow!("closing the loop with `{name}`: {e}"))?;
+            Some((name.clone(), values, control.controller().design_report(), dynamics))
         }
     };
     let mut folder = RunFolder::create("linearize", args.out.as_deref(), args.force)?;
@@ -176,10 +179,13 @@ pub fn run(args: LinearizeArgs, registry: &Registry) -> Result<()> {
         "inputs": m.input_names,
         "outputs": m.output_names,
         "modes": lin.modes,
-        "closed_loop": closed.as_ref().map(|(name, values, design)| serde_json::json!({
+        "closed_loop": closed.as_ref().map(|(name, values, design, dynamics)| serde_json::json!({
             "controller": name,
             "eigenvalues_re_im": values,
             "design": design,
+            "elevon_time_constant_s": dynamics.elevon_time_constant_s,
+            "phi_time_constant_s": dynamics.phi_time_constant_s,
+            "delay_s": dynamics.delay_s,
         })),
     });
     let written = folder.write_summary(summary, &RunStatus::Completed)?;
@@ -214,11 +220,14 @@ pub fn run(args: LinearizeArgs, registry: &Registry) -> Result<()> {
             mode.damping_ratio
         )?;
     }
-    if let Some((name, values, design)) = &closed {
+    if let Some((name, values, design, dynamics)) = &closed {
         super::simulate::print_gains(design)?;
         outln!(
-            "closed loop under `{name}` (full flexible model), eigenvalues by real part, largest \
-             first:"
+            "closed loop under `{name}` (full flexible model; actuator lags {} s elevon, {} s \
+             phi; delay {} s as first-order Pade), eigenvalues by real part, largest first:",
+            dynamics.elevon_time_constant_s,
+            dynamics.phi_time_constant_s,
+            dynamics.delay_s
         )?;
         for v in values {
             outln!("  {:>13.5e} {:>+13.5e} i", v[0], v[1])?;

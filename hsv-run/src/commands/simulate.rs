@@ -500,12 +500,17 @@ pub fn run(args: SimulateArgs, registry: &Registry) -> Result<()> {
     })
 }
 
-/// The gains of a designed controller (its `controller.json` report), one line per axis.
+/// The gains of a designed controller (its `controller.json` report): an LQR axis in three
+/// lines, any other entry (a plugin's report) as `key: JSON`.
 pub(crate) fn print_gains(report: &serde_json::Value) -> Result<()> {
     let Some(axes) = report.as_object() else {
         return Ok(());
     };
     for (axis, r) in axes {
+        if r.get("care_relative_residual").is_none() {
+            outln!("{axis}: {r}")?;
+            continue;
+        }
         outln!(
             "{axis} LQR: states {}, inputs {}; CARE relative residual {:.2e}",
             r["states"],

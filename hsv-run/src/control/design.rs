@@ -121,28 +121,122 @@ pub fn design_model(full: &LinearModel, axis: &Axis) -> Result<LinearDesignModel
     })
 }
 
-/// The full linear model's state matrix closed by `laws`: A − Σ B_u K C_z, each law's design
-/// states z read through the rows of C that measure them (so the structural dynamics the
-/// design residualized stay in the loop).
+/// What lies between a sampled state-feedback law and the vehicle's inputs in the linear
+/// closed loop: the actuators' first-order lags and the loop's transport delay.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct LoopDynamics {
+    /// Elevon servo time constant, s (0: none).
+    pub elevon_time_constant_s: f64,
+    /// Fuel-system time constant of φ, s (0: none).
+    pub phi_time_constant_s: f64,
+    /// Delay from measurement to command, s: half the sample interval (the zero-order hold's
+    /// average delay; Franklin, Powell & Workman, "Digital Control of Dynamic Systems", 3rd ed.,
+    /// §6.3) plus the sensors' transport delay.
+    pub delay_s: f64,
+}
+
+impl LoopDynamics {
+    fn time_constant_s(&self, input: &str) -> f64 {
+        if input == "fuel_equivalence_ratio" {
+            self.phi_time_constant_s
+        } else {
+            self.elevon_time_constant_s
+        }
+    }
+}
+
+/// The full linear model closed by `laws` through `dynamics`, each law's design states z read
+/// through the rows of C that measure them (so the structural dynamics the design residualized
+/// stay in the loop; the design states are states, with no feedthrough D).
+///
+/// The commands c = −Σ K C_z x of the inputs the laws drive pass a first-order Padé delay
+/// e^(−sT) ≈ (1 − sT/2)/(1 + sT/2) (state w, ẇ = (4c − 2w)/T, output w − c) and then the
+/// actuator lag τ ȧ = d − a, whose position a drives the vehicle: states [x, a, w], each
+/// block present when its time constant is. With neither it is A − Σ B K C_z.
 pub fn closed_loop_matrix(
     full: &LinearModel,
     laws: &[hsv_core::control::StateFeedback],
+    dynamics: &LoopDynamics,
 ) -> Result<DMatrix<f64>, String> {
-    let mut a = full.a.clone();
+    let n = full.a.nrows();
+    // The inputs the laws drive, and the command gain c = G x on each.
+    let mut driven: Vec<usize> = Vec::new();
+    let mut gain_rows: Vec<nalgebra::RowDVector<f64>> = Vec::new();
     for law in laws {
         let y: Vec<usize> = law
             .state_names
             .iter()
-            .map(|n| index_of(&full.output_names, n, "output"))
+            .map(|name| index_of(&full.output_names, name, "output"))
             .collect::<Result<_, _>>()?;
-        let u: Vec<usize> = law
-            .input_names
-            .iter()
-            .map(|n| index_of(&full.input_names, n, "input"))
-            .collect::<Result<_, _>>()?;
-        let c = DMatrix::from_fn(y.len(), full.c.ncols(), |i, j| full.c[(y[i], j)]);
-        let b = DMatrix::from_fn(full.b.nrows(), u.len(), |i, j| full.b[(i, u[j])]);
-        a -= b * &law.k * c;
+        let c = DMatrix::from_fn(y.len(), n, |i, j| full.c[(y[i], j)]);
+        let g = -(&law.k * c);
+        for (row, name) in law.input_names.iter().enumerate() {
+            let u = index_of(&full.input_names, name, "input")?;
+            match driven.iter().position(|&d| d == u) {
+                Some(k) => gain_rows[k] += g.row(row),
+                None => {
+                    driven.push(u);
+                    gain_rows.push(g.row(row).into_owned());
+                }
+            }
+        }
+    }
+    let m = driven.len();
+    let g = DMatrix::from_fn(m, n, |i, j| gain_rows[i][j]);
+    let b = DMatrix::from_fn(n, m, |i, j| full.b[(i, driven[j])]);
+    let tau: Vec<f64> = driven
+        .iter()
+        .map(|&u| dynamics.time_constant_s(&full.input_names[u]))
+        .collect();
+    let delay = dynamics.delay_s;
+    if tau.iter().any(|t| !(t.is_finite() && *t >= 0.0)) || !(delay.is_finite() && delay >= 0.0) {
+        return Err(format!(
+            "actuator time constants {tau:?} s and delay {delay} s must be >= 0"
+        ));
+    }
+    let lagged: Vec<usize> = (0..m).filter(|&k| tau[k] > 0.0).collect();
+    let (na, nw) = (lagged.len(), if delay > 0.0 { m } else { 0 });
+    let mut a = DMatrix::zeros(n + na + nw, n + na + nw);
+    a.view_mut((0, 0), (n, n)).copy_from(&full.a);
+    // The delayed command d = w − G x (or G x without the delay), as rows over [x, a, w].
+    let command_row = |k: usize| {
+        let mut row = nalgebra::RowDVector::zeros(n + na + nw);
+        row.columns_mut(0, n).copy_from(&g.row(k));
+        if nw > 0 {
+            row.columns_mut(0, n).neg_mut();
+            row[n + na + k] = 1.0;
+        }
+        row
+    };
+    for k in 0..m {
+        let d = command_row(k);
+        match lagged.iter().position(|&l| l == k) {
+            // The actuator position drives the vehicle; τ ȧ = d − a.
+            Some(slot) => {
+                for i in 0..n {
+                    a[(i, n + slot)] += b[(i, k)];
+                }
+                let mut row = d / tau[k];
+                row[n + slot] -= 1.0 / tau[k];
+                let mut target = a.row_mut(n + slot);
+                target += row;
+            }
+            // No lag: the (delayed) command drives the vehicle directly.
+            None => {
+                for i in 0..n {
+                    let mut target = a.row_mut(i);
+                    target += &d * b[(i, k)];
+                }
+            }
+        }
+        if nw > 0 {
+            // ẇ = (4 c − 2 w) / T with c = G x.
+            let w = n + na + k;
+            for j in 0..n {
+                a[(w, j)] += 4.0 * g[(k, j)] / delay;
+            }
+            a[(w, w)] -= 2.0 / delay;
+        }
     }
     Ok(a)
 }
@@ -151,10 +245,98 @@ pub fn closed_loop_matrix(
 pub fn closed_loop_eigenvalues(
     full: &LinearModel,
     laws: &[hsv_core::control::StateFeedback],
+    dynamics: &LoopDynamics,
 ) -> Result<Vec<[f64; 2]>, String> {
-    let a = closed_loop_matrix(full, laws)?;
+    let a = closed_loop_matrix(full, laws, dynamics)?;
     let eig = hsv_core::linalg::general_eigen(&a).map_err(|e| e.to_string())?;
     let mut values: Vec<[f64; 2]> = eig.values.iter().map(|c| [c.re, c.im]).collect();
     values.sort_by(|a, b| b[0].total_cmp(&a[0]));
     Ok(values)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use nalgebra::{Complex, DVector};
+
+    /// ẋ = a x + b u, y = x, under u = −k y.
+    fn scalar_loop(dynamics: LoopDynamics) -> Vec<Complex<f64>> {
+        let (a, b, k) = (2.0, 3.0, 2.0);
+        let model = LinearModel {
+            state_names: vec!["w_m_s".into()],
+            input_names: vec!["symmetric_elevon_rad".into()],
+            output_names: vec!["alpha_rad".into()],
+            x0: DVector::zeros(1),
+            u0: DVector::zeros(1),
+            a: DMatrix::from_element(1, 1, a),
+            b: DMatrix::from_element(1, 1, b),
+            c: DMatrix::from_element(1, 1, 1.0),
+            d: DMatrix::zeros(1, 1),
+        };
+        let law = hsv_core::control::StateFeedback {
+            state_names: vec!["alpha_rad".into()],
+            input_names: vec!["symmetric_elevon_rad".into()],
+            k: DMatrix::from_element(1, 1, k),
+        };
+        let closed = closed_loop_matrix(&model, &[law], &dynamics).unwrap();
+        hsv_core::linalg::general_eigen(&closed).unwrap().values.iter().copied().collect()
+    }
+
+    /// Each eigenvalue is a root of the loop's characteristic polynomial (coefficients highest
+    /// power first), and there are as many as its degree.
+    fn assert_roots_of(values: &[Complex<f64>], coefficients: &[f64]) {
+        assert_eq!(values.len(), coefficients.len() - 1, "{values:?}");
+        for &s in values {
+            let p = coefficients
+                .iter()
+                .fold(Complex::new(0.0, 0.0), |acc, &c| acc * s + c);
+            let scale: f64 = coefficients
+                .iter()
+                .enumerate()
+                .map(|(i, c)| c.abs() * s.norm().powi((coefficients.len() - 1 - i) as i32))
+                .sum();
+            assert!(p.norm() < 1e-12 * scale, "p({s}) = {p}");
+        }
+    }
+
+    /// Closed forms of the scalar loop (a = 2, b = 3, k = 2): without dynamics s = a − bk; with
+    /// an actuator lag τ, (s − a)(τs + 1) + bk = 0; with a first-order Padé delay T as well,
+    /// (s − a)(τs + 1)(1 + sT/2) + bk(1 − sT/2) = 0 (Franklin, Powell & Emami-Naeini, "Feedback
+    /// Control of Dynamic Systems", §5.6 for the Padé form).
+    #[test]
+    fn closed_loop_has_the_closed_form_characteristic_polynomial() {
+        let (a, bk, tau, t) = (2.0, 6.0, 0.1, 0.02);
+        let bare = scalar_loop(LoopDynamics::default());
+        assert_roots_of(&bare, &[1.0, bk - a]);
+        let lag = LoopDynamics {
+            elevon_time_constant_s: tau,
+            ..Default::default()
+        };
+        assert_roots_of(&scalar_loop(lag), &[tau, 1.0 - a * tau, bk - a]);
+        let delay = LoopDynamics {
+            delay_s: t,
+            ..Default::default()
+        };
+        // (s − a)(1 + sT/2) + bk(1 − sT/2)
+        assert_roots_of(
+            &scalar_loop(delay),
+            &[t / 2.0, 1.0 - a * t / 2.0 - bk * t / 2.0, bk - a],
+        );
+        let both = LoopDynamics {
+            elevon_time_constant_s: tau,
+            delay_s: t,
+            ..Default::default()
+        };
+        // (τs² + (1 − aτ)s − a)(1 + sT/2) + bk(1 − sT/2)
+        let h = t / 2.0;
+        assert_roots_of(
+            &scalar_loop(both),
+            &[
+                tau * h,
+                tau + (1.0 - a * tau) * h,
+                (1.0 - a * tau) - a * h - bk * h,
+                -a + bk,
+            ],
+        );
+    }
 }

@@ -417,6 +417,31 @@ pub fn sensor_settings(
         .map_err(|e| anyhow::anyhow!("{}: {e}", loaded.file))
 }
 
+/// The actuator lags and loop delay of controller `name`'s loop as the config sets them, for
+/// the linear closed loop (`linearize --controller`).
+pub fn loop_dynamics(
+    loaded: &hsv_core::config::LoadedConfig,
+    name: &str,
+    controller: &dyn hsv_core::control::Controller,
+) -> anyhow::Result<design::LoopDynamics> {
+    let (_, actuators) = control_settings(loaded, Some(name))?;
+    let table: ControlTable =
+        hsv_core::config::parse_table(&loaded.config.control, &loaded.file, "control")?;
+    let sensor_delay_s = table.sensors.map_or(0.0, |s| s.delay_s);
+    let hold_delay_s = 0.5 * controller.sample_interval_s().unwrap_or(0.0);
+    Ok(match actuators {
+        Some(a) => design::LoopDynamics {
+            elevon_time_constant_s: a.settings().elevon_time_constant_s,
+            phi_time_constant_s: a.settings().phi_time_constant_s,
+            delay_s: hold_delay_s + sensor_delay_s,
+        },
+        None => design::LoopDynamics {
+            delay_s: hold_delay_s + sensor_delay_s,
+            ..Default::default()
+        },
+    })
+}
+
 /// The design data a run's controller was built from: saved in restart files so a resumed run
 /// rebuilds the same controller bit for bit.
 #[derive(Debug, Clone, PartialEq, Default, serde::Serialize, serde::Deserialize)]

@@ -72,13 +72,19 @@ struct Synthetic {
 impl DesignSource for Synthetic {
     fn longitudinal(&self) -> Result<LinearDesignModel, ModelError> {
         if self.failing {
-            return Err(ModelError::inconsistent("vehicle", "the trim did not converge"));
+            return Err(ModelError::inconsistent(
+                "vehicle",
+                "the trim did not converge",
+            ));
         }
         Ok(longitudinal())
     }
     fn lateral(&self) -> Result<LinearDesignModel, ModelError> {
         if self.failing {
-            return Err(ModelError::inconsistent("vehicle", "the trim did not converge"));
+            return Err(ModelError::inconsistent(
+                "vehicle",
+                "the trim did not converge",
+            ));
         }
         Ok(lateral())
     }
@@ -196,7 +202,10 @@ fn pole_placement_plugin_places_the_short_period_poles() {
     let expected = trim_commands().symmetric_elevon_rad - (k[(0, 0)] * 0.01 + k[(0, 1)] * -0.02);
     assert!((commands.symmetric_elevon_rad - expected).abs() < 1e-15);
     assert_eq!(commands.differential_elevon_rad, 0.0);
-    assert_eq!(commands.fuel_equivalence_ratio, trim_commands().fuel_equivalence_ratio);
+    assert_eq!(
+        commands.fuel_equivalence_ratio,
+        trim_commands().fuel_equivalence_ratio
+    );
 }
 
 /// A bad setting names its key, a design model the host cannot build is the host's message,
@@ -208,7 +217,10 @@ fn plugin_controller_errors_are_clear() {
     let err = build(&registry, "pole-placement", "damping = 0.7", &design)
         .err()
         .expect("an unknown key");
-    assert!(err.contains("models.pole-placement") && err.contains("damping"), "{err}");
+    assert!(
+        err.contains("models.pole-placement") && err.contains("damping"),
+        "{err}"
+    );
     let err = build(
         &registry,
         "pole-placement",
@@ -217,10 +229,18 @@ fn plugin_controller_errors_are_clear() {
     )
     .err()
     .expect("a negative damping");
-    assert!(err.contains("short_period_damping") && err.contains("> 0"), "{err}");
-    let err = build(&registry, "pole-placement", "", &Synthetic { failing: true })
-        .err()
-        .expect("no design model");
+    assert!(
+        err.contains("short_period_damping") && err.contains("> 0"),
+        "{err}"
+    );
+    let err = build(
+        &registry,
+        "pole-placement",
+        "",
+        &Synthetic { failing: true },
+    )
+    .err()
+    .expect("no design model");
     assert!(err.contains("the trim did not converge"), "{err}");
     build(&registry, "pole-placement", "", &design).expect("still designs");
 }
@@ -291,8 +311,7 @@ hsv_core::plugin_header! {
 fn twins() -> Registry {
     let mut registry = Registry::empty();
     // SAFETY: TWINS is built by `plugin_header!`, which follows the ABI.
-    unsafe { registry.register_plugin_header(&TWINS, "in-process twins") }
-        .expect("twins register");
+    unsafe { registry.register_plugin_header(&TWINS, "in-process twins") }.expect("twins register");
     registry
 }
 
@@ -322,7 +341,11 @@ fn builtin_controllers_through_the_abi_fly_as_built_in() {
     ] {
         let mut direct = build(builtin(), name, "", &design).expect("built in");
         let mut exported = build(&registry, twin, "", &design).expect("through the ABI");
-        assert_eq!(direct.sample_interval_s(), exported.sample_interval_s(), "{name}");
+        assert_eq!(
+            direct.sample_interval_s(),
+            exported.sample_interval_s(),
+            "{name}"
+        );
         assert_eq!(direct.state_len(), exported.state_len(), "{name}");
         assert_eq!(direct.design_report(), exported.design_report(), "{name}");
         assert_eq!(direct.state_feedback(), exported.state_feedback(), "{name}");
@@ -358,6 +381,9 @@ fn a_panicking_plugin_controller_is_an_error() {
         .update(&trim_outputs(), &mut [], &mut ControlCommands::default())
         .expect_err("the panic is an error")
         .to_string();
-    assert!(err.contains("panicked") && err.contains("a controller bug"), "{err}");
+    assert!(
+        err.contains("panicked") && err.contains("a controller bug"),
+        "{err}"
+    );
     build(&registry, "lqr-twin", "", &design).expect("the host goes on");
 }

@@ -5,7 +5,6 @@
 //! bit for bit; and every failure at the boundary (not a library, not a plugin, wrong ABI or API
 //! version, a panic, a NaN) is a clear error that leaves the host running.
 
-use hsv_core::testing::plugin_path;
 use approx::assert_relative_eq;
 use hsv_core::aero::{AeroModel, AeroSolution, EdgeState, PanelMotion, integrate_pressure};
 use hsv_core::error::ModelError;
@@ -17,6 +16,7 @@ use hsv_core::propulsion::{EngineInputs, PropulsionModel, PropulsionSolution};
 use hsv_core::region::{ModelSettings, RegionInfo};
 use hsv_core::registry::{ModelContext, Registry, RoleModel};
 use hsv_core::structure::StructureModel;
+use hsv_core::testing::plugin_path;
 use hsv_core::thermal::{ConductionModel, HeatFluxModel};
 use nalgebra::{DVector, Point3, Vector3};
 

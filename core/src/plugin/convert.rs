@@ -308,7 +308,8 @@ fn matrix_from_rows(value: &serde_json::Value, what: &str) -> Result<DMatrix<f64
 }
 
 fn names_from(value: &serde_json::Value, what: &str) -> Result<Vec<String>, String> {
-    serde_json::from_value(value.clone()).map_err(|e| format!("`{what}` is not a list of names: {e}"))
+    serde_json::from_value(value.clone())
+        .map_err(|e| format!("`{what}` is not a list of names: {e}"))
 }
 
 /// A design model as the JSON of [`DesignSourceAbi::model`].
@@ -361,9 +362,7 @@ pub(crate) fn state_feedback_json(laws: &[StateFeedback]) -> String {
 pub(crate) fn state_feedback_from_json(json: &str) -> Result<Vec<StateFeedback>, String> {
     let v: serde_json::Value =
         serde_json::from_str(json).map_err(|e| format!("state feedback is not JSON: {e}"))?;
-    let laws = v
-        .as_array()
-        .ok_or("state feedback is not a JSON list")?;
+    let laws = v.as_array().ok_or("state feedback is not a JSON list")?;
     laws.iter()
         .map(|law| {
             let law = StateFeedback {

@@ -1230,7 +1230,12 @@ unsafe extern "C" fn control_start(handle: *mut c_void, args: *const ControlStar
             let commands = json_table(str_from(args.commands_json, "commands")?, "commands")?;
             let trim_outputs = MeasuredOutputs::from_values(args.trim_outputs);
             let trim_commands = ControlCommands::from_values(args.trim_commands);
-            let name = s.key_path.rsplit('.').next().unwrap_or(&s.key_path).to_owned();
+            let name = s
+                .key_path
+                .rsplit('.')
+                .next()
+                .unwrap_or(&s.key_path)
+                .to_owned();
             let design = GuestDesign {
                 abi: &args.design,
                 name: &name,
@@ -1272,9 +1277,7 @@ unsafe extern "C" fn control_sample_interval(handle: *mut c_void) -> f64 {
 unsafe extern "C" fn control_state_len(handle: *mut c_void) -> usize {
     // SAFETY: the host passes a handle from `create`.
     unsafe {
-        call_count::<ControlState>(handle, "state length", |s| {
-            Ok(s.controller()?.state_len())
-        })
+        call_count::<ControlState>(handle, "state length", |s| Ok(s.controller()?.state_len()))
     }
 }
 
@@ -1320,9 +1323,7 @@ unsafe extern "C" fn control_update(
                 .try_into()
                 .map_err(|_| "outputs")?;
             let out = slice_mut(commands, CONTROL_COMMANDS, "commands")?;
-            let mut command = ControlCommands::from_values(
-                out.try_into().map_err(|_| "commands")?,
-            );
+            let mut command = ControlCommands::from_values(out.try_into().map_err(|_| "commands")?);
             controller
                 .update(
                     &MeasuredOutputs::from_values(measured),

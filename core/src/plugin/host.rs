@@ -66,7 +66,14 @@ impl Handle {
         let region = RegionBuffers::new(context.region);
         let (file, key_path) = (context.file, context.key_path);
         let settings = context.settings;
-        Self::create_in(entry, name, settings, key_path, file, region.abi(context.region))
+        Self::create_in(
+            entry,
+            name,
+            settings,
+            key_path,
+            file,
+            region.abi(context.region),
+        )
     }
 
     /// Creates the model with `settings` (`[models.<name>]`, at `key_path` of `file`) for
@@ -1074,7 +1081,10 @@ impl PropulsionModel for PropulsionAdapter {
 }
 
 /// Reads a text the plugin copies into a buffer and whose full length it returns.
-fn read_text(raw: *mut c_void, copy: unsafe extern "C" fn(*mut c_void, *mut u8, usize) -> usize) -> String {
+fn read_text(
+    raw: *mut c_void,
+    copy: unsafe extern "C" fn(*mut c_void, *mut u8, usize) -> usize,
+) -> String {
     let mut buffer = vec![0u8; 4096];
     // SAFETY: the buffer is valid for its length; the plugin writes at most that many bytes.
     let length = unsafe { copy(raw, buffer.as_mut_ptr(), buffer.len()) };
@@ -1185,11 +1195,16 @@ impl ControllerAdapter {
         let state_len = unsafe { (functions.state_len)(handle.raw) };
         let mut initial_state = vec![0.0; state_len];
         // SAFETY: `state_len` values of room.
-        let status = unsafe {
-            (functions.initial_state)(handle.raw, initial_state.as_mut_ptr(), state_len)
-        };
+        let status =
+            unsafe { (functions.initial_state)(handle.raw, initial_state.as_mut_ptr(), state_len) };
         handle.check(status, "initial state")?;
-        check_finite(name, "initial controller state", &initial_state, 1, "state index")?;
+        check_finite(
+            name,
+            "initial controller state",
+            &initial_state,
+            1,
+            "state index",
+        )?;
         let report_text = read_text(handle.raw, functions.design_report);
         let report = if report_text.trim().is_empty() {
             serde_json::Value::Null

@@ -130,7 +130,12 @@ pub fn run(args: LinearizeArgs, registry: &Registry) -> Result<()> {
             let values =
                 crate::control::design::closed_loop_eigenvalues(&lin.model, &laws, &dynamics)
                     .map_err(|e| anyhow::anyhow!("closing the loop with `{name}`: {e}"))?;
-            Some((name.clone(), values, control.controller().design_report(), dynamics))
+            Some((
+                name.clone(),
+                values,
+                control.controller().design_report(),
+                dynamics,
+            ))
         }
     };
     let mut folder = RunFolder::create("linearize", args.out.as_deref(), args.force)?;

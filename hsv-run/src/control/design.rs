@@ -279,7 +279,12 @@ mod tests {
             k: DMatrix::from_element(1, 1, k),
         };
         let closed = closed_loop_matrix(&model, &[law], &dynamics).unwrap();
-        hsv_core::linalg::general_eigen(&closed).unwrap().values.iter().copied().collect()
+        hsv_core::linalg::general_eigen(&closed)
+            .unwrap()
+            .values
+            .iter()
+            .copied()
+            .collect()
     }
 
     /// Each eigenvalue is a root of the loop's characteristic polynomial (coefficients highest

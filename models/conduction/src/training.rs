@@ -164,13 +164,50 @@ pub fn fingerprint(
 }
 
 /// Runs `full` at every training condition and builds a basis of `modes` modes from the
-/// snapshots (fewer when the runs give fewer snapshots than `modes`).
+/// snapshots (fewer when the runs give fewer snapshots than `modes`). The runs are independent,
+/// so they run side by side (rayon, each with its own copy of the full-order model and its own
+/// heat-flux and aero models); the snapshots are gathered in the conditions' order, so the basis
+/// is the same bit for bit on any number of threads.
 pub fn train_basis(
     ctx: &ModelContext<'_>,
     training: &Training,
     full: &mut FullOrder,
     modes: usize,
 ) -> Result<PodBasis, ModelError> {
+    use rayon::prelude::*;
+    let steps = training.steps();
+    let every = (steps / training.snapshots_per_run).max(1);
+    let conditions: Vec<(f64, f64)> = training
+        .mach
+        .iter()
+        .flat_map(|&m| training.alpha_deg.iter().map(move |&a| (m, a)))
+        .collect();
+    let template: &FullOrder = full;
+    let runs: Vec<Vec<DVector<f64>>> = conditions
+        .par_iter()
+        .map(|&(mach, alpha_deg)| {
+            let mut full = template.clone();
+            condition_snapshots(ctx, training, &mut full, mach, alpha_deg, steps, every)
+        })
+        .collect::<Result<_, _>>()?;
+    let snapshots: Vec<DVector<f64>> = runs.into_iter().flatten().collect();
+    // A short horizon gives fewer snapshots than modes: take the modes they allow (the model
+    // says so, see `construct_pod`) rather than refuse a run the full-order model can do.
+    let modes = modes.min(snapshots.len()).max(1);
+    PodBasis::from_snapshots(&snapshots, modes, full.settings().clone())
+}
+
+/// The snapshots of one training run: `full` in the flow at Mach `mach` and `alpha_deg`, the
+/// training's heat-flux model on the training's aero edge states.
+fn condition_snapshots(
+    ctx: &ModelContext<'_>,
+    training: &Training,
+    full: &mut FullOrder,
+    mach: f64,
+    alpha_deg: f64,
+    steps: usize,
+    every: usize,
+) -> Result<Vec<DVector<f64>>, ModelError> {
     let build_error = |what: &str, e: hsv_core::registry::RegistryError| {
         ctx.settings_error(&format!("training.{what}"), e.to_string())
     };
@@ -183,36 +220,22 @@ pub fn train_basis(
         .build::<dyn AeroModel>(&training.aero, &aero_settings)
         .map_err(|e| build_error("aero", e))?;
     let mesh = &ctx.region.mesh;
-    let steps = training.steps();
-    let every = (steps / training.snapshots_per_run).max(1);
-    let mut snapshots: Vec<DVector<f64>> = Vec::new();
     let mut edge = AeroSolution::default();
-    let conditions = training
-        .mach
-        .iter()
-        .flat_map(|&m| training.alpha_deg.iter().map(move |&a| (m, a)));
-    for (mach, alpha_deg) in conditions {
-        let freestream = Freestream::standard(mach, training.altitude_m, ctx.region.gas)?;
-        let flight = FlightCondition::steady(freestream, alpha_deg.to_radians(), 0.0);
-        aero.evaluate(mesh, &flight, &PanelMotion::default(), &mut edge)?;
-        let run = crate::pod::collect_snapshots(
-            full,
-            training.initial_k,
-            training.dt_s,
-            steps,
-            every,
-            |wall, q| heat.heat_flux(mesh, &flight, &edge, wall, q),
+    let freestream = Freestream::standard(mach, training.altitude_m, ctx.region.gas)?;
+    let flight = FlightCondition::steady(freestream, alpha_deg.to_radians(), 0.0);
+    aero.evaluate(mesh, &flight, &PanelMotion::default(), &mut edge)?;
+    crate::pod::collect_snapshots(
+        full,
+        training.initial_k,
+        training.dt_s,
+        steps,
+        every,
+        |wall, q| heat.heat_flux(mesh, &flight, &edge, wall, q),
+    )
+    .map_err(|e| {
+        ModelError::inconsistent(
+            NAME,
+            format!("full-order snapshot run at Mach {mach}, alpha {alpha_deg} deg: {e}"),
         )
-        .map_err(|e| {
-            ModelError::inconsistent(
-                NAME,
-                format!("full-order snapshot run at Mach {mach}, alpha {alpha_deg} deg: {e}"),
-            )
-        })?;
-        snapshots.extend(run);
-    }
-    // A short horizon gives fewer snapshots than modes: take the modes they allow (the model
-    // says so, see `construct_pod`) rather than refuse a run the full-order model can do.
-    let modes = modes.min(snapshots.len()).max(1);
-    PodBasis::from_snapshots(&snapshots, modes, full.settings().clone())
+    })
 }

@@ -1,8 +1,10 @@
 //! Cost of whole jobs on the sample vehicle (Mach 6, 26 km, the embedded config's models): one
 //! state derivative of the partitioned flexible vehicle at its trim (body–surface coupling
-//! converged), one rigid trim (Nelder–Mead and its restart check, as `hsv-run trim`), and 0.1 s
-//! of flight from trim under the paper's elevon doublet (100 steps of 1 ms, as
-//! `hsv-run simulate`).
+//! converged), one rigid and one flexible trim (Nelder–Mead, the Newton polish and the restart
+//! check, as `hsv-run trim`), 0.1 s of flight from trim under the paper's elevon doublet (100
+//! steps of 1 ms), the 2 s doublet as `hsv-run simulate` flies it (heated partitioned vehicle;
+//! issue 24's target 0.3 s on one core), and one lifting surface's POD training from a cold
+//! cache (nine full-order runs side by side). `RAYON_NUM_THREADS=1` for the one-core figures.
 //!
 //! `cargo bench -p hsv-benches --bench jobs -- --measurement-time 3 --warm-up-time 1`. The
 //! flexible trim that gives the derivative's and the flight's starting state runs once in the
@@ -12,6 +14,9 @@ use std::hint::black_box;
 
 use criterion::{Criterion, criterion_group, criterion_main};
 use hsv_core::config::LoadedConfig;
+use hsv_core::registry::ModelContext;
+use hsv_model_conduction::PodTraining;
+use hsv_run::analysis::flight::{Flight, FlightOptions};
 use hsv_run::analysis::simulate::{Inputs, RunSettings, simulate};
 use hsv_run::analysis::trim::{TrimRequest, trim};
 use hsv_run::dynamics::GravityModel;
@@ -69,6 +74,10 @@ fn jobs(c: &mut Criterion) {
         })
     });
 
+    group.bench_function("flexible trim", |b| {
+        b.iter(|| black_box(trim(&mut vehicle, black_box(&request)).expect("trims")))
+    });
+
     let sets = assemble(&loaded, &registry, &rigid_needs("bench")).expect("assembles");
     let mut rigid = RigidVehicle::new(sets).expect("rigid vehicle");
     group.bench_function("rigid trim", |b| {
@@ -104,6 +113,36 @@ fn jobs(c: &mut Criterion) {
             },
             criterion::BatchSize::PerIteration,
         )
+    });
+    let options = FlightOptions::default();
+    group.bench_function("simulate 2 s (heated partitioned, the paper's doublet)", |b| {
+        b.iter_batched(
+            || Flight::trimmed(&loaded, &registry, &options, |_| {}).expect("trims"),
+            |mut flight| {
+                let steps = flight.fly(2.0, 5, |_, _, _| true).expect("flies");
+                black_box(steps)
+            },
+            criterion::BatchSize::PerIteration,
+        )
+    });
+
+    let region = hsv_core::testing::sample_region("left_surface");
+    let pod_settings = region.model_settings("pod");
+    let ctx = ModelContext::new(region, &registry, &pod_settings);
+    let training: PodTraining = pod_settings
+        .table
+        .get("training")
+        .cloned()
+        .map(|t| t.try_into::<PodTraining>().expect("the sample's [models.pod.training]"))
+        .unwrap_or_default();
+    let mut full = hsv_model_conduction::full_order_for(&ctx).expect("full-order model");
+    group.bench_function("pod training, one surface (cold cache)", |b| {
+        b.iter(|| {
+            black_box(
+                hsv_model_conduction::training::train_basis(&ctx, &training, &mut full, 32)
+                    .expect("trains"),
+            )
+        })
     });
     group.finish();
 }

@@ -115,16 +115,19 @@ fn jobs(c: &mut Criterion) {
         )
     });
     let options = FlightOptions::default();
-    group.bench_function("simulate 2 s (heated partitioned, the paper's doublet)", |b| {
-        b.iter_batched(
-            || Flight::trimmed(&loaded, &registry, &options, |_| {}).expect("trims"),
-            |mut flight| {
-                let steps = flight.fly(2.0, 5, |_, _, _| true).expect("flies");
-                black_box(steps)
-            },
-            criterion::BatchSize::PerIteration,
-        )
-    });
+    group.bench_function(
+        "simulate 2 s (heated partitioned, the paper's doublet)",
+        |b| {
+            b.iter_batched(
+                || Flight::trimmed(&loaded, &registry, &options, |_| {}).expect("trims"),
+                |mut flight| {
+                    let steps = flight.fly(2.0, 5, |_, _, _| true).expect("flies");
+                    black_box(steps)
+                },
+                criterion::BatchSize::PerIteration,
+            )
+        },
+    );
 
     let region = hsv_core::testing::sample_region("left_surface");
     let pod_settings = region.model_settings("pod");
@@ -133,7 +136,10 @@ fn jobs(c: &mut Criterion) {
         .table
         .get("training")
         .cloned()
-        .map(|t| t.try_into::<PodTraining>().expect("the sample's [models.pod.training]"))
+        .map(|t| {
+            t.try_into::<PodTraining>()
+                .expect("the sample's [models.pod.training]")
+        })
         .unwrap_or_default();
     let mut full = hsv_model_conduction::full_order_for(&ctx).expect("full-order model");
     group.bench_function("pod training, one surface (cold cache)", |b| {

@@ -14,6 +14,7 @@ use super::simulate::{
 use super::trim::{TrimRequest, TrimResult, TrimStatus, trim};
 use crate::control::{ControlLoop, DesignFrom, DesignRecord};
 use crate::disturbance::{DisturbanceSettings, Disturbances};
+use crate::dynamics::EarthModel;
 use crate::dynamics::VehicleState;
 use crate::vehicle::body_rate::{BodyLoadRate, DEFAULT_BODY_FRICTION_DT_S};
 use crate::vehicle::flexible_vehicle_with;
@@ -22,8 +23,10 @@ use crate::vehicle::partitioned::{
 };
 
 /// The keys `[simulation]` may hold.
-const SIMULATION_KEYS: [&str; 8] = [
+const SIMULATION_KEYS: [&str; 10] = [
     "inputs",
+    "earth",
+    "latitude_deg",
     "heat_transfer_dt_s",
     "aerothermal_dt_s",
     "stiffness_interval_s",
@@ -124,6 +127,37 @@ pub fn rate_seconds(rate: BodyLoadRate) -> f64 {
     }
 }
 
+/// The Earth: `[simulation] earth` (`flat`, the default and the paper's; `spherical`;
+/// `spherical-rotating`) starting at `[simulation] latitude_deg` (default 0).
+pub fn earth(loaded: &LoadedConfig) -> Result<EarthModel> {
+    let latitude_deg = match loaded.config.simulation.get("latitude_deg") {
+        None => 0.0,
+        Some(value) => value
+            .as_float()
+            .or_else(|| value.as_integer().map(|i| i as f64))
+            .filter(|v| (-89.0..=89.0).contains(v))
+            .with_context(|| {
+                format!(
+                    "{}: key `simulation.latitude_deg` is {value}; expected degrees in [-89, 89]",
+                    loaded.file
+                )
+            })?,
+    };
+    let Some(value) = loaded.config.simulation.get("earth") else {
+        return Ok(EarthModel::Flat);
+    };
+    value
+        .as_str()
+        .and_then(|name| EarthModel::from_name(name, latitude_deg.to_radians()))
+        .with_context(|| {
+            format!(
+                "{}: key `simulation.earth` is {value}; expected one of {}",
+                loaded.file,
+                EarthModel::NAMES.map(|n| format!("\"{n}\"")).join(", ")
+            )
+        })
+}
+
 /// The integrator: `[simulation] integrator` (`exponential-rk4`, the default, or `rk4`).
 pub fn integrator(loaded: &LoadedConfig) -> Result<Integrator> {
     let Some(value) = loaded.config.simulation.get("integrator") else {
@@ -164,6 +198,7 @@ pub struct FlightSettings {
     pub body_loads: BodyLoadRate,
     pub body_friction: BodyLoadRate,
     pub integrator: Integrator,
+    pub earth: EarthModel,
 }
 
 impl FlightSettings {
@@ -176,6 +211,7 @@ impl FlightSettings {
             body_loads: body_load_rate(loaded)?,
             body_friction: body_friction_rate(loaded)?,
             integrator: integrator(loaded)?,
+            earth: earth(loaded)?,
         })
     }
 }
@@ -273,6 +309,7 @@ pub fn flight_vehicle(
     )?;
     vehicle.set_body_load_rate(settings.body_loads);
     vehicle.set_body_friction_rate(settings.body_friction);
+    vehicle.set_earth(settings.earth);
     Ok(vehicle)
 }
 

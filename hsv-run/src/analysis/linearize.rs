@@ -85,6 +85,7 @@ pub fn linearize_at(
         crate::dynamics::GravityModel::default(),
         crate::vehicle::partitioned::CouplingSettings::default(),
     )?;
+    vehicle.set_earth(super::flight::earth(loaded)?);
     let trim = super::flight::trim_level_flight(&mut vehicle, mach, altitude_m)?;
     let lin = linearize(&mut vehicle, &trim.state, &trim.controls, rule)?;
     Ok((vehicle, trim, lin))

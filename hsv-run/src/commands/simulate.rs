@@ -328,6 +328,7 @@ pub fn run(args: SimulateArgs, registry: &Registry) -> Result<()> {
     };
     let controller_name = options.controller.clone().unwrap_or_default();
     let integrator = settings.integrator;
+    let earth = settings.earth;
     let (body_rate, friction_rate) = (settings.body_loads, settings.body_friction);
     let design_report = control.controller().design_report();
     let mut folder = RunFolder::create("simulate", args.output.out.as_deref(), args.output.force)?;
@@ -458,6 +459,7 @@ pub fn run(args: SimulateArgs, registry: &Registry) -> Result<()> {
         "wall_time_s": wall_time_s,
         "threads": rayon::current_num_threads(),
         "integrator": integrator.name(),
+        "earth": earth.name(),
         "body_loads_dt_s": rate_seconds(body_rate),
         "body_friction_dt_s": rate_seconds(friction_rate),
         "warnings": warnings,

@@ -95,8 +95,18 @@ pub fn trim_configured(
         let sets = assemble(loaded, registry, &needs)?;
         let mut vehicle =
             PartitionedVehicle::new(sets, GravityModel::default(), CouplingSettings::default())?;
+        vehicle.set_earth(crate::analysis::flight::earth(loaded)?);
         trim(&mut vehicle, &request)?
     } else {
+        let earth = crate::analysis::flight::earth(loaded)?;
+        if earth != crate::dynamics::EarthModel::Flat {
+            anyhow::bail!(
+                "{}: `simulation.earth = \"{}\"`: the rigid vehicle's trim flies a flat Earth \
+                 only; trim the flexible vehicle (--flexible) over a sphere",
+                loaded.file,
+                earth.name()
+            );
+        }
         let sets = assemble(loaded, registry, &rigid_needs("trim of the rigid vehicle"))?;
         let mut vehicle = RigidVehicle::new(sets)?;
         trim(&mut vehicle, &request)?

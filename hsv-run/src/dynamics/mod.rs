@@ -31,7 +31,7 @@ pub use linearize::{LinearModel, PerturbationRule, linearize, linearize_outputs}
 pub use modal::{
     ModalDynamics, ModalRate, ModalState, RootMotion, SurfaceAttachment, mean_axes_cosine,
 };
-pub use rigid_body::{GravityModel, RigidBody, RigidBodyDerivative, RigidBodyState};
+pub use rigid_body::{EarthModel, GravityModel, RigidBody, RigidBodyDerivative, RigidBodyState};
 pub use vehicle::{
     AttitudeCoordinates, StateLayout, VehicleDerivative, VehicleDynamics, VehicleLoads,
     VehicleState,

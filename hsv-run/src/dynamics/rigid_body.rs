@@ -101,6 +101,89 @@ impl RigidBodyState {
     }
 }
 
+/// WGS-84 equatorial radius, m (NIMA TR8350.2, 3rd ed., 2000, Table 3.1).
+pub const WGS84_EQUATORIAL_RADIUS_M: f64 = 6_378_137.0;
+/// WGS-84 gravitational parameter GM, m³/s² (NIMA TR8350.2, Table 3.1).
+pub const WGS84_GM_M3_S2: f64 = 3.986_004_418e14;
+/// WGS-84 Earth rotation rate, rad/s (NIMA TR8350.2, Table 3.1).
+pub const WGS84_ROTATION_RAD_S: f64 = 7.292_115e-5;
+
+/// The Earth the vehicle flies over (`[simulation] earth`).
+///
+/// `Flat` is the paper's: a flat, non-rotating Earth (NED is inertial), gravity by the
+/// [`GravityModel`]. `Spherical` flies over a sphere of the WGS-84 equatorial radius R with
+/// point-mass gravitation GM/r² (no J2), rotating at `rotation_rad_s` (0: not rotating) about
+/// the polar axis. The state keeps its layout: the attitude is body → local NED, the velocity
+/// and angular velocity are relative to the Earth in body axes, and the position is north and
+/// east arc lengths on the sphere of radius R (latitude = latitude₀ + north / R) and
+/// down = −h. The equations are the rotating-Earth forms of Stevens, Lewis & Johnson,
+/// "Aircraft Control and Simulation", 3rd ed., §1.6-1.7 (module docs of
+/// [`RigidBody::derivative`]).
+#[derive(Debug, Clone, Copy, PartialEq, Default, Serialize, Deserialize)]
+pub enum EarthModel {
+    #[default]
+    Flat,
+    Spherical {
+        rotation_rad_s: f64,
+        initial_latitude_rad: f64,
+    },
+}
+
+impl EarthModel {
+    /// The names of `[simulation] earth`.
+    pub const NAMES: [&'static str; 3] = ["flat", "spherical", "spherical-rotating"];
+
+    /// The model of `[simulation] earth = name` starting at `latitude_rad`.
+    pub fn from_name(name: &str, latitude_rad: f64) -> Option<Self> {
+        match name {
+            "flat" => Some(Self::Flat),
+            "spherical" => Some(Self::Spherical {
+                rotation_rad_s: 0.0,
+                initial_latitude_rad: latitude_rad,
+            }),
+            "spherical-rotating" => Some(Self::Spherical {
+                rotation_rad_s: WGS84_ROTATION_RAD_S,
+                initial_latitude_rad: latitude_rad,
+            }),
+            _ => None,
+        }
+    }
+
+    /// The name `[simulation] earth` writes.
+    pub fn name(&self) -> &'static str {
+        match self {
+            Self::Flat => "flat",
+            Self::Spherical { rotation_rad_s, .. } if *rotation_rad_s == 0.0 => "spherical",
+            Self::Spherical { .. } => "spherical-rotating",
+        }
+    }
+
+    /// The transport rate ρ of the local NED frame relative to the Earth, NED axes, rad/s, for
+    /// a velocity `v_ned` relative to the Earth at `state`'s position: (v_E / r, −v_N / r,
+    /// −v_E tan λ / r) (Stevens, Lewis & Johnson §1.7); zero on a flat Earth.
+    pub fn transport_rate_ned(&self, state: &RigidBodyState, v_ned: &Vector3<f64>) -> Vector3<f64> {
+        match *self {
+            Self::Flat => Vector3::zeros(),
+            Self::Spherical { .. } => {
+                let r = WGS84_EQUATORIAL_RADIUS_M + state.altitude_m();
+                let latitude = self.latitude_rad(state);
+                Vector3::new(v_ned.y / r, -v_ned.x / r, -v_ned.y * latitude.tan() / r)
+            }
+        }
+    }
+
+    /// Geodetic (= geocentric, on a sphere) latitude of `state`, rad; 0 on a flat Earth.
+    pub fn latitude_rad(&self, state: &RigidBodyState) -> f64 {
+        match *self {
+            Self::Flat => 0.0,
+            Self::Spherical {
+                initial_latitude_rad,
+                ..
+            } => initial_latitude_rad + state.position_ned_m.x / WGS84_EQUATORIAL_RADIUS_M,
+        }
+    }
+}
+
 /// How gravity varies over the flight (DESIGN §4: flat earth, altitude-dependent gravity
 /// unless the config says otherwise).
 #[derive(Debug, Clone, Copy, PartialEq, Default, Serialize, Deserialize)]
@@ -140,6 +223,9 @@ pub struct RigidBodyDerivative {
     pub angular_acceleration_body_rad_s2: Vector3<f64>,
     /// Gravity in body axes, as used, m/s².
     pub gravity_body_m_s2: Vector3<f64>,
+    /// Inertial acceleration of the centre of mass, body axes, m/s²: β̇ + ζ × β on a flat
+    /// Earth, F/m + g with the Coriolis and centrifugal terms on a rotating one.
+    pub inertial_acceleration_body_m_s2: Vector3<f64>,
 }
 
 impl Default for RigidBodyDerivative {
@@ -150,17 +236,16 @@ impl Default for RigidBodyDerivative {
             acceleration_body_m_s2: Vector3::zeros(),
             angular_acceleration_body_rad_s2: Vector3::zeros(),
             gravity_body_m_s2: Vector3::zeros(),
+            inertial_acceleration_body_m_s2: Vector3::zeros(),
         }
     }
 }
 
 impl RigidBodyDerivative {
-    /// Inertial acceleration of the centre of mass in body axes, β̇ + ζ × β, m/s².
-    pub fn inertial_acceleration_m_s2(&self, state: &RigidBodyState) -> Vector3<f64> {
-        self.acceleration_body_m_s2
-            + state
-                .angular_velocity_body_rad_s
-                .cross(&state.velocity_body_m_s)
+    /// Inertial acceleration of the centre of mass in body axes, m/s² (β̇ + ζ × β on a flat
+    /// Earth).
+    pub fn inertial_acceleration_m_s2(&self, _state: &RigidBodyState) -> Vector3<f64> {
+        self.inertial_acceleration_body_m_s2
     }
 }
 
@@ -172,6 +257,7 @@ pub struct RigidBody {
     inverse_inertia: Matrix3<f64>,
     center_of_mass_m: Point3<f64>,
     gravity: GravityModel,
+    earth: EarthModel,
 }
 
 impl RigidBody {
@@ -210,7 +296,34 @@ impl RigidBody {
             inverse_inertia: inverse,
             center_of_mass_m: mass.center_of_mass_m,
             gravity,
+            earth: EarthModel::Flat,
         })
+    }
+
+    /// Flies over `earth` from now on (the gravity model then serves the flat Earth only).
+    pub fn set_earth(&mut self, earth: EarthModel) {
+        self.earth = earth;
+    }
+
+    pub fn earth(&self) -> EarthModel {
+        self.earth
+    }
+
+    /// Steady level flight at `altitude_m`, heading north at `airspeed_m_s` with angle of attack
+    /// `alpha_rad` (pitch θ = α, no wind) over this body's Earth: on a sphere the body turns
+    /// with the local horizon, ζ = C_bn ρ (ρ the transport rate), so it stays level.
+    pub fn level_flight(
+        &self,
+        altitude_m: f64,
+        airspeed_m_s: f64,
+        alpha_rad: f64,
+    ) -> RigidBodyState {
+        let mut state = RigidBodyState::level_flight(altitude_m, airspeed_m_s, alpha_rad);
+        let rho = self
+            .earth
+            .transport_rate_ned(&state, &state.velocity_ned_m_s());
+        state.angular_velocity_body_rad_s = state.attitude.inverse_transform_vector(&rho);
+        state
     }
 
     pub fn mass_kg(&self) -> f64 {
@@ -231,9 +344,16 @@ impl RigidBody {
         self.gravity
     }
 
-    /// Gravity in body axes, g_b = C_be (0, 0, g(h)), m/s².
+    /// Gravity in body axes, g_b = C_be (0, 0, g(h)), m/s²: the gravity model's on a flat
+    /// Earth, GM / (R + h)² on a sphere.
     pub fn gravity_body_m_s2(&self, state: &RigidBodyState) -> Vector3<f64> {
-        let g = self.gravity.magnitude_m_s2(state.altitude_m());
+        let g = match self.earth {
+            EarthModel::Flat => self.gravity.magnitude_m_s2(state.altitude_m()),
+            EarthModel::Spherical { .. } => {
+                let r = WGS84_EQUATORIAL_RADIUS_M + state.altitude_m();
+                WGS84_GM_M3_S2 / (r * r)
+            }
+        };
         state
             .attitude
             .inverse_transform_vector(&Vector3::new(0.0, 0.0, g))
@@ -245,7 +365,56 @@ impl RigidBody {
     ///
     /// Reference: Stevens, Lewis & Johnson, *Aircraft Control and Simulation*, 3rd ed. (2016),
     /// ch. 1 (rigid-body equations in body axes over a flat earth).
+    ///
+    /// Over a rotating sphere ([`EarthModel::Spherical`], Stevens, Lewis & Johnson §1.6-1.7),
+    /// with Ω the Earth's rate and r the position from its centre (body axes), ρ the transport
+    /// rate and ω = ζ + Ω the inertial angular velocity:
+    /// β̇ = F/m + g − (ζ + 2Ω) × β − Ω × (Ω × r) (Coriolis and centrifugal),
+    /// J ω̇ + ω × J ω = M with ζ̇ = ω̇ + ζ × Ω (Ω is fixed in the Earth),
+    /// q̇ = ½ q ⊗ (0, ζ − C_bn ρ) (the attitude is to the local NED frame, which turns with ρ),
+    /// and the position moves along the sphere: ṅ = v_N R / r, ė = v_E R / r, ḋ = v_D.
     pub fn derivative(&self, state: &RigidBodyState, loads: &Loads) -> RigidBodyDerivative {
+        let EarthModel::Spherical { rotation_rad_s, .. } = self.earth else {
+            return self.flat_derivative(state, loads);
+        };
+        let beta = &state.velocity_body_m_s;
+        let zeta = &state.angular_velocity_body_rad_s;
+        let gravity_body = self.gravity_body_m_s2(state);
+        let latitude = self.earth.latitude_rad(state);
+        let radius_m = WGS84_EQUATORIAL_RADIUS_M + state.altitude_m();
+        let to_body = |v: &Vector3<f64>| state.attitude.inverse_transform_vector(v);
+        let earth_rate_ned = rotation_rad_s * Vector3::new(latitude.cos(), 0.0, -latitude.sin());
+        let position_ned = Vector3::new(0.0, 0.0, -radius_m);
+        let centrifugal_ned = earth_rate_ned.cross(&earth_rate_ned.cross(&position_ned));
+        let earth_rate = to_body(&earth_rate_ned);
+        let inertial_acceleration = loads.force_n / self.mass_kg + gravity_body;
+        let acceleration = inertial_acceleration
+            - (zeta + 2.0 * earth_rate).cross(beta)
+            - to_body(&centrifugal_ned);
+        let omega = zeta + earth_rate;
+        let angular_momentum = self.inertia_kg_m2 * omega;
+        let angular_acceleration = self.inverse_inertia
+            * (loads.moment_nm - omega.cross(&angular_momentum))
+            + zeta.cross(&earth_rate);
+        let v_ned = state.attitude * beta;
+        let transport = self.earth.transport_rate_ned(state, &v_ned);
+        let along_sphere = WGS84_EQUATORIAL_RADIUS_M / radius_m;
+        RigidBodyDerivative {
+            position_rate_ned_m_s: Vector3::new(
+                v_ned.x * along_sphere,
+                v_ned.y * along_sphere,
+                v_ned.z,
+            ),
+            attitude_rate: frames::attitude_rate(&state.attitude, &(zeta - to_body(&transport))),
+            acceleration_body_m_s2: acceleration,
+            angular_acceleration_body_rad_s2: angular_acceleration,
+            gravity_body_m_s2: gravity_body,
+            inertial_acceleration_body_m_s2: inertial_acceleration,
+        }
+    }
+
+    /// [`Self::derivative`] over the flat, non-rotating Earth.
+    fn flat_derivative(&self, state: &RigidBodyState, loads: &Loads) -> RigidBodyDerivative {
         let beta = &state.velocity_body_m_s;
         let zeta = &state.angular_velocity_body_rad_s;
         let gravity_body = self.gravity_body_m_s2(state);
@@ -259,6 +428,7 @@ impl RigidBody {
             acceleration_body_m_s2: acceleration,
             angular_acceleration_body_rad_s2: angular_acceleration,
             gravity_body_m_s2: gravity_body,
+            inertial_acceleration_body_m_s2: acceleration + zeta.cross(beta),
         }
     }
 

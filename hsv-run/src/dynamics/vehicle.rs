@@ -133,6 +133,11 @@ impl VehicleDynamics {
         })
     }
 
+    /// The Earth the rigid body flies over ([`RigidBody::set_earth`]).
+    pub fn set_earth(&mut self, earth: super::rigid_body::EarthModel) {
+        self.rigid.set_earth(earth);
+    }
+
     pub fn rigid_body(&self) -> &RigidBody {
         &self.rigid
     }

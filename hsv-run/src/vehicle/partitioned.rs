@@ -1121,6 +1121,11 @@ impl PartitionedVehicle {
         Ok(())
     }
 
+    /// The Earth the vehicle flies over (`[simulation] earth`; flat by default).
+    pub fn set_earth(&mut self, earth: crate::dynamics::EarthModel) {
+        self.dynamics.set_earth(earth);
+    }
+
     /// How often the body region is evaluated within a time step ([`BodyLoadRate`]).
     pub fn set_body_load_rate(&mut self, rate: BodyLoadRate) {
         self.body_rate = rate;
@@ -1939,8 +1944,10 @@ impl PartitionedVehicle {
             .warm_start
             .take()
             .unwrap_or_else(|| self.dynamics.zero_state());
-        state.rigid =
-            crate::dynamics::RigidBodyState::level_flight(altitude_m, airspeed_m_s, alpha_rad);
+        state.rigid = self
+            .dynamics
+            .rigid_body()
+            .level_flight(altitude_m, airspeed_m_s, alpha_rad);
         let mut out = self.dynamics.zero_derivative();
         self.settle(&mut state, controls, 1e-6, 200, &mut out)?;
         self.warm_start = Some(state.clone());

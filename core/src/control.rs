@@ -277,5 +277,11 @@ pub struct StateFeedback {
     pub k: DMatrix<f64>,
 }
 
+/// A matrix as its rows (`[[a00, a01, ..], ..]`): the JSON form of design reports and of the
+/// plugin ABI's design models and gains.
+pub fn matrix_rows(m: &DMatrix<f64>) -> Vec<Vec<f64>> {
+    m.row_iter().map(|r| r.iter().copied().collect()).collect()
+}
+
 /// A controller constructor.
 pub type ControllerConstructor = fn(&ControlContext<'_>) -> Result<Box<dyn Controller>, ModelError>;

@@ -8,7 +8,7 @@ use nalgebra::{DMatrix, Point3, Vector3};
 
 use super::abi::*;
 use crate::aero::{EdgeState, ReferenceValues};
-use crate::control::{LinearDesignModel, StateFeedback};
+use crate::control::{LinearDesignModel, StateFeedback, matrix_rows};
 use crate::flow::{FlightCondition, Freestream};
 use crate::gas::PerfectGas;
 use crate::mesh::{Panel, PanelMesh, RegionKind, Strip, Surface};
@@ -283,14 +283,6 @@ pub(crate) fn control_region(empty_mesh: &MeshBuffers) -> RegionAbi {
         gas_constant_j_kg_k: 0.0,
         geometry_json: StrAbi::new("\"mesh\""),
     }
-}
-
-/// A matrix as JSON rows.
-fn matrix_rows(m: &DMatrix<f64>) -> serde_json::Value {
-    m.row_iter()
-        .map(|row| row.iter().copied().collect::<Vec<f64>>())
-        .collect::<Vec<_>>()
-        .into()
 }
 
 /// A matrix from JSON rows of equal length.

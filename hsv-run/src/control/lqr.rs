@@ -11,6 +11,7 @@ use hsv_core::ModelError;
 use hsv_core::control::riccati::{RiccatiSolution, solve_care};
 use hsv_core::control::{
     ControlCommands, ControlContext, Controller, LinearDesignModel, MeasuredOutputs, StateFeedback,
+    matrix_rows,
 };
 use hsv_core::registry::{Constructor, ModelDescriptor};
 use nalgebra::DMatrix;
@@ -101,11 +102,6 @@ impl Regulator {
     }
 }
 
-/// A matrix as its rows, for the JSON design report.
-pub(crate) fn rows(m: &DMatrix<f64>) -> Vec<Vec<f64>> {
-    m.row_iter().map(|r| r.iter().copied().collect()).collect()
-}
-
 /// The LQR of ẋ = A x + B u weighted by Bryson's rule (Q_ii = 1/x_max², R_jj = 1/u_max²): the
 /// CARE solution and the closed-loop poles of A − B K as (re, im).
 pub(crate) fn bryson_lqr(
@@ -175,9 +171,9 @@ pub(crate) fn design(
         "states": model.state_names,
         "inputs": model.input_names,
         "reduction": model.reduction,
-        "a": rows(&model.a),
-        "b": rows(&model.b),
-        "gain_k": rows(&s.k),
+        "a": matrix_rows(&model.a),
+        "b": matrix_rows(&model.b),
+        "gain_k": matrix_rows(&s.k),
         "care_relative_residual": s.relative_residual,
         "sign_iterations": s.sign_iterations,
         "newton_kleinman_steps": s.newton_steps,

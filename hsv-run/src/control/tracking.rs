@@ -21,8 +21,9 @@ use hsv_core::control::{
 use hsv_core::registry::{Constructor, ModelDescriptor};
 use nalgebra::DMatrix;
 
-use super::lqr::{Regulator, bryson_lqr, design, regulator, rows};
+use super::lqr::{Regulator, bryson_lqr, design, regulator};
 use crate::analysis::simulate::InputTable;
+use hsv_core::control::matrix_rows;
 
 /// `[models.tracking]`.
 #[derive(Debug, Clone, serde::Deserialize, serde::Serialize)]
@@ -339,7 +340,7 @@ fn build(ctx: &ControlContext<'_>) -> Result<Box<dyn Controller>, ModelError> {
         "design": "LQ servo with integral action on altitude and airspeed (Groves et al., AIAA 2005-6144)",
         "states": servo_states,
         "inputs": model.input_names,
-        "gain_k": rows(&care.k),
+        "gain_k": matrix_rows(&care.k),
         "care_relative_residual": care.relative_residual,
         "closed_loop_poles": poles,
     }});

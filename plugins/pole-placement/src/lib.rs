@@ -16,7 +16,7 @@
 //! vehicle, so fly it symmetric).
 
 use hsv_core::control::{
-    ControlCommands, ControlContext, Controller, MeasuredOutputs, StateFeedback,
+    ControlCommands, ControlContext, Controller, MeasuredOutputs, StateFeedback, matrix_rows,
 };
 use hsv_core::error::ModelError;
 use nalgebra::{DMatrix, DVector};
@@ -184,7 +184,7 @@ pub fn construct(ctx: &ControlContext<'_>) -> Result<Box<dyn Controller>, ModelE
         .map(|e| (e.re, e.im))
         .collect();
     let report = serde_json::json!({
-        "short_period_model": {"a": [[a[(0, 0)], a[(0, 1)]], [a[(1, 0)], a[(1, 1)]]], "b": [b[0], b[1]]},
+        "short_period_model": {"a": matrix_rows(&a), "b": [b[0], b[1]]},
         "open_loop_poles": open_loop,
         "placed": {"frequency_rad_s": omega, "damping": zeta},
         "gains": {"alpha": k[0], "q_s": k[1]},

@@ -48,6 +48,9 @@ pub struct TrackingSettings {
     /// so a large step is flown on the proportional law and the integral trims the rest.
     pub integrate_within_m: f64,
     pub integrate_within_m_s: f64,
+    /// Feed back the inertial flight-path angle γ and θ in place of the air-data α
+    /// ([`inertial_flight_path_law`]).
+    pub inertial_flight_path: bool,
 }
 
 impl Default for TrackingSettings {
@@ -70,6 +73,7 @@ impl Default for TrackingSettings {
             max_differential_elevon_deg: 5.0,
             integrate_within_m: 20.0,
             integrate_within_m_s: 2.0,
+            inertial_flight_path: true,
         }
     }
 }
@@ -91,7 +95,28 @@ max_roll_deg = 2.0
 max_differential_elevon_deg = 5.0
 integrate_within_m = 20.0  # conditional integration: the altitude error is integrated only below this
 integrate_within_m_s = 2.0  # and the airspeed error only below this
+inertial_flight_path = true  # feed back the inertial flight-path angle and pitch where the design has alpha (alpha = theta - gamma in still air: the same law, but a gust's alpha does not drive the elevon)
 # commands: [control.commands] altitude_m / airspeed_m_s = { time_s = [...], value = [...] } (offsets from trim)";
+
+/// The law u = −K z re-expressed to read the inertial flight-path angle γ where it read the
+/// air-data α: in still, symmetric flight α = θ − γ, so −K_α α − K_θ θ = K_α γ − (K_α + K_θ) θ
+/// is the same law on the linear model, but a gust's α no longer drives the elevon (it still
+/// acts through the q, θ, h and V it causes). Without α or θ among `names` the law is kept.
+fn inertial_flight_path_law(names: &[String], k: DMatrix<f64>) -> (Vec<String>, DMatrix<f64>) {
+    let at = |wanted: &str| names.iter().position(|n| n == wanted);
+    let (Some(alpha), Some(pitch)) = (at("alpha_rad"), at("pitch_rad")) else {
+        return (names.to_vec(), k);
+    };
+    let mut law = k;
+    for i in 0..law.nrows() {
+        let k_alpha = law[(i, alpha)];
+        law[(i, alpha)] = -k_alpha;
+        law[(i, pitch)] += k_alpha;
+    }
+    let mut states = names.to_vec();
+    states[alpha] = "flight_path_rad".to_owned();
+    (states, law)
+}
 
 /// `[control.commands]`.
 #[derive(Debug, Clone, Default, serde::Deserialize)]
@@ -316,11 +341,16 @@ fn build(ctx: &ControlContext<'_>) -> Result<Box<dyn Controller>, ModelError> {
         .copied()
         .chain(["altitude_error_integral_m_s", "airspeed_error_integral_m"])
         .collect();
+    let (law_states, law_k) = if s.inertial_flight_path {
+        inertial_flight_path_law(&model.state_names, care.k.columns(0, n).into_owned())
+    } else {
+        (model.state_names.clone(), care.k.columns(0, n).into_owned())
+    };
     let longitudinal = regulator(
         ctx,
-        &model.state_names,
+        &law_states,
         &model.input_names,
-        care.k.columns(0, n).into_owned(),
+        law_k,
         serde_json::Value::Null,
     )?;
     let tracked = [longitudinal.states[h], longitudinal.states[v]];

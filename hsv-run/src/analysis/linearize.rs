@@ -24,7 +24,7 @@ pub const INPUT_NAMES: [&str; 3] = [
 ];
 
 /// Output names, with units.
-pub const OUTPUT_NAMES: [&str; 10] = [
+pub const OUTPUT_NAMES: [&str; 11] = [
     "airspeed_m_s",
     "alpha_rad",
     "beta_rad",
@@ -35,6 +35,7 @@ pub const OUTPUT_NAMES: [&str; 10] = [
     "pitch_rad",
     "yaw_rad",
     "altitude_m",
+    "flight_path_rad",
 ];
 
 /// A linear model and its named modes.
@@ -178,6 +179,8 @@ fn build_model(
         let (airspeed, alpha, beta) = rigid.air_data(&Vector3::zeros());
         let (roll, pitch, yaw) = rigid.euler_angles();
         let w = rigid.angular_velocity_body_rad_s;
+        let v_ned = rigid.velocity_ned_m_s();
+        let flight_path = (-v_ned.z / v_ned.norm()).clamp(-1.0, 1.0).asin();
         let values = [
             airspeed,
             alpha,
@@ -189,6 +192,7 @@ fn build_model(
             pitch,
             yaw,
             rigid.altitude_m(),
+            flight_path,
         ];
         for (out, v) in y.iter_mut().zip(values) {
             *out = v;

@@ -107,6 +107,35 @@ fn lqr_flies_the_doublet_and_settles() {
     assert!(last.q_deg_s.abs() < 0.1, "{last:?}");
 }
 
+/// `text` (a config) flown by `controller` for `duration_s` from its trim (unheated, 2 ms steps),
+/// every `record_every`-th step recorded: the outcome and the samples up to its end.
+fn fly_unheated(
+    registry: &hsv_core::registry::Registry,
+    text: &str,
+    controller: &str,
+    duration_s: f64,
+    record_every: usize,
+) -> (
+    Result<(), hsv_run::analysis::simulate::SimulationError>,
+    Vec<hsv_run::analysis::simulate::Sample>,
+) {
+    use hsv_run::analysis::flight::{Flight, FlightOptions};
+    let loaded = common::parse(text);
+    let options = FlightOptions {
+        heated: false,
+        controller: Some(controller.to_owned()),
+        dt_s: 0.002,
+        ..FlightOptions::default()
+    };
+    let mut flight = Flight::trimmed(&loaded, registry, &options, |_| {}).expect("trims");
+    let mut samples = Vec::new();
+    let outcome = flight.fly(duration_s, record_every, |s, _, _| {
+        samples.push(s.clone());
+        true
+    });
+    (outcome.map(|_| ()), samples)
+}
+
 /// The `tracking` servo on the coarse sample vehicle at Mach 6, 26 km (unheated, 2 ms steps,
 /// default actuators): a +100 m altitude step flown 30 s and, separately, a +20 m/s airspeed
 /// step flown 80 s, each ramped in over 1 s from t = 1 s. Bands: the commanded output within
@@ -117,7 +146,6 @@ fn lqr_flies_the_doublet_and_settles() {
 /// The design was iterated on these runs: a lateral regulator, conditional integration.)
 #[test]
 fn tracking_settles_altitude_and_airspeed_steps() {
-    use hsv_run::analysis::flight::{Flight, FlightOptions};
     let registry = hsv_run::registry().expect("registry");
     for (table, command, step, duration_s) in [
         ("altitude_m", "altitude_m", 100.0, 30.0),
@@ -127,21 +155,8 @@ fn tracking_settles_altitude_and_airspeed_steps() {
             "{}\n[control]\ncontroller = \"tracking\"\n\n[control.commands]\n{table} = {{ time_s = [1.0, 2.0], value = [0.0, {step}] }}\n",
             common::coarse_text()
         );
-        let loaded = common::parse(&text);
-        let options = FlightOptions {
-            heated: false,
-            controller: Some("tracking".to_owned()),
-            dt_s: 0.002,
-            ..FlightOptions::default()
-        };
-        let mut flight = Flight::trimmed(&loaded, &registry, &options, |_| {}).expect("trims");
-        let mut samples = Vec::new();
-        flight
-            .fly(duration_s, 50, |s, _, _| {
-                samples.push(s.clone());
-                true
-            })
-            .expect("flies");
+        let (outcome, samples) = fly_unheated(&registry, &text, "tracking", duration_s, 50);
+        outcome.expect("flies");
         let first = samples[0].clone();
         let last = samples.last().expect("samples").clone();
         let dh = last.altitude_m - first.altitude_m;
@@ -230,7 +245,6 @@ fn lqr_closed_loop_with_its_actuators_is_stable_and_without_them_is_not() {
 /// phugoid drifts more slowly than that).
 #[test]
 fn pole_placement_plugin_rides_out_a_gust() {
-    use hsv_run::analysis::flight::{Flight, FlightOptions};
     let mut registry = hsv_run::registry().expect("registry");
     registry
         .load_plugin(&hsv_core::testing::plugin_path("hsv_plugin_pole_placement"))
@@ -239,21 +253,8 @@ fn pole_placement_plugin_rides_out_a_gust() {
         "{}\n[[disturbances.gusts]]\nstart_s = 0.2\namplitude_m_s = [0.0, 0.0, 5.0]\nhalf_length_m = 400.0\n",
         common::coarse_text()
     );
-    let loaded = common::parse(&text);
-    let options = FlightOptions {
-        heated: false,
-        controller: Some("pole-placement".to_owned()),
-        dt_s: 0.002,
-        ..FlightOptions::default()
-    };
-    let mut flight = Flight::trimmed(&loaded, &registry, &options, |_| {}).expect("trims");
-    let mut samples = Vec::new();
-    flight
-        .fly(4.0, 5, |s, _, _| {
-            samples.push(s.clone());
-            true
-        })
-        .expect("flies");
+    let (outcome, samples) = fly_unheated(&registry, &text, "pole-placement", 4.0, 5);
+    outcome.expect("flies");
     let trim_alpha = samples[0].alpha_deg;
     let quasi_steady_deg = (5.0 / samples[0].airspeed_m_s).to_degrees();
     assert!(samples.iter().any(|s| s.gust_w_m_s > 4.9), "no gust flown");
@@ -285,27 +286,13 @@ fn pole_placement_plugin_rides_out_a_gust() {
 /// 0.92 m and 0.27° with no limit reached (and departs at 6.6 s on air data).
 #[test]
 fn tracking_holds_trim_through_severe_turbulence_reading_the_flight_path() {
-    use hsv_run::analysis::flight::{Flight, FlightOptions};
     let registry = hsv_run::registry().expect("registry");
     let fly = |inertial: bool| {
         let text = format!(
             "{}\n[control]\ncontroller = \"tracking\"\n\n[models.tracking]\ninertial_flight_path = {inertial}\n\n[disturbances.dryden]\nseverity = \"severe\"\nseed = 1\n",
             common::coarse_text()
         );
-        let loaded = common::parse(&text);
-        let options = FlightOptions {
-            heated: false,
-            controller: Some("tracking".to_owned()),
-            dt_s: 0.002,
-            ..FlightOptions::default()
-        };
-        let mut flight = Flight::trimmed(&loaded, &registry, &options, |_| {}).expect("trims");
-        let mut samples = Vec::new();
-        let outcome = flight.fly(10.0, 25, |s, _, _| {
-            samples.push(s.clone());
-            true
-        });
-        (outcome.map(|_| ()), samples)
+        fly_unheated(&registry, &text, "tracking", 10.0, 25)
     };
     let (outcome, samples) = fly(true);
     outcome.expect("holds trim on the flight path");

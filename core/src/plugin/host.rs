@@ -1136,7 +1136,7 @@ pub struct ControllerAdapter {
     handle: Handle,
     functions: &'static ControlFunctions,
     sample_interval_s: Option<f64>,
-    state_len: usize,
+    /// The state at trim, read once at create; its length is the controller's state length.
     initial_state: Vec<f64>,
     report: serde_json::Value,
     feedback: Vec<StateFeedback>,
@@ -1224,7 +1224,6 @@ impl ControllerAdapter {
             handle,
             functions,
             sample_interval_s,
-            state_len,
             initial_state,
             report,
             feedback,
@@ -1242,7 +1241,7 @@ impl Controller for ControllerAdapter {
     }
 
     fn state_len(&self) -> usize {
-        self.state_len
+        self.initial_state.len()
     }
 
     fn initial_state(&self, state: &mut [f64]) {
@@ -1261,7 +1260,12 @@ impl Controller for ControllerAdapter {
         commands: &mut ControlCommands,
     ) -> Result<(), ModelError> {
         let name = &self.handle.name;
-        check_len(name, "controller state values", state.len(), self.state_len)?;
+        check_len(
+            name,
+            "controller state values",
+            state.len(),
+            self.initial_state.len(),
+        )?;
         let measured = outputs.values();
         let mut out = commands.values();
         // SAFETY: CONTROL_OUTPUTS measurements, `state_len` state values and CONTROL_COMMANDS

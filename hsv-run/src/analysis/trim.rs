@@ -365,34 +365,18 @@ fn minimize(
     let (coarse, mut evaluations, mut refusal) =
         nelder_mead(vehicle, request, start, request.tolerance)?;
     let mut best = polish(vehicle, request, coarse, &mut evaluations);
-    let trimmed = residual(vehicle, request, &best, &mut evaluations).is_some_and(|r| {
-        is_trimmed(&Accelerations {
-            u_dot_m_s2: r[0],
-            w_dot_m_s2: r[1],
-            q_dot_rad_s2: r[2],
-        })
-    });
+    let mut at_best = evaluate(vehicle, request, &best);
+    let trimmed = at_best
+        .as_ref()
+        .is_ok_and(|(accelerations, _)| is_trimmed(accelerations));
     if !trimmed && request.tolerance > FINE_TOLERANCE {
         let (fine, more, fine_refusal) = nelder_mead(vehicle, request, best, FINE_TOLERANCE)?;
         evaluations += more;
         refusal = fine_refusal.or(refusal);
         best = polish(vehicle, request, fine, &mut evaluations);
+        at_best = evaluate(vehicle, request, &best);
     }
-    let c = controls(&best);
-    let (accelerations, loads) = vehicle
-        .steady_accelerations(request.mach, request.altitude_m, &c)
-        .map_err(|e| TrimError::Untrimmable {
-            mach: request.mach,
-            altitude_m: request.altitude_m,
-            alpha_deg: best[0],
-            elevon_deg: best[1],
-            phi: best[2],
-            u_dot: f64::NAN,
-            w_dot: f64::NAN,
-            q_dot: f64::NAN,
-            cost: f64::NAN,
-            reason: format!("; the models refuse the best point: {e}"),
-        })?;
+    let (accelerations, loads) = at_best?;
     Ok((
         TrimPoint {
             alpha_deg: best[0],
@@ -406,6 +390,29 @@ fn minimize(
         },
         refusal,
     ))
+}
+
+/// The accelerations and loads at the search's best point `best`; the models refusing it is an
+/// untrimmable point.
+fn evaluate(
+    vehicle: &mut dyn SteadyFlight,
+    request: &TrimRequest,
+    best: &[f64; 3],
+) -> Result<(Accelerations, RigidLoads), TrimError> {
+    vehicle
+        .steady_accelerations(request.mach, request.altitude_m, &controls(best))
+        .map_err(|e| TrimError::Untrimmable {
+            mach: request.mach,
+            altitude_m: request.altitude_m,
+            alpha_deg: best[0],
+            elevon_deg: best[1],
+            phi: best[2],
+            u_dot: f64::NAN,
+            w_dot: f64::NAN,
+            q_dot: f64::NAN,
+            cost: f64::NAN,
+            reason: format!("; the models refuse the best point: {e}"),
+        })
 }
 
 /// The residual accelerations (u̇, ẇ, q̇) at `p`, or `None` where the search may not go (φ out of

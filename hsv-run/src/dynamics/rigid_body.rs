@@ -241,14 +241,6 @@ impl Default for RigidBodyDerivative {
     }
 }
 
-impl RigidBodyDerivative {
-    /// Inertial acceleration of the centre of mass in body axes, m/s² (β̇ + ζ × β on a flat
-    /// Earth).
-    pub fn inertial_acceleration_m_s2(&self, _state: &RigidBodyState) -> Vector3<f64> {
-        self.inertial_acceleration_body_m_s2
-    }
-}
-
 /// The rigid body: mass, inertia about the centre of mass, and the gravity model.
 #[derive(Debug, Clone, PartialEq)]
 pub struct RigidBody {
@@ -462,7 +454,7 @@ pub fn point_acceleration(
     relative_acceleration_m_s2: &Vector3<f64>,
 ) -> Vector3<f64> {
     let zeta = &state.angular_velocity_body_rad_s;
-    derivative.inertial_acceleration_m_s2(state)
+    derivative.inertial_acceleration_body_m_s2
         + derivative.angular_acceleration_body_rad_s2.cross(offset_m)
         + zeta.cross(&zeta.cross(offset_m))
         + 2.0 * zeta.cross(relative_velocity_m_s)

@@ -44,6 +44,7 @@ fn the_sample_vehicle_assembles_for_the_aerothermoelastic_analysis() {
         [
             RigidDof::TranslationX,
             RigidDof::TranslationZ,
+            RigidDof::RotationX,
             RigidDof::RotationY
         ]
     );

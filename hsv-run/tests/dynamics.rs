@@ -22,7 +22,7 @@ use hsv_run::dynamics::{
     StateLayout, StateRole, SurfaceAttachment, VehicleDerivative, VehicleDynamics, VehicleLoads,
     VehicleState, flight_modes, linearize,
 };
-use nalgebra::{DMatrix, DVector, Matrix2, Matrix3, Point3, Vector3};
+use nalgebra::{DMatrix, DVector, Matrix2, Matrix3, Matrix6, Point3, Vector3};
 
 #[global_allocator]
 static GLOBAL: CountingAllocator = CountingAllocator;
@@ -307,6 +307,7 @@ fn one_mode_surface(omega: f64, zeta: f64, c: [f64; 3]) -> (SurfaceAttachment, M
         ],
         coupling: DMatrix::from_row_slice(1, 3, &c),
         body_modes_at_pivot: DMatrix::zeros(6, 0),
+        pivot_mass: Matrix6::zeros(),
     };
     (attachment, model)
 }
@@ -910,6 +911,7 @@ fn vehicle_steps_do_not_allocate() {
         ],
         coupling: DMatrix::from_fn(5, 3, |i, j| 0.1 * (i + j) as f64),
         body_modes_at_pivot: DMatrix::from_fn(6, 3, |i, j| 0.01 * (i as f64 - j as f64)),
+        pivot_mass: Matrix6::zeros(),
     };
     let mut vehicle = VehicleDynamics::new(
         point_mass_body(

@@ -145,7 +145,7 @@ pub fn linearize(
 /// below 1e-12 (the flight's 1e-8 leaves a residual that a 1e-6 perturbation would read as a
 /// derivative).
 pub const LINEARIZATION_COUPLING: CouplingSettings = CouplingSettings {
-    tolerance: 1e-12,
+    tolerance: crate::vehicle::partitioned::LINEARIZATION_TOLERANCE,
     max_iterations: 400,
 };
 

@@ -29,8 +29,13 @@
 //! the surface's own elastic displacements (second order in ζ times q), and y-translation, which
 //! the paper neglects and `ritz-plate` does not list.
 
-use hsv_core::structure::{MassProperties, ModalModel, RigidBodyCoupling, RigidDof};
-use nalgebra::{Cholesky, DMatrix, DVector, Dyn, Point3, Vector3};
+use hsv_core::aero::Loads;
+use hsv_core::error::ModelError;
+use hsv_core::mesh::PanelMesh;
+use hsv_core::structure::{
+    MassProperties, ModalModel, RigidBodyCoupling, RigidDof, StructureModel,
+};
+use nalgebra::{Cholesky, DMatrix, DVector, Dyn, Matrix3, Matrix6, Point3, Vector3, Vector6};
 use serde::{Deserialize, Serialize};
 
 use super::rigid_body::{RigidBodyDerivative, RigidBodyState, point_acceleration};
@@ -233,23 +238,111 @@ pub struct SurfaceAttachment {
     /// rotation x, y, z (rad), one column per body mode. Zeros: the pivot moves rigidly with
     /// the body frame.
     pub body_modes_at_pivot: DMatrix<f64>,
+    /// The surface's rigid mass matrix about the pivot for (translation, rotation)
+    /// accelerations ([`pivot_mass_matrix`]): the inertia the body's elastic motion at the
+    /// pivot drives. Zero: a massless attachment.
+    pub pivot_mass: Matrix6<f64>,
 }
 
 impl SurfaceAttachment {
     /// From a structure's rigid-body coupling capability, with the pivot fixed to the body
-    /// frame (no body-mode motion at the pivot; set [`Self::body_modes_at_pivot`] to add it).
+    /// frame (no body-mode motion at the pivot; set [`Self::body_modes_at_pivot`] to add it)
+    /// and the surface's mass about the pivot.
     pub fn from_coupling(
         name: &str,
         coupling: &dyn RigidBodyCoupling,
+        mass: &MassProperties,
         n_body_modes: usize,
     ) -> Self {
+        let pivot_m = coupling.rigid_reference_point_m();
         Self {
             name: name.to_owned(),
-            pivot_m: coupling.rigid_reference_point_m(),
+            pivot_m,
             dofs: coupling.rigid_dofs().to_vec(),
             coupling: coupling.rigid_coupling().clone(),
             body_modes_at_pivot: DMatrix::zeros(6, n_body_modes),
+            pivot_mass: pivot_mass_matrix(mass, &pivot_m),
         }
+    }
+}
+
+/// Step of the central differences across the section in [`pivot_mode_shapes`], m: the beam's
+/// field is linear across its section, so any step is exact there.
+const SECTION_STEP_M: f64 = 0.01;
+
+/// A structure's mode shapes at a point as rows translation x, y, z (m) and rotation x, y, z
+/// (rad), one column per mode: the displacement at the point and the rotation of the body's
+/// cross-section there (the plane x = x_P, in which a torque tube's bearing sits), from central
+/// differences across the section: θx = ½ (∂u_z/∂y − ∂u_y/∂z), θy = ∂u_x/∂z, θz = −∂u_x/∂y.
+/// Across the section, not ½ curl u: a beam's field off its axis has a shear term
+/// ½ θx′ (y − y_axis) in the curl that no material line of the section turns by.
+pub fn pivot_mode_shapes(
+    structure: &dyn StructureModel,
+    point_m: &Point3<f64>,
+) -> Result<DMatrix<f64>, ModelError> {
+    let h = SECTION_STEP_M;
+    let offsets = [
+        Vector3::zeros(),
+        Vector3::new(0.0, h, 0.0),
+        Vector3::new(0.0, -h, 0.0),
+        Vector3::new(0.0, 0.0, h),
+        Vector3::new(0.0, 0.0, -h),
+    ];
+    let mesh = PanelMesh {
+        vertices: offsets.iter().map(|d| point_m + d).collect(),
+        panels: Vec::new(),
+        strips: Vec::new(),
+        surfaces: Vec::new(),
+    };
+    let shapes = structure.mode_shapes_on(&mesh)?;
+    let u = |vertex: usize, k: usize| {
+        let d = &shapes.vertex_displacement;
+        Vector3::new(
+            d[(3 * vertex, k)],
+            d[(3 * vertex + 1, k)],
+            d[(3 * vertex + 2, k)],
+        )
+    };
+    let n = shapes.n_modes();
+    let mut out = DMatrix::zeros(6, n);
+    for k in 0..n {
+        let du_dy = (u(1, k) - u(2, k)) / (2.0 * h);
+        let du_dz = (u(3, k) - u(4, k)) / (2.0 * h);
+        let t = u(0, k);
+        out[(0, k)] = t.x;
+        out[(1, k)] = t.y;
+        out[(2, k)] = t.z;
+        out[(3, k)] = 0.5 * (du_dy.z - du_dz.y);
+        out[(4, k)] = du_dz.x;
+        out[(5, k)] = -du_dy.x;
+    }
+    Ok(out)
+}
+
+/// The 6 × 6 rigid mass matrix of a body about a point P for (a_P, α), the acceleration of P
+/// and the angular acceleration: force m a_P − m [c]× α and moment about P m [c]× a_P + I_P α,
+/// c = G − P, [c]× the cross-product matrix (symmetric because [c]× is skew). The
+/// velocity-squared terms (m ω × (ω × c)) are left out: at the body's rates they are below
+/// 1e-3 g at a pivot's offset from the surface's centre of mass.
+pub fn pivot_mass_matrix(mass: &MassProperties, pivot_m: &Point3<f64>) -> Matrix6<f64> {
+    let c = mass.center_of_mass_m - pivot_m;
+    let skew = c.cross_matrix() * mass.mass_kg;
+    let mut m = Matrix6::zeros();
+    m.fixed_view_mut::<3, 3>(0, 0)
+        .copy_from(&(Matrix3::identity() * mass.mass_kg));
+    m.fixed_view_mut::<3, 3>(0, 3).copy_from(&(-skew));
+    m.fixed_view_mut::<3, 3>(3, 0).copy_from(&skew);
+    m.fixed_view_mut::<3, 3>(3, 3)
+        .copy_from(&mass.inertia_about(pivot_m));
+    m
+}
+
+/// The wrench (force N, moment about P N m) of a 6 × 6 pivot mass on (a, α).
+pub fn pivot_inertia(mass: &Matrix6<f64>, a: &Vector3<f64>, alpha: &Vector3<f64>) -> Loads {
+    let w = mass * Vector6::new(a.x, a.y, a.z, alpha.x, alpha.y, alpha.z);
+    Loads {
+        force_n: Vector3::new(w[0], w[1], w[2]),
+        moment_nm: Vector3::new(w[3], w[4], w[5]),
     }
 }
 

@@ -5,13 +5,27 @@
 //! Order within a derivative: the rigid body first (from the loads the coordinator gives,
 //! including the surfaces' root loads of its latest coupling iterate), then the body's modes,
 //! then each surface driven by the body's motion at its pivot. The body-surface algebraic loop
-//! (root loads depend on the surfaces' accelerations) is closed by the coordinator's coupling
-//! iteration (issue 11 item 4), not here.
+//! (root loads depend on the surfaces' accelerations, which depend on the body's at the pivots)
+//! is closed by the coordinator's coupling iteration, not here.
 //!
-//! The lifting surfaces' rigid mass belongs in the vehicle's [`MassProperties`] (lumped at the
-//! pivots); the root loads the coordinator adds to the body loads are then the force-summation
-//! loads L = Rᵀ (f − M Φ q̈) (applied load minus the elastic inertia), so the surfaces' rigid
-//! inertia is not counted twice.
+//! **The elastic interface** (paper §II.B: the body gives the surfaces their root displacement
+//! and velocity, the surfaces give the body root forces and moments). Mass bookkeeping, with no
+//! double counting:
+//! - the rigid body carries the whole vehicle's mass, the surfaces' rigid mass lumped at their
+//!   pivots in [`MassProperties`]; the root loads the coordinator adds are the force-summation
+//!   loads L = Rᵀ (f − M Φ q̈) (applied load minus the elastic inertia);
+//! - the body's modes are the beam's own free-free modes, mean axes of the beam alone, not of
+//!   the assembly: the assembly's modes would need the surfaces' structure inside the body's
+//!   model, across regions. The surfaces' rigid mass at the pivots then couples to them
+//!   inertially, exactly (up to modal truncation): the body's modal equations take each
+//!   surface's wrench at its pivot, Φ_Pᵀ (L − M_P (a_P − g)), with M_P the surface's 6 × 6
+//!   rigid mass about the pivot and a_P the pivot's full acceleration (rigid and elastic);
+//!   the rigid body takes the reaction of the elastic part, −M_P Φ_P η̈. The assembled mass
+//!   matrix is then symmetric: the term Φ_Pᵀ M_P Φ_P is the surfaces' added mass on the
+//!   body's modes, Φ_Pᵀ M_P their coupling with the rigid motion.
+//! - the body's η̈ in those terms is the coordinator's interface iterate
+//!   ([`VehicleLoads::body_modal_acceleration`]), so the loop closes in the same fixed point
+//!   as the surfaces' q̈.
 //!
 //! [`MassProperties`]: hsv_core::structure::MassProperties
 
@@ -22,7 +36,9 @@ use nalgebra::{DMatrix, DVector, Quaternion, UnitQuaternion, Vector3};
 use serde::{Deserialize, Serialize};
 
 use super::flight_modes::StateRole;
-use super::modal::{ModalDynamics, ModalRate, ModalState, RootMotion, SurfaceAttachment};
+use super::modal::{
+    ModalDynamics, ModalRate, ModalState, RootMotion, SurfaceAttachment, pivot_inertia,
+};
 use super::rigid_body::{RigidBody, RigidBodyDerivative, RigidBodyState};
 use super::{DynamicsError, check_finite, check_len};
 
@@ -49,6 +65,15 @@ pub struct VehicleLoads {
     /// Each surface's generalized forces (aero, thermal; gravity and root motion are added by
     /// the dynamics).
     pub surface_generalized_forces: Vec<DVector<f64>>,
+    /// Each surface's root load on the body (applied load minus the elastic inertia, force N
+    /// and moment N m about its pivot, body axes), as included in `body`: what the dynamics
+    /// projects onto the body's modes with the surface's rigid inertia.
+    pub surface_root_loads: Vec<Loads>,
+    /// The body-surface interface's iterate of the body's modal accelerations η̈ (1/s²): the
+    /// elastic acceleration of the pivots that drives the surfaces' rigid inertia in the rigid
+    /// body's and the body modes' equations. The coordinator's fixed point makes it the η̈
+    /// that the derivative returns.
+    pub body_modal_acceleration: DVector<f64>,
 }
 
 /// The time derivative of a [`VehicleState`], with the root motion each surface saw.
@@ -78,6 +103,8 @@ pub struct VehicleDynamics {
     rigid: RigidBody,
     body: ModalDynamics,
     surfaces: Vec<Surface>,
+    /// Scratch: the body's generalized forces with the surfaces' wrenches on it.
+    body_force: DVector<f64>,
 }
 
 impl VehicleDynamics {
@@ -127,6 +154,7 @@ impl VehicleDynamics {
             })
             .collect::<Result<Vec<_>, DynamicsError>>()?;
         Ok(Self {
+            body_force: DVector::zeros(body.n_modes()),
             rigid,
             body,
             surfaces,
@@ -224,6 +252,8 @@ impl VehicleDynamics {
                 .iter()
                 .map(|s| DVector::zeros(s.modal.n_modes()))
                 .collect(),
+            surface_root_loads: vec![Loads::default(); self.surfaces.len()],
+            body_modal_acceleration: DVector::zeros(self.body.n_modes()),
         }
     }
 
@@ -283,7 +313,29 @@ impl VehicleDynamics {
             || "body loads (force N, moment N m)".into(),
             loads.body.force_n.iter().chain(loads.body.moment_nm.iter()),
         )?;
-        out.rigid = self.rigid.derivative(&state.rigid, &loads.body);
+        check_len(
+            || "surface root loads".into(),
+            n_surfaces,
+            loads.surface_root_loads.len(),
+        )?;
+        check_len(
+            || "body modal acceleration iterate".into(),
+            self.body.n_modes(),
+            loads.body_modal_acceleration.len(),
+        )?;
+        // The surfaces' rigid inertia under the body's elastic motion at the pivots (their
+        // rigid inertia under the rigid motion is in the rigid body's mass).
+        let mut body_loads = loads.body;
+        for surface in &self.surfaces {
+            let a = &surface.attachment;
+            let (d_ddot, theta_ddot) =
+                pivot_motion(&a.body_modes_at_pivot, &loads.body_modal_acceleration);
+            let w = pivot_inertia(&a.pivot_mass, &d_ddot, &theta_ddot);
+            let offset = self.rigid.offset_from_center_of_mass(&a.pivot_m);
+            body_loads.force_n -= w.force_n;
+            body_loads.moment_nm -= w.moment_nm + offset.cross(&w.force_n);
+        }
+        out.rigid = self.rigid.derivative(&state.rigid, &body_loads);
         let rigid = &out.rigid;
         check_finite(
             || "rigid-body acceleration (m/s², rad/s²)".into(),
@@ -292,9 +344,42 @@ impl VehicleDynamics {
                 .iter()
                 .chain(rigid.angular_acceleration_body_rad_s2.iter()),
         )?;
+        // Each surface's wrench on the body at its pivot, Φ_Pᵀ (L − M_P a_P): its root load
+        // and its rigid inertia at the pivot's specific force (gravity's share included, so a
+        // freely falling vehicle stays undeformed).
+        self.body_force.copy_from(&loads.body_generalized_force);
+        for (i, surface) in self.surfaces.iter().enumerate() {
+            let a = &surface.attachment;
+            let offset = self.rigid.offset_from_center_of_mass(&a.pivot_m);
+            let root = RootMotion::at_pivot(
+                &state.rigid,
+                &out.rigid,
+                &offset,
+                &a.body_modes_at_pivot,
+                &state.body_modes,
+                &loads.body_modal_acceleration,
+            );
+            let inertia = pivot_inertia(
+                &a.pivot_mass,
+                &root.specific_force_m_s2,
+                &root.angular_acceleration_rad_s2,
+            );
+            let root_load = &loads.surface_root_loads[i];
+            let force = root_load.force_n - inertia.force_n;
+            let moment = root_load.moment_nm - inertia.moment_nm;
+            for (k, q) in self.body_force.iter_mut().enumerate() {
+                let phi = a.body_modes_at_pivot.column(k);
+                *q += phi[0] * force.x
+                    + phi[1] * force.y
+                    + phi[2] * force.z
+                    + phi[3] * moment.x
+                    + phi[4] * moment.y
+                    + phi[5] * moment.z;
+            }
+        }
         self.body.acceleration(
             &state.body_modes,
-            &loads.body_generalized_force,
+            &self.body_force,
             None,
             &mut out.body_modes,
         )?;
@@ -335,6 +420,22 @@ impl VehicleDynamics {
         }
         Ok(())
     }
+}
+
+/// The pivot's elastic translation and rotation (m, rad, or their rates) for modal values
+/// `eta`: Φ_P η split into its translation and rotation rows.
+pub fn pivot_motion(
+    body_modes_at_pivot: &DMatrix<f64>,
+    eta: &DVector<f64>,
+) -> (Vector3<f64>, Vector3<f64>) {
+    let mut translation = Vector3::zeros();
+    let mut rotation = Vector3::zeros();
+    for (k, &e) in eta.iter().enumerate().take(body_modes_at_pivot.ncols()) {
+        let c = body_modes_at_pivot.column(k);
+        translation += Vector3::new(c[0], c[1], c[2]) * e;
+        rotation += Vector3::new(c[3], c[4], c[5]) * e;
+    }
+    (translation, rotation)
 }
 
 /// How the attitude is stored in the flat state vector.

@@ -15,11 +15,11 @@
 //!    q̈_surfaces with Aitken's Δ² relaxation until the root loads change by less than the
 //!    tolerance (relative), recording iterations and the residual.
 //!
-//! Not yet modelled here (documented in the issue notes): the body's elastic motion at the
-//! pivots. The surfaces hang on the body frame: `SurfaceAttachment::body_modes_at_pivot` is left
-//! at zero, so the beam modes neither move the surface geometry nor drive the surfaces' root
-//! acceleration, and the root loads reach the rigid body but not the beam's generalized forces.
-//! Closing that loop consistently also needs the surfaces' rigid mass in the beam's modal mass.
+//! The elastic interface is two-way (paper §II.B): the body's modes move each surface's root
+//! (its mesh and the boundary velocities its aero sees, by the pivot's translation and the
+//! rotation of the body's section there), drive the surface's root acceleration, and take the
+//! surface's wrench at the pivot into their generalized forces; the iteration's unknowns are the
+//! surfaces' q̈ and the body's η̈ (mass bookkeeping: [`crate::dynamics::vehicle`]).
 
 use hsv_core::ModelError;
 use hsv_core::aero::{AeroModel, AeroSolution, Loads, PanelMotion, integrate_pressure};
@@ -42,6 +42,7 @@ use super::body_rate::{BodyLoadHistory, BodyLoadRate, DEFAULT_BODY_FRICTION_DT_S
 use super::friction::RegionFriction;
 use super::{AnalysisNeeds, AssemblyError, RegionModelSet, RegionNeeds};
 use crate::disturbance::Disturbances;
+use crate::dynamics::vehicle::pivot_motion;
 use crate::dynamics::{
     GravityModel, RigidBody, SurfaceAttachment, VehicleDerivative, VehicleDynamics, VehicleLoads,
     VehicleState,
@@ -194,6 +195,12 @@ pub struct VehicleRestart {
     /// absent in older restart files).
     #[serde(default)]
     pub coupling: CouplingReport,
+    /// The body's η̈ guess and last Aitken step of the elastic interface (absent in restart
+    /// files from before the two-way interface: zeros).
+    #[serde(default)]
+    pub body_q_ddot: DVector<f64>,
+    #[serde(default)]
+    pub body_previous_step: DVector<f64>,
 }
 
 /// Temperatures of one heated surface, K.
@@ -267,13 +274,72 @@ impl Default for CouplingSettings {
 pub struct CouplingGuess {
     q_ddot: Vec<DVector<f64>>,
     previous_step: Vec<DVector<f64>>,
+    body_q_ddot: DVector<f64>,
+    body_previous_step: DVector<f64>,
+}
+
+/// One in-vacuo mode of the assembled structure ([`PartitionedVehicle::in_vacuo_modes`]).
+#[derive(Debug, Clone, PartialEq, serde::Serialize)]
+pub struct InVacuoMode {
+    pub frequency_hz: f64,
+    /// Share of the mode's strain energy in each region ([`InVacuoModes::regions`]), summing
+    /// to 1: where the mode deforms.
+    pub strain_energy_shares: Vec<f64>,
+}
+
+/// The assembled structure's in-vacuo modes, ascending.
+#[derive(Debug, Clone, PartialEq, serde::Serialize)]
+pub struct InVacuoModes {
+    /// The main body, then each lifting surface.
+    pub regions: Vec<String>,
+    pub modes: Vec<InVacuoMode>,
+    /// max |M̃ − M̃ᵀ| / max |M̃| of the condensed mass from the partitioned equations: zero
+    /// for an energy-consistent interface (a check, not a validation).
+    pub mass_asymmetry: f64,
+}
+
+/// The coupling tolerance of analyses that difference the derivative (linearization, in-vacuo
+/// modes).
+pub const LINEARIZATION_TOLERANCE: f64 = 1e-12;
+
+/// Elastic coordinate `j` of the stacked (body η, then each surface's ξ) vector.
+fn set_elastic_coordinate(state: &mut VehicleState, j: usize, value: f64) {
+    let n_body = state.body_modes.n_modes();
+    if j < n_body {
+        state.body_modes.q[j] = value;
+        return;
+    }
+    let mut k = j - n_body;
+    for m in &mut state.surface_modes {
+        if k < m.n_modes() {
+            m.q[k] = value;
+            return;
+        }
+        k -= m.n_modes();
+    }
+}
+
+/// The modal acceleration of stacked elastic coordinate `i`.
+fn elastic_acceleration(out: &VehicleDerivative, n_body: usize, i: usize) -> f64 {
+    if i < n_body {
+        return out.body_modes.q_ddot[i];
+    }
+    let mut k = i - n_body;
+    for m in &out.surface_modes {
+        if k < m.q_ddot.len() {
+            return m.q_ddot[k];
+        }
+        k -= m.q_ddot.len();
+    }
+    0.0
 }
 
 /// Iterations and final residual of the last coupling iteration.
 #[derive(Debug, Clone, Copy, PartialEq, Default, serde::Serialize, serde::Deserialize)]
 pub struct CouplingReport {
     pub iterations: usize,
-    /// Largest relative change of a surface's root force in the last iteration.
+    /// Largest relative change of a surface's root force, or of the body's η̈ (relative to the
+    /// η̈ that accelerates a pivot by 1 g), in the last iteration.
     pub residual: f64,
 }
 
@@ -354,6 +420,8 @@ struct Surface {
     solution: AeroSolution,
     generalized: Vec<f64>,
     root_force_n: Vector3<f64>,
+    /// The body's mode shapes at the pivot (6 × n_body: translation m, section rotation rad).
+    body_modes_at_pivot: nalgebra::DMatrix<f64>,
 }
 
 /// The partitioned vehicle (module docs).
@@ -375,6 +443,11 @@ pub struct PartitionedVehicle {
     /// the next guess.
     q_ddot: Vec<DVector<f64>>,
     previous_step: Vec<DVector<f64>>,
+    /// The body's η̈, the interface's other unknown, and its last Aitken step.
+    body_q_ddot: DVector<f64>,
+    body_previous_step: DVector<f64>,
+    /// The η̈ that accelerates the most-moving pivot by 1 g (the scale of its residual).
+    body_q_ddot_scale: f64,
     report: CouplingReport,
     warm_start: Option<VehicleState>,
     heating: HeatingRates,
@@ -608,6 +681,7 @@ fn body_region_loads(
 fn surface_region_loads(
     s: &mut Surface,
     modes: &crate::dynamics::ModalState,
+    body_modes: &crate::dynamics::ModalState,
     elevon: &ElevonCommand,
     flight: &FlightCondition,
     time_s: f64,
@@ -635,9 +709,25 @@ fn surface_region_loads(
         &mut s.deflected.vertices,
     )
     .map_err(|e| err(ModelError::inconsistent("elevon", e.to_string())))?;
-    s.deflected.update_geometry();
     for v in &mut s.velocities {
         *v = rotation * *v;
+    }
+    // The body's elastic motion at the pivot carries the root: translation d and the section's
+    // small rotation θ, r ← r + d + θ × (r − P), and their rates in the boundary velocity.
+    // (Panel velocities: at the panels' centroids.)
+    let carried = s.body_modes_at_pivot.ncols() > 0;
+    if carried {
+        let (d, theta) = pivot_motion(&s.body_modes_at_pivot, &body_modes.q);
+        for r in &mut s.deflected.vertices {
+            *r += d + theta.cross(&(*r - s.pivot_m));
+        }
+    }
+    s.deflected.update_geometry();
+    if carried {
+        let (d_dot, theta_dot) = pivot_motion(&s.body_modes_at_pivot, &body_modes.q_dot);
+        for (panel, v) in s.deflected.panels.iter().zip(s.velocities.iter_mut()) {
+            *v += d_dot + theta_dot.cross(&(panel.centroid - s.pivot_m));
+        }
     }
     let motion = PanelMotion {
         elastic_velocity_m_s: Some(&s.velocities),
@@ -795,14 +885,24 @@ fn surfaces_loads(
     time_s: f64,
     hold_friction: bool,
 ) -> Result<(), VehicleError> {
-    let each =
-        |(((s, out), modes), flight): (
-            (
-                (&mut Surface, &mut DVector<f64>),
-                &crate::dynamics::ModalState,
-            ),
-            &FlightCondition,
-        )| { surface_region_loads(s, modes, elevon, flight, time_s, hold_friction, out) };
+    let each = |(((s, out), modes), flight): (
+        (
+            (&mut Surface, &mut DVector<f64>),
+            &crate::dynamics::ModalState,
+        ),
+        &FlightCondition,
+    )| {
+        surface_region_loads(
+            s,
+            modes,
+            &state.body_modes,
+            elevon,
+            flight,
+            time_s,
+            hold_friction,
+            out,
+        )
+    };
     if side_by_side() {
         surfaces
             .par_iter_mut()
@@ -983,6 +1083,7 @@ impl PartitionedVehicle {
                         solution: AeroSolution::default(),
                         generalized: vec![0.0; n],
                         root_force_n: Vector3::zeros(),
+                        body_modes_at_pivot: nalgebra::DMatrix::zeros(6, 0),
                     });
                 }
                 _ => {}
@@ -1025,19 +1126,51 @@ impl PartitionedVehicle {
         let mass = mass.ok_or_else(|| assembly_error("main_body", "mass properties".into()))?;
         let rigid = RigidBody::new(&mass, gravity)
             .map_err(|e| assembly_error("main_body", e.to_string()))?;
+        let beam = body_structure
+            .as_ref()
+            .ok_or_else(|| assembly_error("main_body", "a structure model".into()))?;
         let attachments: Vec<(SurfaceAttachment, hsv_core::structure::ModalModel)> = surfaces
-            .iter()
+            .iter_mut()
             .map(|s| {
                 let coupling = s
                     .structure
                     .rigid_body_coupling()
                     .ok_or_else(|| assembly_error(&s.name, "rigid-body coupling".into()))?;
-                Ok((
-                    SurfaceAttachment::from_coupling(&s.name, coupling, body_modal.n_modes()),
-                    s.structure.modal_model().clone(),
-                ))
+                let surface_mass = s
+                    .structure
+                    .mass_properties()
+                    .ok_or_else(|| assembly_error(&s.name, "mass properties".into()))?
+                    .mass_properties();
+                let mut attachment = SurfaceAttachment::from_coupling(
+                    &s.name,
+                    coupling,
+                    &surface_mass,
+                    body_modal.n_modes(),
+                );
+                attachment.body_modes_at_pivot =
+                    crate::dynamics::modal::pivot_mode_shapes(beam.as_ref(), &attachment.pivot_m)
+                        .map_err(|e| {
+                        assembly_error(&s.name, format!("body modes at the pivot: {e}"))
+                    })?;
+                s.body_modes_at_pivot = attachment.body_modes_at_pivot.clone();
+                Ok((attachment, s.structure.modal_model().clone()))
             })
             .collect::<Result<_, AssemblyError>>()?;
+        let largest_pivot_mode = surfaces
+            .iter()
+            .flat_map(|s| {
+                s.body_modes_at_pivot
+                    .rows(0, 3)
+                    .iter()
+                    .copied()
+                    .collect::<Vec<_>>()
+            })
+            .fold(0.0_f64, |m, v| m.max(v.abs()));
+        let body_q_ddot_scale = if largest_pivot_mode > 0.0 {
+            hsv_core::atmosphere::STANDARD_GRAVITY_M_S2 / largest_pivot_mode
+        } else {
+            1.0
+        };
         let dynamics = VehicleDynamics::new(
             rigid,
             &body_modal,
@@ -1052,6 +1185,9 @@ impl PartitionedVehicle {
         Ok(Self {
             previous_step: q_ddot.clone(),
             q_ddot,
+            body_q_ddot: DVector::zeros(body_modal.n_modes()),
+            body_previous_step: DVector::zeros(body_modal.n_modes()),
+            body_q_ddot_scale,
             dynamics,
             body,
             surfaces,
@@ -1571,6 +1707,8 @@ impl PartitionedVehicle {
         CouplingGuess {
             q_ddot: self.q_ddot.clone(),
             previous_step: self.previous_step.clone(),
+            body_q_ddot: self.body_q_ddot.clone(),
+            body_previous_step: self.body_previous_step.clone(),
         }
     }
 
@@ -1580,13 +1718,19 @@ impl PartitionedVehicle {
         let fits = |a: &[DVector<f64>], b: &[DVector<f64>]| {
             a.len() == b.len() && a.iter().zip(b).all(|(x, y)| x.len() == y.len())
         };
-        if !(fits(&guess.q_ddot, &self.q_ddot) && fits(&guess.previous_step, &self.previous_step)) {
+        if !(fits(&guess.q_ddot, &self.q_ddot)
+            && fits(&guess.previous_step, &self.previous_step)
+            && guess.body_q_ddot.len() == self.body_q_ddot.len()
+            && guess.body_previous_step.len() == self.body_previous_step.len())
+        {
             return Err(VehicleError::Input(
                 "a coupling guess of another vehicle (surface mode counts differ)".to_owned(),
             ));
         }
         self.q_ddot.clone_from(&guess.q_ddot);
         self.previous_step.clone_from(&guess.previous_step);
+        self.body_q_ddot.copy_from(&guess.body_q_ddot);
+        self.body_previous_step.copy_from(&guess.body_previous_step);
         Ok(())
     }
 
@@ -1628,6 +1772,8 @@ impl PartitionedVehicle {
             heating_stiffness_s: self.heating.stiffness_s,
             heating_initial_k: self.heating.initial_k,
             body_loads: self.body_history.clone(),
+            body_q_ddot: self.body_q_ddot.clone(),
+            body_previous_step: self.body_previous_step.clone(),
             coupling: self.report,
         }
     }
@@ -1662,12 +1808,33 @@ impl PartitionedVehicle {
                 )));
             }
         }
+        let n_body = self.body_q_ddot.len();
+        for (what, len) in [
+            ("body modal accelerations", r.body_q_ddot.len()),
+            ("body Aitken steps", r.body_previous_step.len()),
+        ] {
+            if len != 0 && len != n_body {
+                return Err(VehicleError::Input(format!(
+                    "restart file: {len} {what} for a body of {n_body} modes"
+                )));
+            }
+        }
         self.time_s = r.time_s;
         self.report = r.coupling;
         self.body_history.clone_from(&r.body_loads);
         self.in_step = false;
         self.q_ddot.clone_from(&r.q_ddot);
         self.previous_step.clone_from(&r.previous_step);
+        for (saved, ours) in [
+            (&r.body_q_ddot, &mut self.body_q_ddot),
+            (&r.body_previous_step, &mut self.body_previous_step),
+        ] {
+            if saved.is_empty() {
+                ours.fill(0.0);
+            } else {
+                ours.copy_from(saved);
+            }
+        }
         self.heating = HeatingRates {
             conduction_s: r.heating_conduction_s,
             heat_flux_s: r.heating_heat_flux_s,
@@ -1791,6 +1958,10 @@ impl PartitionedVehicle {
             let scale = force.norm().max(s.root_force_n.norm()).max(1.0);
             change = change.max((force - s.root_force_n).norm() / scale);
             s.root_force_n = force;
+            self.loads.surface_root_loads[i] = Loads {
+                force_n: force,
+                moment_nm: moment,
+            };
             aero = aero
                 + Loads {
                     force_n: applied.force_n,
@@ -1817,13 +1988,36 @@ impl PartitionedVehicle {
     ) -> Result<(), VehicleError> {
         let flight = self.flight(state)?;
         self.region_loads(state, controls, &flight)?;
+        self.close_interface(state, out)
+    }
+
+    /// The body-surface interface closed on the region loads of the last evaluation: the
+    /// fixed point of (q̈, η̈) with Aitken's relaxation (module docs), the derivative into `out`.
+    fn close_interface(
+        &mut self,
+        state: &VehicleState,
+        out: &mut VehicleDerivative,
+    ) -> Result<(), VehicleError> {
         let body_without_roots = self.loads.body;
         let n_surfaces = self.surfaces.len();
         let mut residual = f64::INFINITY;
         let mut omega = 1.0;
         for iteration in 1..=self.settings.max_iterations.max(1) {
             residual = self.add_root_loads(state, &body_without_roots)?;
+            self.loads
+                .body_modal_acceleration
+                .copy_from(&self.body_q_ddot);
             self.dynamics.derivative(state, &self.loads, out)?;
+            // The body's side of the interface: η̈ against its iterate, relative to the η̈ that
+            // moves a pivot by 1 g.
+            let body_change = out
+                .body_modes
+                .q_ddot
+                .iter()
+                .zip(self.body_q_ddot.iter())
+                .fold(0.0_f64, |m, (a, b)| m.max((a - b).abs()))
+                / self.body_q_ddot_scale;
+            residual = residual.max(body_change);
             if n_surfaces == 0 || (iteration > 1 && residual <= self.settings.tolerance) {
                 self.report = CouplingReport {
                     iterations: iteration,
@@ -1831,7 +2025,9 @@ impl PartitionedVehicle {
                 };
                 return Ok(());
             }
-            // Aitken's Δ² relaxation of the q̈ update (Küttler & Wall 2008, Comput. Mech. 43).
+            // Aitken's Δ² relaxation of the (q̈, η̈) update (Küttler & Wall 2008, Comput.
+            // Mech. 43); both are mass-normalized modal accelerations, so one inner product
+            // weighs them alike.
             let (mut num, mut den) = (0.0, 0.0);
             for i in 0..n_surfaces {
                 let new = &out.surface_modes[i].q_ddot;
@@ -1843,6 +2039,13 @@ impl PartitionedVehicle {
                     self.previous_step[i][k] = r;
                 }
             }
+            for k in 0..self.body_q_ddot.len() {
+                let r = out.body_modes.q_ddot[k] - self.body_q_ddot[k];
+                let dr = r - self.body_previous_step[k];
+                num += self.body_previous_step[k] * dr;
+                den += dr * dr;
+                self.body_previous_step[k] = r;
+            }
             if iteration > 1 && den > 0.0 {
                 omega = (-omega * num / den).clamp(0.05, 1.5);
             }
@@ -1850,6 +2053,9 @@ impl PartitionedVehicle {
                 for k in 0..self.q_ddot[i].len() {
                     self.q_ddot[i][k] += omega * self.previous_step[i][k];
                 }
+            }
+            for k in 0..self.body_q_ddot.len() {
+                self.body_q_ddot[k] += omega * self.body_previous_step[k];
             }
         }
         self.report = CouplingReport {
@@ -1866,6 +2072,107 @@ impl PartitionedVehicle {
                 .join(", "),
             residuals: vec![residual],
             tolerance: self.settings.tolerance,
+        })
+    }
+
+    /// The assembled structure's in-vacuo modes (no aero, engine or gravity load; the vehicle
+    /// free in space): the elastic accelerations ẍ = −M̃⁻¹ K x of the partitioned equations with
+    /// the interface closed, column by column for unit modal coordinates, give the condensed
+    /// mass M̃ = K (M̃⁻¹ K)⁻¹ (the rigid motion eliminated), and K v = ω² M̃ v its modes. The
+    /// surfaces are undeflected and at their current stiffness. Leaves the flight's coupling
+    /// guess and settings as it found them. Allocates (an analysis, not the time loop).
+    pub fn in_vacuo_modes(&mut self) -> Result<InVacuoModes, VehicleError> {
+        let guess = self.coupling_guess();
+        let settings = self.settings;
+        self.settings = CouplingSettings {
+            tolerance: LINEARIZATION_TOLERANCE,
+            max_iterations: 400,
+        };
+        let result = self.in_vacuo_modes_inner();
+        self.settings = settings;
+        self.set_coupling_guess(&guess)?;
+        result
+    }
+
+    fn in_vacuo_modes_inner(&mut self) -> Result<InVacuoModes, VehicleError> {
+        let zero = self.dynamics.zero_loads();
+        self.loads = zero;
+        self.aero_loads = Loads::default();
+        for s in &mut self.surfaces {
+            s.applied_surface_frame = Loads::default();
+            s.applied_about_pivot = Loads::default();
+            s.elevon_rotation = nalgebra::Rotation3::identity();
+        }
+        let base = self.dynamics.zero_state();
+        let n_body = base.body_modes.n_modes();
+        let sizes: Vec<usize> = std::iter::once(n_body)
+            .chain(base.surface_modes.iter().map(|m| m.n_modes()))
+            .collect();
+        let n: usize = sizes.iter().sum();
+        let mut stiffness = nalgebra::DMatrix::zeros(n, n);
+        let (_, _, k_body) = self.dynamics.body_modes().matrices();
+        stiffness
+            .view_mut((0, 0), (n_body, n_body))
+            .copy_from(k_body);
+        let mut start = n_body;
+        for s in &self.surfaces {
+            let k = &s.structure.modal_model().stiffness;
+            stiffness
+                .view_mut((start, start), (k.nrows(), k.ncols()))
+                .copy_from(k);
+            start += k.nrows();
+        }
+        // D = M̃⁻¹ K, column j from the accelerations at coordinate j = ±1: central differences
+        // cancel the quadratic terms (the surfaces' pivot moved by the body's modes turning
+        // with the rigid body, α × d), leaving the linear structure.
+        let mut flexibility_rate = nalgebra::DMatrix::zeros(n, n);
+        let mut out = self.dynamics.zero_derivative();
+        for j in 0..n {
+            for sign in [1.0, -1.0] {
+                let mut state = base.clone();
+                set_elastic_coordinate(&mut state, j, sign);
+                // close_interface adds the root loads to the body's: each column starts unloaded.
+                self.loads.body = Loads::default();
+                self.close_interface(&state, &mut out)?;
+                for i in 0..n {
+                    flexibility_rate[(i, j)] -= 0.5 * sign * elastic_acceleration(&out, n_body, i);
+                }
+            }
+        }
+        let inverse = flexibility_rate.clone().try_inverse().ok_or_else(|| {
+            VehicleError::Input("in-vacuo modes: the coupled accelerations are singular".into())
+        })?;
+        let mass = &stiffness * inverse;
+        let scale = mass.amax().max(f64::MIN_POSITIVE);
+        let mass_asymmetry = (&mass - mass.transpose()).amax() / scale;
+        let pairs = hsv_core::linalg::generalized_symmetric_eigen(&stiffness, &mass, n)
+            .map_err(|e| VehicleError::Input(format!("in-vacuo modes: {e}")))?;
+        let mut names = vec!["main_body".to_owned()];
+        names.extend(self.surfaces.iter().map(|s| s.name.clone()));
+        let modes = (0..pairs.values.len())
+            .map(|m| {
+                let v = pairs.vectors.column(m);
+                let total = (v.transpose() * &stiffness * v)[(0, 0)];
+                let mut start = 0;
+                let shares = sizes
+                    .iter()
+                    .map(|&len| {
+                        let block = v.rows(start, len);
+                        let k = stiffness.view((start, start), (len, len));
+                        start += len;
+                        (block.transpose() * k * block)[(0, 0)] / total
+                    })
+                    .collect();
+                InVacuoMode {
+                    frequency_hz: pairs.values[m].max(0.0).sqrt() / std::f64::consts::TAU,
+                    strain_energy_shares: shares,
+                }
+            })
+            .collect();
+        Ok(InVacuoModes {
+            regions: names,
+            modes,
+            mass_asymmetry,
         })
     }
 

@@ -12,7 +12,8 @@
 //!
 //! **Torque tube.** The root nodes are clamped to the tube; the Ritz coordinates are elastic
 //! motion relative to it. The tube's rigid motion (root x and z translation from the main
-//! body, pitch about the pivot axis, paper §III.C) is the coordinator's input: its inertial
+//! body, pitch about the pivot axis, paper §III.C, and roll, through which the body's torsion
+//! bends the surface) is the coordinator's input: its inertial
 //! coupling with the Ritz coordinates is [`RitzPlate::rigid_body_coupling`] (generalized force
 //! −C a_root) and the surface's rigid mass [`RitzPlate::rigid_body_mass`].
 //!
@@ -718,7 +719,7 @@ impl RitzPlate {
         let mut root_elements = Vec::new();
         let mut root_mass = DMatrix::<f64>::zeros(6, r);
         let pivot = plate.grid.pivot_m;
-        let mut rigid_coupling = DMatrix::<f64>::zeros(r, 3);
+        let mut rigid_coupling = DMatrix::<f64>::zeros(r, 4);
         let mut rigid_mass = Matrix3::<f64>::zeros();
         let mut thermal = vec![0.0; n_e * r];
         let mut root_inertia = DMatrix::<f64>::zeros(6, r);
@@ -766,8 +767,16 @@ impl RitzPlate {
                 rz[(3 * k, 2)] = -(x - pivot.x);
                 rz[(3 * k + 1, 2)] = 1.0;
             }
-            rigid_coupling += be.transpose() * &me * &rz;
-            root_inertia += tube_rigid_motions(&plate, e).transpose() * &me * &be;
+            // The coupling's columns: x, z, roll and pitch of the tube (the order of
+            // `rigid_dofs`); roll is column 3 of the six tube motions.
+            let tube = tube_rigid_motions(&plate, e);
+            let mut coupling = DMatrix::<f64>::zeros(12, 4);
+            coupling.column_mut(0).copy_from(&rz.column(0));
+            coupling.column_mut(1).copy_from(&rz.column(1));
+            coupling.column_mut(2).copy_from(&tube.column(3));
+            coupling.column_mut(3).copy_from(&rz.column(2));
+            rigid_coupling += be.transpose() * &me * &coupling;
+            root_inertia += tube.transpose() * &me * &be;
             let fe = DVector::from_column_slice(plate.bending_thermal[e].as_slice());
             thermal[e * r..(e + 1) * r].copy_from_slice((be.transpose() * fe).as_slice());
             let mrr = rz.transpose() * &me * &rz;
@@ -829,8 +838,12 @@ impl RitzPlate {
         self.update_reduced()
     }
 
-    /// The selected side (mode shapes and root loads mirror for `Left`).
+    /// The selected side (mode shapes, root loads and the roll coupling mirror for `Left`).
     pub fn with_side(mut self, side: Side) -> Self {
+        if side != self.side {
+            // The mirror image in y turns a roll of the tube into the opposite roll.
+            self.rigid_coupling.column_mut(2).neg_mut();
+        }
         self.side = side;
         self
     }
@@ -870,9 +883,11 @@ impl RitzPlate {
         &self.resultants
     }
 
-    /// Inertial coupling C = Φᵀ M R (r × 3) of the Ritz coordinates with the tube's rigid
-    /// accelerations a = (ẍ m/s², z̈ m/s², θ̈ rad/s² about +y through the pivot): the Ritz
-    /// equations get the generalized force −C a.
+    /// Inertial coupling C = Φᵀ M R (r × 4) of the Ritz coordinates with the tube's rigid
+    /// accelerations a = (ẍ m/s², z̈ m/s², roll and pitch rad/s² about +x and +y through the
+    /// pivot): the Ritz equations get the generalized force −C a. Roll is the body's torsion
+    /// or roll at the pivot, which bends the surface (w = y − y_p); the paper's tube motion is
+    /// x, z and pitch.
     pub fn rigid_body_coupling(&self) -> &DMatrix<f64> {
         &self.rigid_coupling
     }
@@ -1349,6 +1364,7 @@ impl RigidBodyCoupling for RitzPlate {
         &[
             RigidDof::TranslationX,
             RigidDof::TranslationZ,
+            RigidDof::RotationX,
             RigidDof::RotationY,
         ]
     }

@@ -341,3 +341,48 @@ fn unknown_structure_models_suggest_the_closest() {
     );
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+/// The assembled vehicle's coupled modes (issue 21: the body's 9.5 Hz bending and the surfaces'
+/// first bending interact). Consistency checks, not a validation (that is the monolithic
+/// finite-element comparison in tests/tests/elastic_interface_fe.rs): the condensed mass of the
+/// partitioned equations is symmetric to 1e-8 (an energy-consistent interface: the surfaces
+/// take the body's pivot motion through the same matrices that carry their root loads back),
+/// the shares of each mode sum to 1 and the mirror-image surfaces share every mode equally
+/// (1e-6); and the modes near 9 Hz carry both body and surface strain energy (over 10 % each),
+/// where a one-way interface would leave them pure.
+#[test]
+fn coupled_modes_mix_the_body_and_the_surfaces() {
+    let dir = scratch_dir("coupled");
+    let json = modes_json(&dir, &[]);
+    let coupled = &json["coupled"];
+    assert_eq!(
+        coupled["regions"],
+        serde_json::json!(["main_body", "left_surface", "right_surface"])
+    );
+    let asymmetry = coupled["mass_asymmetry"].as_f64().expect("asymmetry");
+    assert!(asymmetry < 1e-8, "condensed mass asymmetry {asymmetry}");
+    let modes = coupled["modes"].as_array().expect("modes");
+    let body_modes = modes_of(&json["body"]).len();
+    let surface_modes = modes_of(&json["surfaces"]["right"]).len();
+    assert_eq!(modes.len(), body_modes + 2 * surface_modes);
+    let mut mixed = 0;
+    for mode in modes {
+        let f = mode["frequency_hz"].as_f64().expect("frequency");
+        let shares: Vec<f64> = mode["strain_energy_shares"]
+            .as_array()
+            .expect("shares")
+            .iter()
+            .map(|s| s.as_f64().expect("share"))
+            .collect();
+        assert!(
+            (shares.iter().sum::<f64>() - 1.0).abs() < 1e-9,
+            "{f} Hz: {shares:?}"
+        );
+        assert!((shares[1] - shares[2]).abs() < 1e-6, "{f} Hz: {shares:?}");
+        if (8.0..11.0).contains(&f) && shares[0] > 0.1 && shares[1] + shares[2] > 0.1 {
+            mixed += 1;
+        }
+    }
+    assert!(mixed >= 2, "modes near 9 Hz: {modes:?}");
+    let _ = std::fs::remove_dir_all(&dir);
+}

@@ -7,6 +7,13 @@
 //! is reported as buckled. Outputs go to a run folder: one legacy-VTK file of the deformed mesh
 //! per mode (with the mode shape as a vector field, for ParaView's "Warp by Vector"), a `.pvd`
 //! collection per component to step through the modes, and PNG plots of the first shapes.
+//!
+//! With the main body and both surfaces configured (at the reference temperature) it also
+//! reports the **coupled** in-vacuo modes of the assembled vehicle, from the partitioned
+//! equations with the body-surface interface closed
+//! ([`PartitionedVehicle::in_vacuo_modes`](crate::vehicle::partitioned::PartitionedVehicle::in_vacuo_modes)):
+//! the frequencies and each region's share of the strain energy, where the body's and the
+//! surfaces' modes near each other mix.
 
 use std::path::{Path, PathBuf};
 
@@ -23,6 +30,8 @@ use nalgebra::{DVector, Vector3};
 use super::{ConfigArg, JsonFlag, OutArgs, load_config};
 use crate::outln;
 use crate::output::{self, LinePlot, RunFolder, RunStatus, Series};
+use crate::vehicle::flexible_vehicle;
+use crate::vehicle::partitioned::{InVacuoModes, SurfaceModel};
 
 /// Reference (unheated) structure temperature, K.
 pub const REFERENCE_TEMPERATURE_K: f64 = 293.0;
@@ -220,6 +229,9 @@ pub struct ModesReport {
     pub body: Option<StructureModes>,
     /// Left then right; empty when no surface structure model is configured.
     pub surfaces: Vec<(Side, StructureModes)>,
+    /// The assembled vehicle's in-vacuo modes (module docs); None with a note when not
+    /// computed.
+    pub coupled: Option<InVacuoModes>,
     pub notes: Vec<String>,
 }
 
@@ -388,11 +400,39 @@ pub fn compute(
             loaded.file
         );
     }
+    let all_free = body
+        .iter()
+        .chain(surfaces.iter().map(|(_, s)| s))
+        .all(|s| matches!(s.outcome, ModesOutcome::Modes(_)));
+    let coupled = if body.is_none() || surfaces.len() < 2 || !all_free {
+        None
+    } else if temperature != Temperature::Uniform(REFERENCE_TEMPERATURE_K) {
+        notes.push(
+            "coupled modes of the assembled vehicle: at the reference temperature only (run \
+             without a temperature)"
+                .to_owned(),
+        );
+        None
+    } else {
+        match flexible_vehicle(loaded, registry, SurfaceModel::Partitioned, "modes")
+            .map_err(|e| e.to_string())
+            .and_then(|mut v| v.in_vacuo_modes().map_err(|e| e.to_string()))
+        {
+            Ok(modes) => Some(modes),
+            Err(e) => {
+                notes.push(format!(
+                    "coupled modes of the assembled vehicle not computed: {e}"
+                ));
+                None
+            }
+        }
+    };
     Ok(ModesReport {
         config_file: loaded.file.clone(),
         temperature,
         body,
         surfaces,
+        coupled,
         notes,
     })
 }
@@ -750,6 +790,9 @@ pub fn summary_json(report: &ModesReport, folder: &Path, files: &[PathBuf]) -> s
         "surfaces": surfaces,
         "surface_status": states,
         "surface_temperature": temperature,
+        "coupled": report.coupled.as_ref().map_or(serde_json::Value::Null, |c| {
+            serde_json::to_value(c).unwrap_or(serde_json::Value::Null)
+        }),
         "notes": report.notes,
         "run_folder": folder.display().to_string(),
         "files": files.iter().map(|f| f.display().to_string()).collect::<Vec<_>>(),
@@ -772,6 +815,30 @@ fn print_structure(s: &StructureModes) -> Result<()> {
     for note in &s.notes {
         outln!("  note: {note}")?;
     }
+    Ok(())
+}
+
+/// Prints the coupled modes with each region's share of the strain energy, %.
+fn print_coupled(coupled: &InVacuoModes) -> Result<()> {
+    outln!(
+        "assembled vehicle (partitioned equations, interface closed): {} coupled modes",
+        coupled.modes.len()
+    )?;
+    let header: String = coupled
+        .regions
+        .iter()
+        .map(|r| format!(" {:>15}", format!("{r} [%]")))
+        .collect();
+    outln!("  {:>3}  {:>14}{header}", "#", "frequency [Hz]")?;
+    for (i, m) in coupled.modes.iter().enumerate() {
+        let shares: String = m
+            .strain_energy_shares
+            .iter()
+            .map(|s| format!(" {:>15.1}", 100.0 * s))
+            .collect();
+        outln!("  {:>3}  {:>14.4}{shares}", i + 1, m.frequency_hz)?;
+    }
+    outln!("  (strain-energy shares: where each mode deforms)")?;
     Ok(())
 }
 
@@ -822,6 +889,9 @@ pub fn run(args: ModesArgs, registry: &Registry) -> Result<()> {
         for (_, s) in &report.surfaces {
             print_structure(s)?;
         }
+    }
+    if let Some(coupled) = &report.coupled {
+        print_coupled(coupled)?;
     }
     for note in &report.notes {
         outln!("note: {note}")?;
@@ -905,6 +975,7 @@ mod tests {
             temperature: Temperature::Uniform(900.0),
             body: None,
             surfaces: vec![(Side::Right, structure_modes(outcome))],
+            coupled: None,
             notes: Vec::new(),
         };
         let json = summary_json(&report, Path::new("run"), &[]);

@@ -255,7 +255,8 @@ pub struct FlightControls {
 /// Body-surface coupling settings.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct CouplingSettings {
-    /// Relative change of the root loads below which the iteration has converged.
+    /// Relative change of the root loads (and of the body's modal accelerations, against the η̈
+    /// that moves a pivot by 1 g) below which the iteration has converged.
     pub tolerance: f64,
     pub max_iterations: usize,
 }

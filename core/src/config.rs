@@ -56,6 +56,52 @@ pub struct FlightConfig {
     pub beta_deg: f64,
 }
 
+/// How the regions' interfaces are closed (`[coupling]`, typed; preCICE's idea of a coupling
+/// scheme chosen in configuration).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, serde::Serialize, serde::Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum CouplingSchemeName {
+    /// The body-surface fixed point converged inside every Runge-Kutta stage (`tolerance`):
+    /// the monolithic solution of the partitioned equations.
+    #[default]
+    Implicit,
+    /// The paper's scheme (§III, Table 3): the regions exchange their interface data once per
+    /// aeroelastic step, each marching its own equations over the step with the other's data
+    /// from the previous sub-iteration, sub-iterated until the interface displacements change
+    /// by less than `residual_tolerance_m`.
+    Staggered,
+}
+
+/// `[coupling]`: the scheme and its tolerances.
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct CouplingConfig {
+    pub scheme: CouplingSchemeName,
+    /// Implicit scheme: relative change of the root loads (and of the body's modal
+    /// accelerations per 1 g at a pivot) below which a stage's fixed point has converged.
+    pub tolerance: f64,
+    /// Implicit scheme: fixed-point iterations allowed per stage.
+    pub max_iterations: usize,
+    /// Staggered scheme: change of the interface displacements (the body's elastic motion at
+    /// each pivot, the surfaces' deflection) between sub-iterations below which a step has
+    /// converged, m (paper Table 3: R_tol = 1e-5 m).
+    pub residual_tolerance_m: f64,
+    /// Staggered scheme: sub-iterations allowed per step.
+    pub max_sub_iterations: usize,
+}
+
+impl Default for CouplingConfig {
+    fn default() -> Self {
+        Self {
+            scheme: CouplingSchemeName::Implicit,
+            tolerance: 1e-8,
+            max_iterations: 50,
+            residual_tolerance_m: 1e-5,
+            max_sub_iterations: 30,
+        }
+    }
+}
+
 /// Model names for one region, and its overrides of model settings; absent roles are not
 /// modelled in that region.
 #[derive(Debug, Clone, PartialEq, Default, serde::Serialize, serde::Deserialize)]
@@ -184,6 +230,9 @@ pub struct HsvConfig {
     /// `[simulation]`: settings of `hsv-run simulate` (its inputs), checked by the runner.
     #[serde(default)]
     pub simulation: toml::Table,
+    /// `[coupling]`: how the body-surface interfaces are closed.
+    #[serde(default)]
+    pub coupling: CouplingConfig,
     /// `[control]`: the controller flying `hsv-run simulate` (its name, sample rate, actuators),
     /// checked by the runner; the controller's own settings are `[models.<name>]`.
     #[serde(default)]
@@ -425,6 +474,29 @@ fn check_values(config: &HsvConfig, file: &str) -> Result<(), ConfigError> {
     ] {
         flow_angle_deg(value).map_err(|message| error(key, message))?;
     }
+    let coupling = &config.coupling;
+    for (key, value) in [
+        ("coupling.tolerance", coupling.tolerance),
+        (
+            "coupling.residual_tolerance_m",
+            coupling.residual_tolerance_m,
+        ),
+    ] {
+        if value <= 0.0 {
+            return Err(error(
+                key,
+                format!("must be a positive tolerance, got {value}"),
+            ));
+        }
+    }
+    for (key, value) in [
+        ("coupling.max_iterations", coupling.max_iterations),
+        ("coupling.max_sub_iterations", coupling.max_sub_iterations),
+    ] {
+        if value == 0 {
+            return Err(error(key, "must be at least 1".to_owned()));
+        }
+    }
     let reference = &config.reference;
     for (key, value, what) in [
         ("reference.area_m2", reference.area_m2, "reference area, m²"),
@@ -548,6 +620,45 @@ pub fn flow_angle_deg(value_deg: f64) -> Result<f64, String> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn the_coupling_table_is_typed_with_clear_errors() {
+        let sample = parse_config(SAMPLE_CONFIG_TOML, "s.toml").expect("sample");
+        assert_eq!(sample.config.coupling, CouplingConfig::default());
+        let with = |table: &str| format!("{SAMPLE_CONFIG_TOML}\n[coupling]\n{table}\n");
+        let staggered = parse_config(
+            &with("scheme = \"staggered\"\nresidual_tolerance_m = 1e-6"),
+            "s.toml",
+        )
+        .expect("staggered");
+        assert_eq!(
+            staggered.config.coupling.scheme,
+            CouplingSchemeName::Staggered
+        );
+        assert_eq!(staggered.config.coupling.residual_tolerance_m, 1e-6);
+        for (table, needles) in [
+            (
+                "scheme = \"loose\"",
+                &["coupling.scheme", "implicit", "staggered"][..],
+            ),
+            (
+                "residual_tolerance_m = -1.0",
+                &["coupling.residual_tolerance_m", "positive"],
+            ),
+            (
+                "max_sub_iterations = 0",
+                &["coupling.max_sub_iterations", "at least 1"],
+            ),
+            ("tolerence = 1e-8", &["coupling.tolerence"]),
+        ] {
+            let err = parse_config(&with(table), "my.toml")
+                .unwrap_err()
+                .to_string();
+            for needle in needles.iter().chain(&["my.toml"]) {
+                assert!(err.contains(needle), "{table}: `{needle}` not in {err}");
+            }
+        }
+    }
 
     #[test]
     fn unknown_and_missing_keys_are_errors_naming_the_key() {

@@ -12,6 +12,7 @@ use crate::dynamics::{AttitudeCoordinates, ExponentialRk4, VehicleState};
 use crate::vehicle::partitioned::{
     ElevonCommand, FlightControls, PartitionedVehicle, VehicleError,
 };
+use crate::vehicle::staggered::StaggeredInterface;
 
 /// A control input as a table of (time s, value) pairs, linear between them and held beyond.
 #[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
@@ -419,6 +420,8 @@ pub struct Stepper {
     rk4: ExponentialRk4,
     scratch: VehicleState,
     derivative: crate::dynamics::VehicleDerivative,
+    /// The staggered scheme's interface buffers and the step's start (None: implicit).
+    staggered: Option<(StaggeredInterface, DVector<f64>, Vec<f64>)>,
 }
 
 impl Stepper {
@@ -437,12 +440,21 @@ impl Stepper {
             Integrator::ExponentialRk4 => vehicle.dynamics().surface_linear_blocks(&layout),
         };
         let rk4 = ExponentialRk4::new(layout.len(), blocks)?;
+        let staggered = vehicle.staggered().map(|settings| {
+            let n = vehicle.interface_len();
+            (
+                StaggeredInterface::new(settings, n, state),
+                x.clone(),
+                vec![0.0; n],
+            )
+        });
         Ok(Self {
             layout,
             x,
             rk4,
             scratch: state.clone(),
             derivative: vehicle.dynamics().zero_derivative(),
+            staggered,
         })
     }
 
@@ -472,21 +484,98 @@ impl Stepper {
             rk4,
             scratch,
             derivative,
+            staggered,
         } = self;
-        let mut f = |time: f64, x: &DVector<f64>, dx: &mut DVector<f64>| {
-            layout.unpack(x, scratch)?;
-            let controls = control.controls_at(time)?;
-            vehicle.set_time(time);
-            vehicle.derivative(scratch, &controls, derivative)?;
-            layout.pack_derivative(x, derivative, dx)?;
-            Ok::<(), VehicleError>(())
-        };
-        rk4.step(&mut f, t, dt, x)?;
-        layout.normalize_attitude(x)?;
+        if let Some((interface, start, last)) = staggered {
+            staggered_step(
+                vehicle, control, layout, rk4, scratch, derivative, interface, start, last, x, t,
+                dt,
+            )?;
+        } else {
+            let mut f = |time: f64, x: &DVector<f64>, dx: &mut DVector<f64>| {
+                layout.unpack(x, scratch)?;
+                let controls = control.controls_at(time)?;
+                vehicle.set_time(time);
+                vehicle.derivative(scratch, &controls, derivative)?;
+                layout.pack_derivative(x, derivative, dx)?;
+                Ok::<(), VehicleError>(())
+            };
+            rk4.step(&mut f, t, dt, x)?;
+            layout.normalize_attitude(x)?;
+        }
         layout.unpack(x, state)?;
         // The accepted step: models with memory commit their history, the surfaces heat.
         vehicle.commit_step(state, end)
     }
+}
+
+/// One step of the staggered scheme (module [`crate::vehicle::staggered`]): the step marched
+/// from `start` with the interface of the previous sub-iteration at each stage, sub-iterated
+/// until the interface displacements at the step's end settle; `x` ends at the accepted step.
+#[allow(clippy::too_many_arguments)]
+fn staggered_step(
+    vehicle: &mut PartitionedVehicle,
+    control: &mut ControlLoop,
+    layout: &crate::dynamics::StateLayout,
+    rk4: &mut ExponentialRk4,
+    scratch: &mut VehicleState,
+    derivative: &mut crate::dynamics::VehicleDerivative,
+    interface: &mut StaggeredInterface,
+    start: &mut DVector<f64>,
+    last: &mut [f64],
+    x: &mut DVector<f64>,
+    t: f64,
+    dt: f64,
+) -> Result<(), VehicleError> {
+    let settings = interface.settings;
+    start.copy_from(x);
+    vehicle.interface_guess(last);
+    interface.begin(last);
+    let mut residual = f64::INFINITY;
+    let mut sub = 0;
+    while sub < settings.max_sub_iterations.max(1) {
+        sub += 1;
+        x.copy_from(start);
+        let mut stage = 0;
+        let mut f = |time: f64, x: &DVector<f64>, dx: &mut DVector<f64>| {
+            layout.unpack(x, scratch)?;
+            let controls = control.controls_at(time)?;
+            vehicle.set_time(time);
+            let (guess, produced) = interface.stage(stage).ok_or_else(|| {
+                VehicleError::Input(format!(
+                    "the staggered scheme exchanges at {} stages; the integrator asked for more",
+                    crate::vehicle::staggered::STAGES
+                ))
+            })?;
+            vehicle.staggered_derivative(scratch, &controls, guess, produced, derivative)?;
+            layout.pack_derivative(x, derivative, dx)?;
+            stage += 1;
+            Ok::<(), VehicleError>(())
+        };
+        rk4.step(&mut f, t, dt, x)?;
+        layout.normalize_attitude(x)?;
+        interface.end.swap(0, 1);
+        layout.unpack(x, &mut interface.end[0])?;
+        if sub > 1 {
+            residual =
+                vehicle.interface_displacement_change_m(&interface.end[0], &interface.end[1]);
+            if residual <= settings.residual_tolerance_m {
+                break;
+            }
+        }
+        interface.relax(sub);
+    }
+    vehicle.set_staggered_report(sub, residual);
+    if !(residual <= settings.residual_tolerance_m) && settings.max_sub_iterations > 1 {
+        return Err(VehicleError::Coupling {
+            iterations: sub,
+            interfaces: "main body and lifting surfaces (staggered step)".to_owned(),
+            residuals: vec![residual],
+            tolerance: settings.residual_tolerance_m,
+        });
+    }
+    vehicle.set_interface_guess(interface.last_produced());
+    Ok(())
 }
 
 /// The sample of `state` at `t`: flight state, the control loop's record, coupling and

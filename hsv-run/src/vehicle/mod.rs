@@ -10,6 +10,7 @@ pub mod check;
 pub mod friction;
 pub mod partitioned;
 pub mod rigid;
+pub mod staggered;
 
 use hsv_core::aero::AeroModel;
 use hsv_core::config::{LoadedConfig, REGION_NAMES, RegionModels};
@@ -346,10 +347,25 @@ pub fn flexible_vehicle_with(
         partitioned::SurfaceModel::Monolithic { .. } => partitioned::monolithic_needs(analysis),
     };
     let sets = assemble(loaded, registry, &needs)?;
-    partitioned::PartitionedVehicle::build(
+    let coupling = &loaded.config.coupling;
+    let mut vehicle = partitioned::PartitionedVehicle::build(
         sets,
         crate::dynamics::GravityModel::default(),
-        partitioned::CouplingSettings::default(),
+        partitioned::CouplingSettings {
+            tolerance: coupling.tolerance,
+            max_iterations: coupling.max_iterations,
+        },
         model,
-    )
+    )?;
+    // The time loop staggers the partitioned vehicle's regions when asked; the monolithic
+    // comparison model has no body-surface interface to stagger.
+    if coupling.scheme == hsv_core::config::CouplingSchemeName::Staggered
+        && model == partitioned::SurfaceModel::Partitioned
+    {
+        vehicle.set_staggered(Some(staggered::StaggeredSettings {
+            residual_tolerance_m: coupling.residual_tolerance_m,
+            max_sub_iterations: coupling.max_sub_iterations,
+        }));
+    }
+    Ok(vehicle)
 }

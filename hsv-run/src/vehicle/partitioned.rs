@@ -449,6 +449,9 @@ pub struct PartitionedVehicle {
     body_previous_step: DVector<f64>,
     /// The η̈ that accelerates the most-moving pivot by 1 g (the scale of its residual).
     body_q_ddot_scale: f64,
+    /// The staggered scheme's settings, or None for the implicit scheme (module
+    /// [`super::staggered`]).
+    staggered: Option<super::staggered::StaggeredSettings>,
     report: CouplingReport,
     warm_start: Option<VehicleState>,
     heating: HeatingRates,
@@ -1189,6 +1192,7 @@ impl PartitionedVehicle {
             body_q_ddot: DVector::zeros(body_modal.n_modes()),
             body_previous_step: DVector::zeros(body_modal.n_modes()),
             body_q_ddot_scale,
+            staggered: None,
             dynamics,
             body,
             surfaces,
@@ -1733,6 +1737,116 @@ impl PartitionedVehicle {
         self.body_q_ddot.copy_from(&guess.body_q_ddot);
         self.body_previous_step.copy_from(&guess.body_previous_step);
         Ok(())
+    }
+
+    /// Length of the interface vector of the staggered scheme ([`super::staggered`]): every
+    /// surface's q̈, then the body's η̈.
+    pub fn interface_len(&self) -> usize {
+        self.q_ddot.iter().map(|q| q.len()).sum::<usize>() + self.body_q_ddot.len()
+    }
+
+    /// The interface unknowns the next derivative starts from, into `out`
+    /// ([`Self::interface_len`] entries).
+    pub fn interface_guess(&self, out: &mut [f64]) {
+        let mut k = 0;
+        for v in self.q_ddot.iter().chain(std::iter::once(&self.body_q_ddot)) {
+            out[k..k + v.len()].copy_from_slice(v.as_slice());
+            k += v.len();
+        }
+    }
+
+    /// Sets the interface unknowns from `guess` ([`Self::interface_len`] entries).
+    pub fn set_interface_guess(&mut self, guess: &[f64]) {
+        let mut k = 0;
+        for v in self
+            .q_ddot
+            .iter_mut()
+            .chain(std::iter::once(&mut self.body_q_ddot))
+        {
+            let n = v.len();
+            v.as_mut_slice().copy_from_slice(&guess[k..k + n]);
+            k += n;
+        }
+    }
+
+    /// One evaluation of the staggered scheme: the regions' loads at `state`, then each region
+    /// once with the other side's interface data `guess` (the previous sub-iteration's, at this
+    /// stage), no fixed point; the interface the regions produce goes to `produced`.
+    pub fn staggered_derivative(
+        &mut self,
+        state: &VehicleState,
+        controls: &FlightControls,
+        guess: &[f64],
+        produced: &mut [f64],
+        out: &mut VehicleDerivative,
+    ) -> Result<(), VehicleError> {
+        let flight = self.flight(state)?;
+        self.region_loads(state, controls, &flight)?;
+        self.set_interface_guess(guess);
+        let body_without_roots = self.loads.body;
+        self.add_root_loads(state, &body_without_roots)?;
+        self.loads
+            .body_modal_acceleration
+            .copy_from(&self.body_q_ddot);
+        self.dynamics.derivative(state, &self.loads, out)?;
+        let mut k = 0;
+        for v in out
+            .surface_modes
+            .iter()
+            .map(|m| &m.q_ddot)
+            .chain(std::iter::once(&out.body_modes.q_ddot))
+        {
+            produced[k..k + v.len()].copy_from_slice(v.as_slice());
+            k += v.len();
+        }
+        Ok(())
+    }
+
+    /// The largest change of an interface displacement between states `a` and `b`, m: the
+    /// body's elastic translation at each pivot and each surface's deflection at its mesh
+    /// vertices (the staggered scheme's residual, paper Table 3's R_tol).
+    pub fn interface_displacement_change_m(&self, a: &VehicleState, b: &VehicleState) -> f64 {
+        let mut worst: f64 = 0.0;
+        for (i, s) in self.surfaces.iter().enumerate() {
+            let mut pivot = Vector3::zeros();
+            for (k, c) in s.body_modes_at_pivot.column_iter().enumerate() {
+                let dq = a.body_modes.q[k] - b.body_modes.q[k];
+                pivot += Vector3::new(c[0], c[1], c[2]) * dq;
+            }
+            worst = worst.max(pivot.norm());
+            let (qa, qb) = (&a.surface_modes[i].q, &b.surface_modes[i].q);
+            let d = &s.shapes.vertex_displacement;
+            for v in 0..d.nrows() / 3 {
+                let mut change = Vector3::zeros();
+                for k in 0..d.ncols() {
+                    let dq = qa[k] - qb[k];
+                    change +=
+                        Vector3::new(d[(3 * v, k)], d[(3 * v + 1, k)], d[(3 * v + 2, k)]) * dq;
+                }
+                worst = worst.max(change.norm());
+            }
+        }
+        worst
+    }
+
+    /// Records a staggered step's sub-iterations and final interface residual (m) as the
+    /// coupling report.
+    pub fn set_staggered_report(&mut self, sub_iterations: usize, residual_m: f64) {
+        self.report = CouplingReport {
+            iterations: sub_iterations,
+            residual: residual_m,
+        };
+    }
+
+    /// The staggered scheme's settings, None when every stage closes the interface (implicit).
+    pub fn staggered(&self) -> Option<super::staggered::StaggeredSettings> {
+        self.staggered
+    }
+
+    /// Flies the staggered scheme with `settings`, or the implicit one with None. Trim and
+    /// linearization always close the interface (a steady state has no step to stagger).
+    pub fn set_staggered(&mut self, settings: Option<super::staggered::StaggeredSettings>) {
+        self.staggered = settings;
     }
 
     /// How the coupling iteration converges.

@@ -420,48 +420,59 @@ fn the_time_loop_allocates_nothing_once_its_buffers_exist() {
         .build()
         .expect("pool");
     pool.install(|| {
-        let loaded = common::parse(&common::coarse_text());
-        let (mut vehicle, mut state, controls) =
-            common::trimmed(&loaded, SurfaceModel::Partitioned, true);
-        vehicle
-            .start_heating(&HeatingRates {
-                conduction_s: 0.01,
-                heat_flux_s: 0.02,
-                stiffness_s: 0.05,
-                initial_k: 293.0,
-            })
-            .expect("heating");
-        let settings = RunSettings {
-            dt_s: 0.002,
-            integrator: hsv_run::analysis::simulate::Integrator::default(),
-            duration_s: 0.2,
-            record_every: 1,
-            start_step: 0,
+        // Both coupling schemes: the implicit stage fixed point and the staggered step.
+        let staggered = hsv_run::vehicle::staggered::StaggeredSettings {
+            residual_tolerance_m: 1e-5,
+            max_sub_iterations: 30,
         };
-        let mut counts = vec![0_usize; 200];
-        let mut n = 0;
-        simulate(
-            &mut vehicle,
-            &mut state,
-            &mut hsv_run::control::ControlLoop::schedule(
-                Inputs::paper_doublet(),
-                &controls,
-                settings.dt_s,
+        for staggered in [None, Some(staggered)] {
+            let loaded = common::parse(&common::coarse_text());
+            let (mut vehicle, mut state, controls) =
+                common::trimmed(&loaded, SurfaceModel::Partitioned, true);
+            vehicle.set_staggered(staggered);
+            vehicle
+                .start_heating(&HeatingRates {
+                    conduction_s: 0.01,
+                    heat_flux_s: 0.02,
+                    stiffness_s: 0.05,
+                    initial_k: 293.0,
+                })
+                .expect("heating");
+            let settings = RunSettings {
+                dt_s: 0.002,
+                integrator: hsv_run::analysis::simulate::Integrator::default(),
+                duration_s: 0.2,
+                record_every: 1,
+                start_step: 0,
+            };
+            let mut counts = vec![0_usize; 200];
+            let mut n = 0;
+            simulate(
+                &mut vehicle,
+                &mut state,
+                &mut hsv_run::control::ControlLoop::schedule(
+                    Inputs::paper_doublet(),
+                    &controls,
+                    settings.dt_s,
+                )
+                .expect("schedule"),
+                &settings,
+                |_, _, _| {
+                    if n < counts.len() {
+                        counts[n] = hsv_core::testing::allocations();
+                    }
+                    n += 1;
+                    true
+                },
             )
-            .expect("schedule"),
-            &settings,
-            |_, _, _| {
-                if n < counts.len() {
-                    counts[n] = hsv_core::testing::allocations();
-                }
-                n += 1;
-                true
-            },
-        )
-        .expect("flies");
-        assert_eq!(n, 101, "one sample per step and the initial one");
-        let steady = counts[100] - counts[20];
-        assert_eq!(steady, 0, "{steady} allocations in steps 20 to 100");
+            .expect("flies");
+            assert_eq!(n, 101, "one sample per step and the initial one");
+            let steady = counts[100] - counts[20];
+            assert_eq!(
+                steady, 0,
+                "{staggered:?}: {steady} allocations in steps 20 to 100"
+            );
+        }
     });
 }
 

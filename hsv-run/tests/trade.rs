@@ -544,5 +544,12 @@ fn compare_flies_its_partitioned_case_as_simulate_does() {
     for ((channel, c), s) in channels.iter().zip(c).zip(s) {
         assert_same_digits(channel, c, s);
     }
+    // Beside it the staggered scheme, sub-iterated (at least twice: the residual compares two)
+    // to the sample's R_tol = 1e-5 m, a residual in metres at or below it.
+    let staggered = last_row(
+        &compared.join("history_partitioned_staggered.csv"),
+        &["pitch_deg", "coupling_iterations", "coupling_residual"],
+    );
+    assert!(staggered[1] >= 2.0 && staggered[2] <= 1e-5, "{staggered:?}");
     let _ = std::fs::remove_dir_all(dir);
 }

@@ -3,8 +3,8 @@
 //! converged), one rigid and one flexible trim (Nelder–Mead, the Newton polish and the restart
 //! check, as `hsv-run trim`), 0.1 s of flight from trim under the paper's elevon doublet (100
 //! steps of 1 ms), the 2 s doublet as `hsv-run simulate` flies it (heated partitioned vehicle;
-//! issue 24's target 0.3 s on one core), and one lifting surface's POD training from a cold
-//! cache (nine full-order runs side by side). `RAYON_NUM_THREADS=1` for the one-core figures.
+//! issue 24's target 0.3 s on one core) with the implicit and the staggered coupling, and one
+//! lifting surface's POD training from a cold cache (nine full-order runs side by side). `RAYON_NUM_THREADS=1` for the one-core figures.
 //!
 //! `cargo bench -p hsv-benches --bench jobs -- --measurement-time 3 --warm-up-time 1`. The
 //! flexible trim that gives the derivative's and the flight's starting state runs once in the
@@ -120,6 +120,24 @@ fn jobs(c: &mut Criterion) {
         |b| {
             b.iter_batched(
                 || Flight::trimmed(&loaded, &registry, &options, |_| {}).expect("trims"),
+                |mut flight| {
+                    let steps = flight.fly(2.0, 5, |_, _, _| true).expect("flies");
+                    black_box(steps)
+                },
+                criterion::BatchSize::PerIteration,
+            )
+        },
+    );
+
+    // The same flight with the paper's staggered coupling (R_tol = 1e-5 m): each sub-iteration
+    // evaluates every region again, against the implicit scheme's cheap stage iterations.
+    let mut staggered = loaded.clone();
+    staggered.config.coupling.scheme = hsv_core::config::CouplingSchemeName::Staggered;
+    group.bench_function(
+        "simulate 2 s (heated partitioned, staggered coupling)",
+        |b| {
+            b.iter_batched(
+                || Flight::trimmed(&staggered, &registry, &options, |_| {}).expect("trims"),
                 |mut flight| {
                     let steps = flight.fly(2.0, 5, |_, _, _| true).expect("flies");
                     black_box(steps)

@@ -625,7 +625,11 @@ mod tests {
     fn the_coupling_table_is_typed_with_clear_errors() {
         let sample = parse_config(SAMPLE_CONFIG_TOML, "s.toml").expect("sample");
         assert_eq!(sample.config.coupling, CouplingConfig::default());
-        let with = |table: &str| format!("{SAMPLE_CONFIG_TOML}\n[coupling]\n{table}\n");
+        // The sample's own [coupling] table is its last: replaced by the one under test.
+        let base = &SAMPLE_CONFIG_TOML[..SAMPLE_CONFIG_TOML
+            .find("\n[coupling]")
+            .expect("the sample has a [coupling] table")];
+        let with = |table: &str| format!("{base}\n[coupling]\n{table}\n");
         let staggered = parse_config(
             &with("scheme = \"staggered\"\nresidual_tolerance_m = 1e-6"),
             "s.toml",

@@ -125,7 +125,8 @@ impl MeasuredOutputs {
 /// What a controller commands (absolute values, not offsets from trim).
 #[derive(Debug, Clone, Copy, PartialEq, Default, serde::Serialize, serde::Deserialize)]
 pub struct ControlCommands {
-    /// Symmetric elevon, rad (trailing edge down positive).
+    /// Symmetric elevon, rad (positive: nose-up pitching moment, trailing edge up on the aft
+    /// surfaces; DESIGN §4).
     pub symmetric_elevon_rad: f64,
     /// Differential elevon (left = +, right = −), rad.
     pub differential_elevon_rad: f64,

@@ -52,7 +52,8 @@ pub struct HsvVehicle {
     #[variable(causality = Parameter, variability = Fixed, start = String::from("external"))]
     controller: String,
 
-    /// Symmetric elevon command added to the trim elevon, deg (trailing edge down positive).
+    /// Symmetric elevon command added to the trim elevon, deg (positive: nose-up pitching
+    /// moment, i.e. trailing edge up on these aft surfaces; DESIGN §4).
     #[variable(causality = Input, variability = Continuous, start = 0.0)]
     elevon_offset_deg: f64,
     /// Differential elevon command (left = +, right = -), deg.

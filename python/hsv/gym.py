@@ -6,7 +6,7 @@ Klock & Cesnik at the config's flight condition (sample: Mach 6, 26 km), whose s
 statically unstable (a real root near +1.8 /s), so an uncontrolled episode ends within seconds.
 
 Action (``Box``, float64, physical units): ``[elevon_deg, fuel_equivalence_ratio]``, absolute
-symmetric elevon in [-20, 20] deg (trailing edge down positive) and fuel equivalence ratio φ in
+symmetric elevon in [-20, 20] deg (positive nose-up: trailing edge up) and fuel equivalence ratio φ in
 [0, 1], held for ``steps_per_action`` aeroelastic steps of ``dt_s`` (default 10 × 1 ms: 100 Hz).
 
 Observation (``Box``, float64): ``[altitude_error_m, airspeed_error_m_s, alpha_deg, pitch_deg,

@@ -234,9 +234,14 @@ fn plate_fe(
     }
     let mut transform = DMatrix::zeros(map.n_equations, n_global);
     let mut next = first_global;
-    for node in 0..n_nodes {
-        let p = grid.positions_m[node];
-        if is_root[node] {
+    for (node, (&p, &root)) in grid
+        .positions_m
+        .iter()
+        .zip(&is_root)
+        .enumerate()
+        .take(n_nodes)
+    {
+        if root {
             let rows = tube_motion(&p, &pivot, side_sign) * beam_pivot;
             for d in 0..3 {
                 let eq = map.equation[3 * node + d].expect("free");
@@ -548,8 +553,7 @@ fn partitioned_in_vacuo_modes_match_a_monolithic_finite_element_model() {
     let shares = |s: &[f64]| format!("{:.3} {:.3} {:.3}", s[0], s[1], s[2]);
     let rows = 14.min(fe_elastic.len()).min(modes.modes.len());
     let mut worst: f64 = 0.0;
-    for i in 0..rows {
-        let (a, b) = (fe_elastic[i], &modes.modes[i]);
+    for (i, (a, b)) in fe_elastic.iter().zip(&modes.modes).enumerate().take(rows) {
         let err = (b.frequency_hz - a.frequency_hz) / a.frequency_hz;
         if i < COMPARED {
             worst = worst.max(err.abs());
@@ -573,11 +577,13 @@ fn partitioned_in_vacuo_modes_match_a_monolithic_finite_element_model() {
     );
 
     // Strain-energy shares, mode by mode, over the compared modes.
-    for i in 0..COMPARED {
-        let (a, b) = (
-            &fe_elastic[i].strain_shares,
-            &modes.modes[i].strain_energy_shares,
-        );
+    for (i, (fe, part)) in fe_elastic
+        .iter()
+        .zip(&modes.modes)
+        .enumerate()
+        .take(COMPARED)
+    {
+        let (a, b) = (&fe.strain_shares, &part.strain_energy_shares);
         for r in 0..3 {
             assert!(
                 (a[r] - b[r]).abs() <= SHARE_TOLERANCE,
@@ -641,8 +647,13 @@ fn partitioned_in_vacuo_modes_match_a_monolithic_finite_element_model() {
         );
     }
 
-    for i in 0..COMPARED {
-        let (a, b) = (fe_elastic[i].frequency_hz, modes.modes[i].frequency_hz);
+    for (i, (fe, part)) in fe_elastic
+        .iter()
+        .zip(&modes.modes)
+        .enumerate()
+        .take(COMPARED)
+    {
+        let (a, b) = (fe.frequency_hz, part.frequency_hz);
         assert!(
             ((b - a) / a).abs() <= TOLERANCE,
             "coupled elastic mode {}: partitioned {b:.4} Hz vs FE {a:.4} Hz ({:+.3} %, tolerance \

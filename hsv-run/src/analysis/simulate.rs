@@ -566,7 +566,8 @@ fn staggered_step(
         interface.relax(sub);
     }
     vehicle.set_staggered_report(sub, residual);
-    if !(residual <= settings.residual_tolerance_m) && settings.max_sub_iterations > 1 {
+    let settled = residual <= settings.residual_tolerance_m;
+    if !settled && settings.max_sub_iterations > 1 {
         return Err(VehicleError::Coupling {
             iterations: sub,
             interfaces: "main body and lifting surfaces (staggered step)".to_owned(),

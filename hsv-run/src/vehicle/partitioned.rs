@@ -679,7 +679,8 @@ fn body_region_loads(
 }
 
 /// One lifting surface's aero on its Ritz-deformed mesh rotated by its elevon, its
-/// generalized forces (aero and thermal) into `out`, and its skin friction about the pivot.
+/// generalized forces (aero and thermal) into `out`, and its skin friction about the pivot; its
+/// mesh moves with its own modes and the body's at the pivot (the modal states given).
 ///
 /// Inside an open step (`hold_friction`), the skin friction is evaluated at the step's first
 /// stage, the accepted state, and held by the others: friction reaches only the root loads, and
@@ -689,8 +690,7 @@ fn body_region_loads(
 /// reference) it is evaluated every time.
 fn surface_region_loads(
     s: &mut Surface,
-    modes: &crate::dynamics::ModalState,
-    body_modes: &crate::dynamics::ModalState,
+    (modes, body_modes): (&crate::dynamics::ModalState, &crate::dynamics::ModalState),
     elevon: &ElevonCommand,
     flight: &FlightCondition,
     time_s: f64,
@@ -903,8 +903,7 @@ fn surfaces_loads(
     )| {
         surface_region_loads(
             s,
-            modes,
-            &state.body_modes,
+            (modes, &state.body_modes),
             elevon,
             flight,
             time_s,

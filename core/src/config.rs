@@ -72,6 +72,17 @@ pub enum CouplingSchemeName {
     Staggered,
 }
 
+/// How a coupling fixed point is accelerated ([`crate::acceleration`]).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, serde::Serialize, serde::Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum AccelerationName {
+    /// Aitken's Δ² relaxation, from `relaxation`, clamped to `relaxation_bounds`.
+    #[default]
+    Aitken,
+    /// A constant relaxation factor `relaxation`.
+    Constant,
+}
+
 /// `[coupling]`: the scheme and its tolerances.
 #[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]
 #[serde(deny_unknown_fields, default)]
@@ -88,6 +99,12 @@ pub struct CouplingConfig {
     pub residual_tolerance_m: f64,
     /// Staggered scheme: sub-iterations allowed per step.
     pub max_sub_iterations: usize,
+    /// How both schemes' fixed points are accelerated.
+    pub acceleration: AccelerationName,
+    /// The relaxation factor: Aitken's first, or the constant one.
+    pub relaxation: f64,
+    /// Aitken's clamp on its factor (lower, upper).
+    pub relaxation_bounds: [f64; 2],
 }
 
 impl Default for CouplingConfig {
@@ -98,6 +115,9 @@ impl Default for CouplingConfig {
             max_iterations: 50,
             residual_tolerance_m: 1e-5,
             max_sub_iterations: 30,
+            acceleration: AccelerationName::Aitken,
+            relaxation: 1.0,
+            relaxation_bounds: [0.05, 1.5],
         }
     }
 }
@@ -489,6 +509,17 @@ fn check_values(config: &HsvConfig, file: &str) -> Result<(), ConfigError> {
             ));
         }
     }
+    let [low, high] = coupling.relaxation_bounds;
+    if !(coupling.relaxation > 0.0 && low > 0.0 && low <= high) {
+        return Err(error(
+            "coupling.relaxation",
+            format!(
+                "relaxation = {} and relaxation_bounds = [{low}, {high}]: need a positive \
+                 factor and 0 < lower <= upper",
+                coupling.relaxation
+            ),
+        ));
+    }
     for (key, value) in [
         ("coupling.max_iterations", coupling.max_iterations),
         ("coupling.max_sub_iterations", coupling.max_sub_iterations),
@@ -654,6 +685,14 @@ mod tests {
                 &["coupling.max_sub_iterations", "at least 1"],
             ),
             ("tolerence = 1e-8", &["coupling.tolerence"]),
+            (
+                "acceleration = \"iqn-ils\"",
+                &["coupling.acceleration", "aitken", "constant"],
+            ),
+            (
+                "relaxation_bounds = [1.0, 0.5]",
+                &["coupling.relaxation", "lower <= upper"],
+            ),
         ] {
             let err = parse_config(&with(table), "my.toml")
                 .unwrap_err()

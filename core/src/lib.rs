@@ -5,6 +5,7 @@
 //! publish-subscribe data manager regions talk through, the US Standard Atmosphere 1976,
 //! perfect-gas relations, frames, and panel meshes. SI units throughout.
 
+pub mod acceleration;
 pub mod atmosphere;
 pub mod cache;
 pub mod coupling;

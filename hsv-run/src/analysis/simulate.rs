@@ -443,7 +443,7 @@ impl Stepper {
         let staggered = vehicle.staggered().map(|settings| {
             let n = vehicle.interface_len();
             (
-                StaggeredInterface::new(settings, n, state),
+                StaggeredInterface::new(settings, n, state, vehicle.new_acceleration()),
                 x.clone(),
                 vec![0.0; n],
             )
@@ -563,7 +563,7 @@ fn staggered_step(
                 break;
             }
         }
-        interface.relax(sub);
+        interface.relax();
     }
     vehicle.set_staggered_report(sub, residual);
     let settled = residual <= settings.residual_tolerance_m;

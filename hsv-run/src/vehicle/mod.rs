@@ -357,6 +357,7 @@ pub fn flexible_vehicle_with(
         },
         model,
     )?;
+    vehicle.set_acceleration(coupling);
     // The time loop staggers the partitioned vehicle's regions when asked; the monolithic
     // comparison model has no body-surface interface to stagger.
     if coupling.scheme == hsv_core::config::CouplingSchemeName::Staggered

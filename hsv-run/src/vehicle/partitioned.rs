@@ -27,7 +27,9 @@
 //! ([`super::staggered`]).
 
 use hsv_core::ModelError;
+use hsv_core::acceleration::Acceleration;
 use hsv_core::aero::{AeroModel, AeroSolution, Loads, PanelMotion, integrate_pressure};
+use hsv_core::config::CouplingConfig;
 pub use hsv_core::coupling::ElevonCommand;
 use hsv_core::coupling::{
     ModalProjection, deflect_lifting_surface, elevon_rotation_angle_rad, generalized_forces,
@@ -184,7 +186,6 @@ pub struct ThermalRestart {
 pub struct VehicleRestart {
     pub time_s: f64,
     pub q_ddot: Vec<DVector<f64>>,
-    pub previous_step: Vec<DVector<f64>>,
     pub root_force_n: Vec<Vector3<f64>>,
     pub thermal: Vec<Option<ThermalRestart>>,
     pub histories: Vec<Option<hsv_core::aero::ModalHistory>>,
@@ -200,12 +201,10 @@ pub struct VehicleRestart {
     /// absent in older restart files).
     #[serde(default)]
     pub coupling: CouplingReport,
-    /// The body's η̈ guess and last Aitken step of the elastic interface (absent in restart
-    /// files from before the two-way interface: zeros).
+    /// The body's η̈ guess of the elastic interface (absent in restart files from before the
+    /// two-way interface: zeros).
     #[serde(default)]
     pub body_q_ddot: DVector<f64>,
-    #[serde(default)]
-    pub body_previous_step: DVector<f64>,
 }
 
 /// Temperatures of one heated surface, K.
@@ -275,13 +274,11 @@ impl Default for CouplingSettings {
     }
 }
 
-/// Where a coupling iteration starts: each surface's q̈ guess and its last Aitken step.
+/// Where a coupling iteration starts: each surface's q̈ guess and the body's η̈.
 #[derive(Debug, Clone, PartialEq)]
 pub struct CouplingGuess {
     q_ddot: Vec<DVector<f64>>,
-    previous_step: Vec<DVector<f64>>,
     body_q_ddot: DVector<f64>,
-    body_previous_step: DVector<f64>,
 }
 
 /// One in-vacuo mode of the assembled structure ([`PartitionedVehicle::in_vacuo_modes`]).
@@ -322,6 +319,26 @@ fn set_elastic_coordinate(state: &mut VehicleState, j: usize, value: f64) {
             return;
         }
         k -= m.n_modes();
+    }
+}
+
+/// `parts` end to end into `flat` (the interface vector's layout: each surface's q̈, then the
+/// body's η̈).
+fn gather<'a>(flat: &mut [f64], parts: impl Iterator<Item = &'a DVector<f64>>) {
+    let mut k = 0;
+    for v in parts {
+        flat[k..k + v.len()].copy_from_slice(v.as_slice());
+        k += v.len();
+    }
+}
+
+/// `flat` back into `parts` ([`gather`]'s inverse).
+fn scatter<'a>(flat: &[f64], parts: impl Iterator<Item = &'a mut DVector<f64>>) {
+    let mut k = 0;
+    for v in parts {
+        let n = v.len();
+        v.as_mut_slice().copy_from_slice(&flat[k..k + n]);
+        k += n;
     }
 }
 
@@ -448,10 +465,14 @@ pub struct PartitionedVehicle {
     /// Surface modal accelerations: the coupling's unknown, kept from the last derivative as
     /// the next guess.
     q_ddot: Vec<DVector<f64>>,
-    previous_step: Vec<DVector<f64>>,
-    /// The body's η̈, the interface's other unknown, and its last Aitken step.
+    /// The body's η̈, the interface's other unknown.
     body_q_ddot: DVector<f64>,
-    body_previous_step: DVector<f64>,
+    /// The fixed point's acceleration (`[coupling] acceleration`) and the flat interface
+    /// vectors it works on (scratch).
+    acceleration: Box<dyn Acceleration>,
+    acceleration_config: CouplingConfig,
+    iterate: Vec<f64>,
+    produced: Vec<f64>,
     /// The η̈ that accelerates the most-moving pivot by 1 g (the scale of its residual).
     body_q_ddot_scale: f64,
     /// The staggered scheme's settings, or None for the implicit scheme (module
@@ -1190,11 +1211,14 @@ impl PartitionedVehicle {
             .iter()
             .map(|s| DVector::zeros(s.shapes.n_modes()))
             .collect();
+        let interface_len = q_ddot.iter().map(|q| q.len()).sum::<usize>() + body_modal.n_modes();
         Ok(Self {
-            previous_step: q_ddot.clone(),
             q_ddot,
             body_q_ddot: DVector::zeros(body_modal.n_modes()),
-            body_previous_step: DVector::zeros(body_modal.n_modes()),
+            acceleration: hsv_core::acceleration::acceleration(&CouplingConfig::default()),
+            acceleration_config: CouplingConfig::default(),
+            iterate: vec![0.0; interface_len],
+            produced: vec![0.0; interface_len],
             body_q_ddot_scale,
             staggered: None,
             dynamics,
@@ -1715,9 +1739,7 @@ impl PartitionedVehicle {
     pub fn coupling_guess(&self) -> CouplingGuess {
         CouplingGuess {
             q_ddot: self.q_ddot.clone(),
-            previous_step: self.previous_step.clone(),
             body_q_ddot: self.body_q_ddot.clone(),
-            body_previous_step: self.body_previous_step.clone(),
         }
     }
 
@@ -1727,19 +1749,14 @@ impl PartitionedVehicle {
         let fits = |a: &[DVector<f64>], b: &[DVector<f64>]| {
             a.len() == b.len() && a.iter().zip(b).all(|(x, y)| x.len() == y.len())
         };
-        if !(fits(&guess.q_ddot, &self.q_ddot)
-            && fits(&guess.previous_step, &self.previous_step)
-            && guess.body_q_ddot.len() == self.body_q_ddot.len()
-            && guess.body_previous_step.len() == self.body_previous_step.len())
+        if !(fits(&guess.q_ddot, &self.q_ddot) && guess.body_q_ddot.len() == self.body_q_ddot.len())
         {
             return Err(VehicleError::Input(
                 "a coupling guess of another vehicle (surface mode counts differ)".to_owned(),
             ));
         }
         self.q_ddot.clone_from(&guess.q_ddot);
-        self.previous_step.clone_from(&guess.previous_step);
         self.body_q_ddot.copy_from(&guess.body_q_ddot);
-        self.body_previous_step.copy_from(&guess.body_previous_step);
         Ok(())
     }
 
@@ -1752,25 +1769,20 @@ impl PartitionedVehicle {
     /// The interface unknowns the next derivative starts from, into `out`
     /// ([`Self::interface_len`] entries).
     pub fn interface_guess(&self, out: &mut [f64]) {
-        let mut k = 0;
-        for v in self.q_ddot.iter().chain(std::iter::once(&self.body_q_ddot)) {
-            out[k..k + v.len()].copy_from_slice(v.as_slice());
-            k += v.len();
-        }
+        gather(
+            out,
+            self.q_ddot.iter().chain(std::iter::once(&self.body_q_ddot)),
+        );
     }
 
     /// Sets the interface unknowns from `guess` ([`Self::interface_len`] entries).
     pub fn set_interface_guess(&mut self, guess: &[f64]) {
-        let mut k = 0;
-        for v in self
-            .q_ddot
-            .iter_mut()
-            .chain(std::iter::once(&mut self.body_q_ddot))
-        {
-            let n = v.len();
-            v.as_mut_slice().copy_from_slice(&guess[k..k + n]);
-            k += n;
-        }
+        scatter(
+            guess,
+            self.q_ddot
+                .iter_mut()
+                .chain(std::iter::once(&mut self.body_q_ddot)),
+        );
     }
 
     /// One evaluation of the staggered scheme: the regions' loads at `state`, then each region
@@ -1793,16 +1805,13 @@ impl PartitionedVehicle {
             .body_modal_acceleration
             .copy_from(&self.body_q_ddot);
         self.dynamics.derivative(state, &self.loads, out)?;
-        let mut k = 0;
-        for v in out
-            .surface_modes
-            .iter()
-            .map(|m| &m.q_ddot)
-            .chain(std::iter::once(&out.body_modes.q_ddot))
-        {
-            produced[k..k + v.len()].copy_from_slice(v.as_slice());
-            k += v.len();
-        }
+        gather(
+            produced,
+            out.surface_modes
+                .iter()
+                .map(|m| &m.q_ddot)
+                .chain(std::iter::once(&out.body_modes.q_ddot)),
+        );
         Ok(())
     }
 
@@ -1853,6 +1862,19 @@ impl PartitionedVehicle {
         self.staggered = settings;
     }
 
+    /// Accelerates the coupling fixed points as `[coupling]` says (`acceleration`,
+    /// `relaxation`, `relaxation_bounds`).
+    pub fn set_acceleration(&mut self, config: &CouplingConfig) {
+        self.acceleration = hsv_core::acceleration::acceleration(config);
+        self.acceleration_config = *config;
+    }
+
+    /// A fresh acceleration of the configured kind, for a fixed point of the caller's (the
+    /// staggered step's).
+    pub fn new_acceleration(&self) -> Box<dyn Acceleration> {
+        hsv_core::acceleration::acceleration(&self.acceleration_config)
+    }
+
     /// How the coupling iteration converges.
     pub fn coupling_settings(&self) -> CouplingSettings {
         self.settings
@@ -1868,7 +1890,6 @@ impl PartitionedVehicle {
         VehicleRestart {
             time_s: self.time_s,
             q_ddot: self.q_ddot.clone(),
-            previous_step: self.previous_step.clone(),
             root_force_n: self.surfaces.iter().map(|s| s.root_force_n).collect(),
             thermal: self
                 .surfaces
@@ -1892,7 +1913,6 @@ impl PartitionedVehicle {
             heating_initial_k: self.heating.initial_k,
             body_loads: self.body_history.clone(),
             body_q_ddot: self.body_q_ddot.clone(),
-            body_previous_step: self.body_previous_step.clone(),
             coupling: self.report,
         }
     }
@@ -1916,7 +1936,6 @@ impl PartitionedVehicle {
         }
         for (what, len) in [
             ("coupling accelerations", r.q_ddot.len()),
-            ("coupling steps", r.previous_step.len()),
             ("root forces", r.root_force_n.len()),
             ("thermal states", r.thermal.len()),
             ("modal histories", r.histories.len()),
@@ -1928,31 +1947,21 @@ impl PartitionedVehicle {
             }
         }
         let n_body = self.body_q_ddot.len();
-        for (what, len) in [
-            ("body modal accelerations", r.body_q_ddot.len()),
-            ("body Aitken steps", r.body_previous_step.len()),
-        ] {
-            if len != 0 && len != n_body {
-                return Err(VehicleError::Input(format!(
-                    "restart file: {len} {what} for a body of {n_body} modes"
-                )));
-            }
+        let len = r.body_q_ddot.len();
+        if len != 0 && len != n_body {
+            return Err(VehicleError::Input(format!(
+                "restart file: {len} body modal accelerations for a body of {n_body} modes"
+            )));
         }
         self.time_s = r.time_s;
         self.report = r.coupling;
         self.body_history.clone_from(&r.body_loads);
         self.in_step = false;
         self.q_ddot.clone_from(&r.q_ddot);
-        self.previous_step.clone_from(&r.previous_step);
-        for (saved, ours) in [
-            (&r.body_q_ddot, &mut self.body_q_ddot),
-            (&r.body_previous_step, &mut self.body_previous_step),
-        ] {
-            if saved.is_empty() {
-                ours.fill(0.0);
-            } else {
-                ours.copy_from(saved);
-            }
+        if r.body_q_ddot.is_empty() {
+            self.body_q_ddot.fill(0.0);
+        } else {
+            self.body_q_ddot.copy_from(&r.body_q_ddot);
         }
         self.heating = HeatingRates {
             conduction_s: r.heating_conduction_s,
@@ -2120,7 +2129,7 @@ impl PartitionedVehicle {
         let body_without_roots = self.loads.body;
         let n_surfaces = self.surfaces.len();
         let mut residual = f64::INFINITY;
-        let mut omega = 1.0;
+        self.acceleration.reset();
         for iteration in 1..=self.settings.max_iterations.max(1) {
             residual = self.add_root_loads(state, &body_without_roots)?;
             self.loads
@@ -2144,38 +2153,26 @@ impl PartitionedVehicle {
                 };
                 return Ok(());
             }
-            // Aitken's Δ² relaxation of the (q̈, η̈) update (Küttler & Wall 2008, Comput.
-            // Mech. 43); both are mass-normalized modal accelerations, so one inner product
-            // weighs them alike.
-            let (mut num, mut den) = (0.0, 0.0);
-            for i in 0..n_surfaces {
-                let new = &out.surface_modes[i].q_ddot;
-                for k in 0..new.len() {
-                    let r = new[k] - self.q_ddot[i][k];
-                    let dr = r - self.previous_step[i][k];
-                    num += self.previous_step[i][k] * dr;
-                    den += dr * dr;
-                    self.previous_step[i][k] = r;
-                }
-            }
-            for k in 0..self.body_q_ddot.len() {
-                let r = out.body_modes.q_ddot[k] - self.body_q_ddot[k];
-                let dr = r - self.body_previous_step[k];
-                num += self.body_previous_step[k] * dr;
-                den += dr * dr;
-                self.body_previous_step[k] = r;
-            }
-            if iteration > 1 && den > 0.0 {
-                omega = (-omega * num / den).clamp(0.05, 1.5);
-            }
-            for i in 0..n_surfaces {
-                for k in 0..self.q_ddot[i].len() {
-                    self.q_ddot[i][k] += omega * self.previous_step[i][k];
-                }
-            }
-            for k in 0..self.body_q_ddot.len() {
-                self.body_q_ddot[k] += omega * self.body_previous_step[k];
-            }
+            // The (q̈, η̈) update, accelerated (`[coupling] acceleration`; both are
+            // mass-normalized modal accelerations, so one inner product weighs them alike).
+            gather(
+                &mut self.iterate,
+                self.q_ddot.iter().chain(std::iter::once(&self.body_q_ddot)),
+            );
+            gather(
+                &mut self.produced,
+                out.surface_modes
+                    .iter()
+                    .map(|m| &m.q_ddot)
+                    .chain(std::iter::once(&out.body_modes.q_ddot)),
+            );
+            self.acceleration.update(&mut self.iterate, &self.produced);
+            scatter(
+                &self.iterate,
+                self.q_ddot
+                    .iter_mut()
+                    .chain(std::iter::once(&mut self.body_q_ddot)),
+            );
         }
         self.report = CouplingReport {
             iterations: self.settings.max_iterations,

@@ -6,7 +6,7 @@
 //! surfaces' modal accelerations q̈ (their root loads on the body) and the body's modal
 //! accelerations η̈ (the pivots' elastic motion driving the surfaces). No stage solves the
 //! body-surface fixed point; the step is sub-iterated instead, each sub-iteration's interface
-//! relaxed by Aitken's Δ² (Küttler & Wall 2008, Comput. Mech. 43, 61-72), until the interface
+//! accelerated as `[coupling] acceleration` says (Aitken's Δ² by default), until the interface
 //! displacements at the step's end (the body's elastic translation at each pivot, each
 //! surface's deflection at its vertices) change by less than `residual_tolerance_m`. The
 //! paper's tolerance is R_tol = 1e-5 m. One sub-iteration is the explicit (loosely coupled)
@@ -15,14 +15,13 @@
 //!
 //! The scheme's first guess at each step is the last converged interface, held over the step.
 
+use hsv_core::acceleration::Acceleration;
+
 use crate::dynamics::VehicleState;
 
 /// Runge-Kutta stages per step at which the interface is exchanged (the fourth-order methods
 /// of [`crate::dynamics::integrate`] evaluate the derivative four times).
 pub const STAGES: usize = 4;
-
-/// Lower and upper bound of Aitken's relaxation factor (our choice: as the implicit scheme).
-const RELAXATION_BOUNDS: (f64, f64) = (0.05, 1.5);
 
 /// The staggered scheme's settings (`[coupling]` of the config).
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -33,16 +32,15 @@ pub struct StaggeredSettings {
 }
 
 /// The interface of one step at every stage, for the sub-iterations: the guess the regions
-/// read, what they produced, and Aitken's state. Buffers sized once (the loop allocates
-/// nothing).
-#[derive(Debug, Clone)]
+/// read, what they produced, and the acceleration of the sub-iterations (the config's, as the
+/// implicit scheme's). Buffers sized once (the loop allocates nothing).
+#[derive(Debug)]
 pub struct StaggeredInterface {
     pub settings: StaggeredSettings,
     n: usize,
     guess: Vec<f64>,
     produced: Vec<f64>,
-    previous_step: Vec<f64>,
-    omega: f64,
+    acceleration: Box<dyn Acceleration>,
     /// The step's end state of the last two sub-iterations (the residual compares them).
     pub end: [VehicleState; 2],
 }
@@ -50,14 +48,18 @@ pub struct StaggeredInterface {
 impl StaggeredInterface {
     /// Buffers for an interface of `n` entries ([`super::partitioned::PartitionedVehicle::interface_len`])
     /// and states shaped like `state`.
-    pub fn new(settings: StaggeredSettings, n: usize, state: &VehicleState) -> Self {
+    pub fn new(
+        settings: StaggeredSettings,
+        n: usize,
+        state: &VehicleState,
+        acceleration: Box<dyn Acceleration>,
+    ) -> Self {
         Self {
             settings,
             n,
             guess: vec![0.0; STAGES * n],
             produced: vec![0.0; STAGES * n],
-            previous_step: vec![0.0; STAGES * n],
-            omega: 1.0,
+            acceleration,
             end: [state.clone(), state.clone()],
         }
     }
@@ -67,8 +69,7 @@ impl StaggeredInterface {
         for stage in self.guess.chunks_mut(self.n.max(1)) {
             stage.copy_from_slice(&last[..stage.len()]);
         }
-        self.previous_step.fill(0.0);
-        self.omega = 1.0;
+        self.acceleration.reset();
     }
 
     /// The guess and the produced buffer of `stage`, or None beyond the last stage.
@@ -79,23 +80,9 @@ impl StaggeredInterface {
         })
     }
 
-    /// The next sub-iteration's guess: the produced interface relaxed by Aitken's factor
-    /// (`sub_iteration` counts from 1).
-    pub fn relax(&mut self, sub_iteration: usize) {
-        let (mut num, mut den) = (0.0, 0.0);
-        for k in 0..self.guess.len() {
-            let r = self.produced[k] - self.guess[k];
-            let dr = r - self.previous_step[k];
-            num += self.previous_step[k] * dr;
-            den += dr * dr;
-            self.previous_step[k] = r;
-        }
-        if sub_iteration > 1 && den > 0.0 {
-            self.omega = (-self.omega * num / den).clamp(RELAXATION_BOUNDS.0, RELAXATION_BOUNDS.1);
-        }
-        for k in 0..self.guess.len() {
-            self.guess[k] += self.omega * self.previous_step[k];
-        }
+    /// The next sub-iteration's guess: the produced interface, accelerated.
+    pub fn relax(&mut self) {
+        self.acceleration.update(&mut self.guess, &self.produced);
     }
 
     /// The interface the regions produced at the step's last stage (the next step's start).

@@ -7,8 +7,10 @@
 //!
 //! Kinematics: u(z) = u₀ + z βx, v(z) = v₀ + z βy, w, with z measured from the mid-plane along
 //! body z (down). Bending dofs per node (w, βx, βy); membrane dofs (u, v). Curvatures
-//! κ = (βx,x, βy,y, βx,y + βy,x), transverse shear γ = (w,x + βx, w,y + βy). Thickness varies
-//! bilinearly over the element (nodal values); all integrals use 2 × 2 Gauss points.
+//! κ = (βx,x, βy,y, βx,y + βy,x), transverse shear γ = (w,x + βx, w,y + βy). The depth h varies
+//! bilinearly over the element (nodal values); what fills it is the element's [`Section`] (solid,
+//! or built up of skins and webs), whose properties per unit width every integrand takes at its
+//! point; all integrals use 2 × 2 Gauss points.
 
 use nalgebra::{Matrix2, SMatrix, SVector, Vector2};
 
@@ -22,11 +24,104 @@ pub type Mat8 = SMatrix<f64, 8, 8>;
 /// 4 × 4 matrix on the transverse displacements w.
 pub type Mat4 = SMatrix<f64, 4, 4>;
 
-/// Geometry of one flat quadrilateral: corner (x, y), counter-clockwise, and corner thickness.
+/// Geometry of one flat quadrilateral: corner (x, y), counter-clockwise, corner depth (the
+/// section's thickness, face to face) and what fills the section.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Quad {
     pub xy: [[f64; 2]; 4],
     pub thickness_m: [f64; 4],
+    pub section: Section,
+}
+
+/// What fills the plate's depth.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub enum Section {
+    /// Solid material face to face.
+    #[default]
+    Solid,
+    /// Built up: two face skins with spar and rib webs between them (a hollow box section).
+    BuiltUp(BuiltUp),
+}
+
+/// A built-up section: face skins of thickness `skin_m` whose centroids are h − t_s apart, and
+/// webs smeared over the planform as web thickness over pitch (spars run spanwise, ribs
+/// chordwise). Where the depth is below two skins (the sharp edges) the section is solid.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct BuiltUp {
+    /// Skin thickness t_s, m (each face).
+    pub skin_m: f64,
+    /// Spar webs: t_w / spar pitch (m of web per m of chord).
+    pub spar_web_ratio: f64,
+    /// Rib webs: t_w / rib pitch (m of web per m of span).
+    pub rib_web_ratio: f64,
+}
+
+/// Section properties per unit width at one point, as geometric integrals over the material
+/// of the section (multiply by E, G or ρ): the isotropic plate takes them in every direction.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct SectionProperties {
+    /// In-plane area A = ∫ dz, m.
+    pub membrane_m: f64,
+    /// Bending inertia I = ∫ z² dz, m³ (D = E I C(ν)).
+    pub bending_m3: f64,
+    /// Transverse shear area before the correction κ, m (shear stiffness κ G times this).
+    pub shear_m: f64,
+    /// Mass per unit area over ρ, m.
+    pub mass_m: f64,
+    /// Rotary inertia per unit area over ρ, m³.
+    pub rotary_m3: f64,
+    /// Thermal moment per unit E and unit free-strain difference Δε, m²: across the faces,
+    /// linear in z, for a solid section (h²/12); between the two skins for a built-up one.
+    pub thermal_moment_m2: f64,
+}
+
+impl Section {
+    /// The properties at depth `h_m`.
+    pub fn properties(&self, h_m: f64) -> SectionProperties {
+        match *self {
+            Section::BuiltUp(b) if h_m > 2.0 * b.skin_m => b.properties(h_m),
+            _ => solid_properties(h_m),
+        }
+    }
+}
+
+/// Solid section of thickness h: A = h, I = h³/12, A_s = h, M_T/Δε = h²/12 (linear in z; Boley &
+/// Weiner, Theory of Thermal Stresses, 1960, ch. 12).
+fn solid_properties(h: f64) -> SectionProperties {
+    SectionProperties {
+        membrane_m: h,
+        bending_m3: h.powi(3) / 12.0,
+        shear_m: h,
+        mass_m: h,
+        rotary_m3: h.powi(3) / 12.0,
+        thermal_moment_m2: h * h / 12.0,
+    }
+}
+
+impl BuiltUp {
+    /// Two skins t_s with centroids d = h − t_s apart and smeared webs w = w_spar + w_rib
+    /// (Megson, Aircraft Structures for Engineering Students, 4th ed., ch. 15-16: the skins carry
+    /// in-plane load and bending, the webs carry transverse shear):
+    /// A = 2 t_s (webs carry no in-plane load),
+    /// I = 2 t_s (d/2)² + t_s³/6 + (w/2) h³/12 (each web family stiffens one direction; the
+    /// isotropic plate takes their mean), shear area (w/2) h (webs in pure shear),
+    /// mass 2 t_s + w h, rotary 2 t_s (d/2)² + w h³/12, and the thermal moment of skins at
+    /// ±d/2 whose free strains differ by Δε: M_T = E Δε t_s d/2.
+    fn properties(&self, h: f64) -> SectionProperties {
+        let t = self.skin_m;
+        let d = h - t;
+        let w = self.spar_web_ratio + self.rib_web_ratio;
+        let skins = 2.0 * t * (0.5 * d).powi(2);
+        SectionProperties {
+            membrane_m: 2.0 * t,
+            bending_m3: skins + t.powi(3) / 6.0 + 0.5 * w * h.powi(3) / 12.0,
+            // The webs' G (w/2) h, stated before the solid section's κ the element applies.
+            shear_m: 0.5 * w * h / SHEAR_CORRECTION,
+            mass_m: 2.0 * t + w * h,
+            rotary_m3: skins + w * h.powi(3) / 12.0,
+            thermal_moment_m2: 0.5 * t * d,
+        }
+    }
 }
 
 /// Natural coordinates of the corners.
@@ -59,7 +154,7 @@ struct Point {
     /// J = [[x,s, y,s], [x,t, y,t]].
     jac: Matrix2<f64>,
     det: f64,
-    thickness: f64,
+    section: SectionProperties,
 }
 
 impl Quad {
@@ -81,14 +176,14 @@ impl Quad {
             dx[k] = d[0];
             dy[k] = d[1];
         }
-        let thickness = (0..4).map(|k| n[k] * self.thickness_m[k]).sum();
+        let depth = (0..4).map(|k| n[k] * self.thickness_m[k]).sum();
         Point {
             n,
             dx,
             dy,
             jac,
             det,
-            thickness,
+            section: self.section.properties(depth),
         }
     }
 
@@ -126,7 +221,8 @@ fn covariant_shear(quad: &Quad, s: f64, t: f64) -> (SVector<f64, 12>, SVector<f6
 }
 
 /// MITC4 bending + shear stiffness for modulus `e_pa` and Poisson's ratio `nu`:
-/// K = ∫ B_bᵀ D_b B_b + B_sᵀ D_s B_s dA, D_b = E t³/12 C(ν), D_s = κ G t I, with the shear
+/// K = ∫ B_bᵀ D_b B_b + B_sᵀ D_s B_s dA, D_b = E I C(ν), D_s = κ G A_s I (solid: I = t³/12,
+/// A_s = t), with the shear
 /// strains interpolated from the edge-midpoint tying points (Bathe & Dvorkin 1985).
 pub fn bending_stiffness(quad: &Quad, e_pa: f64, nu: f64) -> Mat12 {
     let c = plane_stress(nu) * e_pa;
@@ -147,7 +243,7 @@ pub fn bending_stiffness(quad: &Quad, e_pa: f64, nu: f64) -> Mat12 {
             bb[(2, 3 * n + 1)] = p.dy[n];
             bb[(2, 3 * n + 2)] = p.dx[n];
         }
-        let db = c * (p.thickness.powi(3) / 12.0);
+        let db = c * p.section.bending_m3;
         k += bb.transpose() * db * bb * w;
         let gs = gs_b * (0.5 * (1.0 - t)) + gs_d * (0.5 * (1.0 + t));
         let gt = gt_a * (0.5 * (1.0 - s)) + gt_c * (0.5 * (1.0 + s));
@@ -158,22 +254,23 @@ pub fn bending_stiffness(quad: &Quad, e_pa: f64, nu: f64) -> Mat12 {
             bs[(0, col)] = cart[0];
             bs[(1, col)] = cart[1];
         }
-        k += bs.transpose() * bs * (SHEAR_CORRECTION * g * p.thickness * w);
+        k += bs.transpose() * bs * (SHEAR_CORRECTION * g * p.section.shear_m * w);
     }
     k
 }
 
-/// Consistent bending-block mass: ρ ∫ t N_i N_j (w) + t³/12 N_i N_j (βx, βy) dA.
+/// Consistent bending-block mass: ρ ∫ m N_i N_j (w) + r N_i N_j (βx, βy) dA with the section's
+/// mass m and rotary inertia r per ρ (solid: t and t³/12).
 pub fn bending_mass(quad: &Quad, density_kg_m3: f64) -> Mat12 {
     let mut m = Mat12::zeros();
     for (s, t) in gauss_points() {
         let p = quad.point(s, t);
         let w = p.det.abs() * density_kg_m3;
-        let rotary = p.thickness.powi(3) / 12.0;
+        let rotary = p.section.rotary_m3;
         for i in 0..4 {
             for j in 0..4 {
                 let nn = p.n[i] * p.n[j] * w;
-                m[(3 * i, 3 * j)] += p.thickness * nn;
+                m[(3 * i, 3 * j)] += p.section.mass_m * nn;
                 m[(3 * i + 1, 3 * j + 1)] += rotary * nn;
                 m[(3 * i + 2, 3 * j + 2)] += rotary * nn;
             }
@@ -216,6 +313,19 @@ fn area_mass_products(quad: &Quad, mass_kg_m2: f64) -> Vec<(usize, usize, f64)> 
         .collect()
 }
 
+/// Each corner's share of the element's section mass over ρ, ∫ N_i m dA (m³; exact for the
+/// bilinear depth of a solid section).
+pub fn node_mass_shares(quad: &Quad) -> [f64; 4] {
+    let mut shares = [0.0; 4];
+    for (s, t) in gauss_points() {
+        let p = quad.point(s, t);
+        for (i, share) in shares.iter_mut().enumerate() {
+            *share += p.n[i] * p.section.mass_m * p.det.abs();
+        }
+    }
+    shares
+}
+
 /// Membrane strain-displacement matrix B_m (3 × 8) at a point.
 fn membrane_b(p: &Point) -> SMatrix<f64, 3, 8> {
     let mut b = SMatrix::<f64, 3, 8>::zeros();
@@ -228,24 +338,24 @@ fn membrane_b(p: &Point) -> SMatrix<f64, 3, 8> {
     b
 }
 
-/// Q4 membrane stiffness ∫ B_mᵀ (E t C(ν)) B_m dA.
+/// Q4 membrane stiffness ∫ B_mᵀ (E A C(ν)) B_m dA (A: the section's in-plane area, solid t).
 pub fn membrane_stiffness(quad: &Quad, e_pa: f64, nu: f64) -> Mat8 {
     let c = plane_stress(nu) * e_pa;
     let mut k = Mat8::zeros();
     for (s, t) in gauss_points() {
         let p = quad.point(s, t);
         let b = membrane_b(&p);
-        k += b.transpose() * c * b * (p.thickness * p.det.abs());
+        k += b.transpose() * c * b * (p.section.membrane_m * p.det.abs());
     }
     k
 }
 
-/// Consistent membrane mass ρ ∫ t N_i N_j dA on u and on v.
+/// Consistent membrane mass ρ ∫ m N_i N_j dA on u and on v (m: the section's mass per ρ).
 pub fn membrane_mass(quad: &Quad, density_kg_m3: f64) -> Mat8 {
     let mut m = Mat8::zeros();
     for (s, t) in gauss_points() {
         let p = quad.point(s, t);
-        let w = p.det.abs() * density_kg_m3 * p.thickness;
+        let w = p.det.abs() * density_kg_m3 * p.section.mass_m;
         for i in 0..4 {
             for j in 0..4 {
                 let nn = p.n[i] * p.n[j] * w;
@@ -259,7 +369,8 @@ pub fn membrane_mass(quad: &Quad, density_kg_m3: f64) -> Mat8 {
 
 /// The membrane quantities of a unit isotropic free strain ε_th = 1 at modulus `e_pa`:
 /// `load` = ∫ B_mᵀ A (1, 1, 0) dA (equivalent nodal forces), `stress` = ∫ A B_m dA and
-/// `free` = ∫ A (1, 1, 0) dA, with A = E t C(ν); the element-mean stress resultants are then
+/// `free` = ∫ A (1, 1, 0) dA, with A = E A_m C(ν) (A_m: the section's in-plane area); the
+/// element-mean stress resultants are then
 /// N̄ = (stress u − ε_th free) / area.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct MembraneThermal {
@@ -282,7 +393,7 @@ pub fn membrane_thermal(quad: &Quad, e_pa: f64, nu: f64) -> MembraneThermal {
     for (s, t) in gauss_points() {
         let p = quad.point(s, t);
         let w = p.det.abs();
-        let a = c * p.thickness;
+        let a = c * p.section.membrane_m;
         let b = membrane_b(&p);
         out.load += b.transpose() * a * unit * w;
         out.stress += a * b * w;
@@ -296,7 +407,8 @@ pub fn membrane_thermal(quad: &Quad, e_pa: f64, nu: f64) -> MembraneThermal {
 /// Δε = ε_th(z = +t/2) − ε_th(z = −t/2) = 1 (lower face minus upper face, z down), ε_th linear in z:
 /// free curvature κ_T = Δε/t (1, 1, 0), thermal moment M_T = ∫ E ε_th z dz = E t² Δε / 12,
 /// f = ∫ B_bᵀ D_b κ_T dA = ∫ B_bᵀ (M_T / (1 − ν)) (1, 1, 0) dA (Boley & Weiner, Theory of Thermal
-/// Stresses, 1960, ch. 12, thin plates).
+/// Stresses, 1960, ch. 12, thin plates). A built-up section takes Δε between its skins
+/// (lower minus upper) and M_T = E Δε t_s d/2 ([`SectionProperties::thermal_moment_m2`]).
 pub fn bending_thermal(quad: &Quad, e_pa: f64, nu: f64) -> SVector<f64, 12> {
     let unit = SVector::<f64, 3>::new(1.0, 1.0, 0.0);
     let c = plane_stress(nu) * e_pa;
@@ -311,7 +423,7 @@ pub fn bending_thermal(quad: &Quad, e_pa: f64, nu: f64) -> SVector<f64, 12> {
             bb[(2, 3 * n + 2)] = p.dx[n];
         }
         // D_b κ_T = (E t³/12) C (Δε/t): the t² keeps sharp edges (t = 0) finite.
-        f += bb.transpose() * c * unit * (p.thickness.powi(2) / 12.0 * p.det.abs());
+        f += bb.transpose() * c * unit * (p.section.thermal_moment_m2 * p.det.abs());
     }
     f
 }
@@ -342,6 +454,7 @@ mod tests {
         Quad {
             xy: [[0.0, 0.0], [1.2, 0.1], [1.0, 0.9], [-0.2, 1.1]],
             thickness_m: [0.05, 0.04, 0.03, 0.06],
+            section: Section::Solid,
         }
     }
 
@@ -384,7 +497,7 @@ mod tests {
             .iter()
             .map(|&(s, t)| {
                 let p = q.point(s, t);
-                p.det * p.thickness
+                p.det * p.section.mass_m
             })
             .sum();
         assert!((total / (1000.0 * volume) - 1.0).abs() < 1e-12);

@@ -151,6 +151,42 @@ pub struct RectangularSettings {
     pub thickness_m: f64,
 }
 
+/// `[models.ritz-plate.built_up]`: the surface built up of two face skins with spars and ribs
+/// between them ([`fe::BuiltUp`]) instead of solid material face to face.
+#[derive(Debug, Clone, Copy, PartialEq, serde::Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct BuiltUpSettings {
+    /// Thickness of each face skin, m.
+    pub skin_thickness_m: f64,
+    /// Thickness of the spar and rib webs, m.
+    pub web_thickness_m: f64,
+    /// Chordwise distance between spars (spanwise webs), m.
+    pub spar_pitch_m: f64,
+    /// Spanwise distance between ribs (chordwise webs), m.
+    pub rib_pitch_m: f64,
+}
+
+impl BuiltUpSettings {
+    /// The element section, or the first setting out of range (key, value).
+    pub fn section(&self) -> Result<fe::Section, (&'static str, f64)> {
+        for (key, v) in [
+            ("skin_thickness_m", self.skin_thickness_m),
+            ("web_thickness_m", self.web_thickness_m),
+            ("spar_pitch_m", self.spar_pitch_m),
+            ("rib_pitch_m", self.rib_pitch_m),
+        ] {
+            if !(v.is_finite() && v > 0.0) {
+                return Err((key, v));
+            }
+        }
+        Ok(fe::Section::BuiltUp(fe::BuiltUp {
+            skin_m: self.skin_thickness_m,
+            spar_web_ratio: self.web_thickness_m / self.spar_pitch_m,
+            rib_web_ratio: self.web_thickness_m / self.rib_pitch_m,
+        }))
+    }
+}
+
 /// `[models.ritz-plate]`.
 #[derive(Debug, Clone, PartialEq, serde::Deserialize)]
 #[serde(deny_unknown_fields)]
@@ -194,6 +230,9 @@ pub struct Settings {
     /// stiffness is the structure's alone.
     #[serde(default)]
     pub non_structural_mass_kg_m2: f64,
+    /// A built-up section (skins, spars, ribs); absent: solid face to face.
+    #[serde(default)]
+    pub built_up: Option<BuiltUpSettings>,
 }
 
 impl Default for Settings {
@@ -210,6 +249,7 @@ impl Default for Settings {
             root: RootChoice::Clamped,
             thermal_moment_shape: false,
             non_structural_mass_kg_m2: 0.0,
+            built_up: None,
         }
     }
 }
@@ -295,7 +335,12 @@ hsv_core::register_model!(ModelDescriptor {
                    planform = \"vehicle\"        # or \"rectangular\" with [models.ritz-plate.rectangular] chord_m, span_m, thickness_m\n\
                    root = \"clamped\"            # root nodes clamped to the torque tube; \"simply-supported\": all four edges of a rectangular plate (panel flutter)\n\
                    thermal_moment_shape = false # add the uniform thermal-moment deflection to the basis\n\
-                   non_structural_mass_kg_m2 = 0.0 # carried mass per planform area, kg/m² (TPS layers of [models.full-order]: 2 Σ ρ t, e.g. 3.16 for 2 mm of vdi-l1400 on both faces)",
+                   non_structural_mass_kg_m2 = 0.0 # carried mass per planform area, kg/m² (TPS layers of [models.full-order]: 2 Σ ρ t, e.g. 3.16 for 2 mm of vdi-l1400 on both faces)\n\
+                   # [models.ritz-plate.built_up]  # absent: solid face to face; present: two skins with spar and rib webs between\n\
+                   # skin_thickness_m = 0.003      # each face skin, m (the conduction model's [models.full-order] skin_thickness_m)\n\
+                   # web_thickness_m = 0.0015      # spar and rib webs, m\n\
+                   # spar_pitch_m = 0.5            # chordwise distance between spars, m\n\
+                   # rib_pitch_m = 0.5             # spanwise distance between ribs, m",
     constructor: Constructor::Structure(construct),
 });
 
@@ -558,7 +603,13 @@ impl RitzPlate {
                 "finite and >= 0 kg/m²",
             ));
         }
-        let plate = PlateModel::new(grid, material, supports)
+        let section = match &settings.built_up {
+            None => fe::Section::Solid,
+            Some(b) => b.section().map_err(|(key, v)| {
+                ModelError::out_of_range(NAME, &format!("built_up.{key}"), v, "finite and > 0 m")
+            })?,
+        };
+        let plate = PlateModel::with_section(grid, material, supports, section)
             .map_err(model_error)?
             .with_non_structural_mass(added);
         let requested =
@@ -1325,20 +1376,16 @@ impl RitzPlate {
 }
 
 impl MassDistribution for RitzPlate {
-    /// Node masses ρ ∫ N_i t dA + m_ns ∫ N_i dA at the mid-plane nodes (exact mass and first
-    /// moment for the bilinear thickness; inertia of the lumped masses, omitting each section's
-    /// own ρ t³/12), mirrored for the left surface.
+    /// Node masses ([`PlateModel::node_masses_kg`]: ρ ∫ N_i m dA + m_ns ∫ N_i dA) at the
+    /// mid-plane nodes (exact mass and first moment for the bilinear thickness of a solid
+    /// section; inertia of the lumped masses, omitting each section's own rotary inertia),
+    /// mirrored for the left surface.
     fn mass_properties(&self) -> MassProperties {
         let grid = &self.plate.grid;
-        let rho = self.plate.material.density_kg_m3;
-        let added = self.plate.non_structural_mass_kg_m2;
         let mirror = if self.side == grid.side { 1.0 } else { -1.0 };
         let at = |p: &Point3<f64>| Point3::new(p.x, mirror * p.y, p.z);
-        let masses = grid
-            .node_volumes_m3
-            .iter()
-            .zip(&grid.node_areas_m2)
-            .map(|(v, a)| rho * v + added * a);
+        let node_masses = self.plate.node_masses_kg();
+        let masses = node_masses.iter().copied();
         let mass_kg: f64 = masses.clone().sum();
         let first: Vector3<f64> = masses
             .clone()

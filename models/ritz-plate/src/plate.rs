@@ -14,7 +14,7 @@ use hsv_core::material::{Material, MaterialError, SECANT_REFERENCE_TEMPERATURE_K
 use hsv_core::surface_grid::{GridEdge, SurfaceGrid};
 use nalgebra::{DMatrix, SVector};
 
-use crate::fe::{self, Mat4, Mat8, Mat12, MembraneThermal, Quad};
+use crate::fe::{self, Mat4, Mat8, Mat12, MembraneThermal, Quad, Section};
 
 /// Bending dofs per node: w, βx, βy.
 pub const BENDING_DOFS: usize = 3;
@@ -254,13 +254,14 @@ impl ElementState {
     };
 }
 
-/// The element quads of `grid` (corner positions in the plane and thicknesses).
-fn element_quads(grid: &SurfaceGrid) -> Vec<Quad> {
+/// The element quads of `grid` (corner positions in the plane and depths) filled by `section`.
+fn element_quads(grid: &SurfaceGrid, section: Section) -> Vec<Quad> {
     grid.elements
         .iter()
         .map(|el| Quad {
             xy: el.map(|n| [grid.positions_m[n].x, grid.positions_m[n].y]),
             thickness_m: el.map(|n| grid.thickness_m[n]),
+            section,
         })
         .collect()
 }
@@ -287,20 +288,33 @@ pub struct PlateModel {
     pub geometric: Vec<[Mat4; 3]>,
     /// Non-structural mass per unit planform area in the mass matrices, kg/m² (TPS layers).
     pub non_structural_mass_kg_m2: f64,
+    /// What fills the depth between the faces.
+    pub section: Section,
 }
 
 impl PlateModel {
-    /// Element matrices at the reference temperature (293 K) for `grid`, `material`, `supports`.
+    /// Element matrices at the reference temperature (293 K) for `grid`, `material`, `supports`,
+    /// solid section.
     pub fn new(
         grid: SurfaceGrid,
         material: Material,
         supports: Supports,
     ) -> Result<Self, PlateError> {
+        Self::with_section(grid, material, supports, Section::Solid)
+    }
+
+    /// [`PlateModel::new`] with the depth filled by `section`.
+    pub fn with_section(
+        grid: SurfaceGrid,
+        material: Material,
+        supports: Supports,
+        section: Section,
+    ) -> Result<Self, PlateError> {
         material.validate()?;
         let e_ref = material.youngs_modulus_pa(SECANT_REFERENCE_TEMPERATURE_K)?;
         let nu = material.poisson_ratio;
         let rho = material.density_kg_m3;
-        let quads = element_quads(&grid);
+        let quads = element_quads(&grid, section);
         let bending_map = DofMap::new(&grid, |n, d| supports.bending[n][d], BENDING_DOFS);
         let membrane_map = DofMap::new(&grid, |n, d| supports.membrane[n][d], MEMBRANE_DOFS);
         Ok(Self {
@@ -324,6 +338,7 @@ impl PlateModel {
                 .collect(),
             geometric: quads.iter().map(fe::geometric_patterns).collect(),
             non_structural_mass_kg_m2: 0.0,
+            section,
             grid,
             material,
             supports,
@@ -339,13 +354,40 @@ impl PlateModel {
     /// SP-160, 1969, eq. 4.1).
     pub fn with_non_structural_mass(mut self, mass_kg_m2: f64) -> Self {
         if mass_kg_m2 != 0.0 {
-            for (e, quad) in element_quads(&self.grid).iter().enumerate() {
+            for (e, quad) in element_quads(&self.grid, self.section).iter().enumerate() {
                 self.bending_mass[e] += fe::area_mass_bending(quad, mass_kg_m2);
                 self.membrane_mass[e] += fe::area_mass_membrane(quad, mass_kg_m2);
             }
         }
         self.non_structural_mass_kg_m2 += mass_kg_m2;
         self
+    }
+
+    /// Node masses, kg: ρ ∫ N_i m dA of the section plus the non-structural m_ns ∫ N_i dA (a solid
+    /// section takes the grid's node volumes, ρ ∫ N_i t dA).
+    pub fn node_masses_kg(&self) -> Vec<f64> {
+        let rho = self.material.density_kg_m3;
+        let added = self.non_structural_mass_kg_m2;
+        let structural: Vec<f64> = match self.section {
+            Section::Solid => self.grid.node_volumes_m3.iter().map(|v| rho * v).collect(),
+            Section::BuiltUp(_) => {
+                let mut m = vec![0.0; self.grid.n_nodes()];
+                for (quad, el) in element_quads(&self.grid, self.section)
+                    .iter()
+                    .zip(&self.grid.elements)
+                {
+                    for (share, &node) in fe::node_mass_shares(quad).iter().zip(el) {
+                        m[node] += rho * share;
+                    }
+                }
+                m
+            }
+        };
+        structural
+            .iter()
+            .zip(&self.grid.node_areas_m2)
+            .map(|(m, a)| m + added * a)
+            .collect()
     }
 
     pub fn n_elements(&self) -> usize {

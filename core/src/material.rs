@@ -1,7 +1,8 @@
 //! Temperature-dependent isotropic materials: a property table per material, interpolated
 //! linearly in temperature, with the built-in Ti-6Al-4V table and its sources (one file: the
 //! table type, its validation and lookups are tested on that table; thermal-only insulators
-//! for protection layers are in `material/insulation.rs`).
+//! for protection layers are in `material/insulation.rs`, still air for the interior of a
+//! built-up structure in `material/air.rs`).
 //!
 //! A [`Material`] holds temperature-independent constants (density, Poisson's ratio, melting
 //! point) and a table of rows `(T, E, α_sec, k, c_p)` in strictly increasing temperature. The
@@ -16,25 +17,28 @@
 //! strain below the floor, with the floor's α (see [`Material::thermal_strain`]).
 //!
 //! A material may have no mechanical rows at all (a thermal-protection insulator such as
-//! [`Material::vdi_l1400`]): it can be a conduction layer, and a structure model asking it for E
-//! gets [`MaterialError::NoMechanicalData`]. Its Poisson's ratio is then unused and may be NaN.
+//! [`Material::vdi_l1400`], or [`Material::air`]): it can be a conduction layer, and a
+//! structure model asking it for E gets [`MaterialError::NoMechanicalData`]. Its Poisson's
+//! ratio is then unused and may be NaN.
 //!
 //! A config gives a material by name (`material = "ti-6al-4v"`) or as a full table
 //! ([`MaterialSetting`]); see [`Material::by_name`] for the built-in names.
 
+mod air;
 mod insulation;
 
 use serde::{Deserialize, Serialize};
 
 use crate::error::ModelError;
 
+pub use air::AIR_DENSITY_KG_M3;
 pub use insulation::VDI_L1400_DENSITY_KG_M3;
 
 /// Temperature from which secant expansion coefficients are measured, K (20 °C).
 pub const SECANT_REFERENCE_TEMPERATURE_K: f64 = 293.0;
 
 /// Built-in material names accepted by [`Material::by_name`].
-pub const BUILTIN_MATERIALS: &[&str] = &["ti-6al-4v", "vdi-l1400"];
+pub const BUILTIN_MATERIALS: &[&str] = &["ti-6al-4v", "vdi-l1400", "air"];
 
 /// One row of a material's property table.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
@@ -360,6 +364,7 @@ impl Material {
         match name.to_ascii_lowercase().as_str() {
             "ti-6al-4v" | "ti6al4v" | "ti-64" => Ok(Self::ti_6al_4v()),
             "vdi-l1400" | "l1400" => Ok(Self::vdi_l1400()),
+            "air" => Ok(Self::air()),
             _ => Err(MaterialError::UnknownName {
                 name: name.to_owned(),
                 known: BUILTIN_MATERIALS.join(", "),

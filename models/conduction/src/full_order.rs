@@ -17,6 +17,14 @@
 //! latest iterate, a banded Cholesky solve per iteration, until the largest change is below
 //! `picard_tolerance_k`. Materials whose properties do not depend on temperature are solved in
 //! one factorization per time step size.
+//!
+//! **Built-up structure** (`skin_thickness_m`): two skins of the structural material at the
+//! plate's faces and an interior between them (default still air, core `material/air.rs`) that
+//! conducts only: radiation and convection between the skins are neglected, which leaves the
+//! interior nearly adiabatic (the usual assumption for the skins of a hollow control surface).
+//! The structure the plate model sees is then the two skins
+//! ([`ThermalGrid::structure_average_weights`], [`ThermalGrid::structure_difference_weights`]:
+//! the skins' mean temperatures).
 
 // Index loops mirror the matrix algebra they implement.
 #![allow(clippy::needless_range_loop)]
@@ -29,7 +37,7 @@ use hsv_core::surface_grid::SurfaceGrid;
 use hsv_core::thermal::{ConductionModel, check_step_inputs};
 use nalgebra::DVector;
 
-use crate::grid::{Layer, ThermalGrid};
+use crate::grid::{Layer, LayerKind, ThermalGrid};
 
 /// Registered name.
 pub const NAME: &str = "full-order";
@@ -51,6 +59,19 @@ fn one() -> usize {
     1
 }
 
+fn is_one(n: &usize) -> bool {
+    *n == 1
+}
+
+/// The default interior: still air (core `material/air.rs`).
+fn air() -> MaterialSetting {
+    MaterialSetting::Name("air".to_owned())
+}
+
+fn is_air(m: &MaterialSetting) -> bool {
+    *m == air()
+}
+
 /// Settings of `[models.full-order]` (the `pod` model builds on the same table).
 #[derive(Debug, Clone, PartialEq, serde::Deserialize, serde::Serialize)]
 #[serde(deny_unknown_fields, default)]
@@ -61,10 +82,28 @@ pub struct Settings {
     pub elements_spanwise: usize,
     /// Structural material.
     pub structure_material: MaterialSetting,
-    /// Elements through the structure's thickness.
+    /// Elements through the structure's thickness (through each skin when built up).
     pub structure_sublayers: usize,
-    /// Smallest structural thickness, m (the double wedge is sharp at its edges).
+    /// Smallest structural thickness, m (the double wedge is sharp at its edges); when built
+    /// up, the smallest interior thickness.
     pub minimum_thickness_m: f64,
+    /// Skin thickness t_s, m. Absent: the structure is solid, the plate's whole thickness.
+    /// Given: it is built up, two skins of `structure_material` (`structure_sublayers` elements
+    /// each) at the plate's faces with the interior between them (the plate's thickness less
+    /// 2 t_s, at least `minimum_thickness_m`); the outer layers stay where they are.
+    /// (Serialized only when given, like the two interior keys only when not their defaults,
+    /// so a solid configuration's POD basis fingerprint is what it was before these keys.)
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub skin_thickness_m: Option<f64>,
+    /// Material of a built-up structure's interior (unused when solid): a thermal-only table
+    /// will do. Default still air (`"air"`). It conducts only: radiation and convection between
+    /// the skins are neglected, so an air interior is nearly adiabatic.
+    #[serde(skip_serializing_if = "is_air")]
+    pub interior_material: MaterialSetting,
+    /// Elements through the interior (unused when solid). One element conducts the quasi-steady
+    /// k/h exactly; the interior's heat capacity is negligible for air.
+    #[serde(skip_serializing_if = "is_one")]
+    pub interior_sublayers: usize,
     /// Outer layers over the structure on both faces, outermost first.
     pub layers: Vec<LayerSetting>,
     /// Picard iterations stop when no temperature changes by more than this, K.
@@ -82,6 +121,9 @@ impl Default for Settings {
             structure_sublayers: 2,
             // Our choice: 2 mm skins at the sharp leading and trailing edges.
             minimum_thickness_m: 0.002,
+            skin_thickness_m: None,
+            interior_material: air(),
+            interior_sublayers: 1,
             layers: Vec::new(),
             picard_tolerance_k: 1e-3,
             max_picard_iterations: 30,
@@ -94,8 +136,13 @@ pub const SETTINGS_DOC: &str = "\
 elements_chordwise = 16        # grid elements along the chord (>= 2)
 elements_spanwise = 8          # grid elements along the span
 structure_material = \"ti-6al-4v\" # structural material (name or full table)
-structure_sublayers = 2        # elements through the structure's thickness
-minimum_thickness_m = 0.002    # smallest structural thickness (sharp edges), m
+structure_sublayers = 2        # elements through the structure's thickness (each skin when built up)
+minimum_thickness_m = 0.002    # smallest structural thickness (sharp edges), m; built up: smallest interior
+# skin_thickness_m = 0.0015    # optional: a built-up structure, two skins of this thickness, m, at the
+                               #   faces (structure_material) over a hollow interior; absent: solid
+interior_material = \"air\"      # built-up interior: still air (k, c_p 100-3000 K, Incropera & DeWitt
+                               #   Table A.4) or a table; no radiation or convection between the skins
+interior_sublayers = 1         # elements through the interior (built up)
 layers = []                    # outer (TPS) layers on both faces, outermost first, e.g.
                                #   [{ thickness_m = 0.002, material = \"vdi-l1400\", sublayers = 2 }]
                                #   (built-in thermal-only insulator, k and c_p 293-1673.15 K, VDI
@@ -111,6 +158,7 @@ impl Settings {
             ("elements_chordwise", self.elements_chordwise, 2),
             ("elements_spanwise", self.elements_spanwise, 1),
             ("structure_sublayers", self.structure_sublayers, 1),
+            ("interior_sublayers", self.interior_sublayers, 1),
             ("max_picard_iterations", self.max_picard_iterations, 1),
         ];
         for (key, n, min) in counts {
@@ -126,7 +174,8 @@ impl Settings {
             ("minimum_thickness_m", self.minimum_thickness_m),
             ("picard_tolerance_k", self.picard_tolerance_k),
         ];
-        for (key, v) in positive {
+        let skin = self.skin_thickness_m.map(|t| ("skin_thickness_m", t));
+        for (key, v) in positive.into_iter().chain(skin) {
             if !(v.is_finite() && v > 0.0) {
                 return Some((key.to_owned(), v, "finite and > 0"));
             }
@@ -148,6 +197,23 @@ impl Settings {
             }
         }
         None
+    }
+
+    /// Skins that leave no room for the interior anywhere on `plate` (2 t_s at least its largest
+    /// thickness): (key, value, allowed).
+    pub fn skins_misfit(&self, plate: &SurfaceGrid) -> Option<(String, f64, String)> {
+        let t = self.skin_thickness_m?;
+        let thickest = plate.thickness_m.iter().copied().fold(0.0, f64::max);
+        (2.0 * t >= thickest).then(|| {
+            (
+                "skin_thickness_m".to_owned(),
+                t,
+                format!(
+                    "below half the plate's largest thickness, {thickest} m, so that the \
+                     interior has room"
+                ),
+            )
+        })
     }
 }
 
@@ -258,8 +324,10 @@ pub struct FullOrder {
     materials: Vec<Material>,
     constant_properties: bool,
     panels: PanelMap,
-    /// Plate node → weights over the structure's levels (thickness average).
+    /// Weights over a plate node's levels: the structure's mean temperature.
     node_average: Vec<(usize, f64)>,
+    /// Weights over a plate node's levels: the structure's lower-minus-upper difference.
+    node_difference: Vec<(usize, f64)>,
     // Scratch.
     matrix: BandedMatrix,
     factored_dt_s: Option<f64>,
@@ -281,6 +349,9 @@ impl FullOrder {
         if let Some((key, value, allowed)) = settings.first_invalid() {
             return Err(ModelError::out_of_range(NAME, &key, value, allowed));
         }
+        if let Some((key, value, allowed)) = settings.skins_misfit(grid) {
+            return Err(ModelError::out_of_range(NAME, &key, value, allowed));
+        }
         let mut materials = vec![
             settings
                 .structure_material
@@ -292,22 +363,49 @@ impl FullOrder {
             materials.push(layer.material.resolve().map_err(material_error)?);
             outer.push(Layer {
                 thickness_m: Some(layer.thickness_m),
+                kind: LayerKind::Outer,
                 material: materials.len() - 1,
                 sublayers: layer.sublayers,
             });
         }
-        // Lower face first: outermost lower layer, ..., structure, ..., outermost upper layer.
+        // Lower face first: outermost lower layer, ..., the plate (the solid structure, or lower
+        // skin, interior, upper skin), ..., outermost upper layer.
         let mut stack: Vec<Layer> = outer.clone();
-        stack.push(Layer {
-            thickness_m: None,
-            material: 0,
-            sublayers: settings.structure_sublayers,
-        });
+        match settings.skin_thickness_m {
+            None => stack.push(Layer {
+                thickness_m: None,
+                kind: LayerKind::Structure,
+                material: 0,
+                sublayers: settings.structure_sublayers,
+            }),
+            Some(skin_m) => {
+                materials.push(
+                    settings
+                        .interior_material
+                        .resolve()
+                        .map_err(material_error)?,
+                );
+                let skin = Layer {
+                    thickness_m: Some(skin_m),
+                    kind: LayerKind::Structure,
+                    material: 0,
+                    sublayers: settings.structure_sublayers,
+                };
+                let interior = Layer {
+                    thickness_m: None,
+                    kind: LayerKind::Interior,
+                    material: materials.len() - 1,
+                    sublayers: settings.interior_sublayers,
+                };
+                stack.extend([skin, interior, skin]);
+            }
+        }
         stack.extend(outer.iter().rev());
         let thermal = ThermalGrid::new(grid, &stack, materials.len(), settings.minimum_thickness_m)
             .map_err(|e| ModelError::inconsistent(NAME, e.to_string()))?;
         let panels = map_panels(grid, &thermal, mesh)?;
         let node_average = thermal.structure_average_weights();
+        let node_difference = thermal.structure_difference_weights();
         let n = thermal.n_dofs();
         Ok(Self {
             constant_properties: materials.iter().all(has_constant_thermal_properties),
@@ -324,6 +422,7 @@ impl FullOrder {
             materials,
             panels,
             node_average,
+            node_difference,
         })
     }
 
@@ -341,7 +440,8 @@ impl FullOrder {
         &self.grid
     }
 
-    /// Materials: the structure first, then the outer layers in settings order.
+    /// Materials: the structure first, then the outer layers in settings order, then the
+    /// interior of a built-up structure.
     pub fn materials(&self) -> &[Material] {
         &self.materials
     }
@@ -354,6 +454,12 @@ impl FullOrder {
     /// (level, weight) pairs that average a plate node's temperature over the structure.
     pub fn node_average_weights(&self) -> &[(usize, f64)] {
         &self.node_average
+    }
+
+    /// (level, weight) pairs that give a plate node's through-thickness difference of the
+    /// structure ([`ThermalGrid::structure_difference_weights`]).
+    pub fn node_difference_weights(&self) -> &[(usize, f64)] {
+        &self.node_difference
     }
 
     /// Picard iterations of the last step.
@@ -595,11 +701,16 @@ impl ConductionModel for FullOrder {
         Some(&self.plate)
     }
 
-    /// T at the structure's lowest level minus T at its highest (levels run lower face first).
+    /// Solid: T at the structure's lowest level minus T at its highest (levels run lower face
+    /// first); built up: the lower skin's mean temperature minus the upper skin's.
     fn node_temperature_differences(&self, state: &DVector<f64>, out_k: &mut [f64]) {
-        let (lower, upper) = self.grid.structure_levels;
+        let levels = self.grid.n_levels;
         for (node, out) in out_k.iter_mut().enumerate().take(self.grid.n_plate_nodes) {
-            *out = state[self.grid.dof(node, lower)] - state[self.grid.dof(node, upper)];
+            *out = self
+                .node_difference
+                .iter()
+                .map(|&(level, w)| w * state[node * levels + level])
+                .sum();
         }
     }
 

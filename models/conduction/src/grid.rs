@@ -4,8 +4,12 @@
 //!
 //! **Through the thickness.** At every plate node the stack runs from the lower outer face to
 //! the upper outer face along the node normal ("up" = the side facing −z, body axes): the outer
-//! layers in reverse order (outermost first in the settings), the structure (the plate's own
-//! thickness, at least `minimum_thickness_m`), then the outer layers again, outermost last.
+//! layers in reverse order (outermost first in the settings), the plate's own thickness, then
+//! the outer layers again, outermost last. The plate's thickness is either one solid structural
+//! layer (at least `minimum_thickness_m`) or, built up, a lower skin, an interior (the plate's
+//! thickness less the two skins, at least `minimum_thickness_m`) and an upper skin: the one
+//! layer without a fixed thickness fills what the plate's thickness leaves. The structure is
+//! then a set of level ranges ([`ThermalGrid::structure_ranges`]), one or two.
 //! Each layer is split into equal sub-layers; the levels between them carry the degrees of
 //! freedom, numbered `plate_node * n_levels + level` (level 0 on the lower face).
 //!
@@ -21,11 +25,26 @@ use hsv_core::surface_grid::SurfaceGrid;
 
 use hsv_core::linalg::reverse_cuthill_mckee;
 
+/// What a layer of the stack is.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum LayerKind {
+    /// Outside the plate's thickness (a thermal-protection layer).
+    Outer,
+    /// Structure: the whole solid plate, or one skin of a built-up one.
+    Structure,
+    /// The non-structural interior between the skins of a built-up plate.
+    Interior,
+}
+
 /// One layer of the through-thickness stack.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Layer {
-    /// Thickness, m; `None` for the structure, whose thickness is the plate's.
+    /// Thickness, m; `None` for the one layer within the plate that fills the plate's thickness
+    /// less the fixed layers within it (the solid structure, or a built-up plate's interior),
+    /// at least the grid's minimum thickness.
     pub thickness_m: Option<f64>,
+    /// Outer, structural or interior.
+    pub kind: LayerKind,
     /// Index into the model's material list.
     pub material: usize,
     /// Number of element layers through it (≥ 1).
@@ -47,6 +66,9 @@ pub struct Hexahedron {
 pub enum GridError {
     /// The plate has no quads, a bad index, a mismatched thickness list or a non-finite value.
     BadPlate(String),
+    /// A stack with no structure, more than one filling layer, an outer filling layer, a bad
+    /// thickness or no sub-layers.
+    BadStack(String),
     /// An element with zero or inverted volume.
     Degenerate { quad: usize, segment: usize },
 }
@@ -54,7 +76,7 @@ pub enum GridError {
 impl std::fmt::Display for GridError {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         match self {
-            GridError::BadPlate(message) => write!(f, "{message}"),
+            GridError::BadPlate(message) | GridError::BadStack(message) => write!(f, "{message}"),
             GridError::Degenerate { quad, segment } => write!(
                 f,
                 "element of quad {quad}, through-thickness segment {segment} has no volume"
@@ -78,8 +100,9 @@ pub struct ThermalGrid {
     pub band_index: Vec<usize>,
     /// Half-bandwidth of the conduction matrix in band order.
     pub bandwidth: usize,
-    /// Lowest and highest level of the structure.
-    pub structure_levels: (usize, usize),
+    /// Lowest and highest level of each structural layer, lower face first: one range for a
+    /// solid structure, the lower and upper skin for a built-up one.
+    pub structure_ranges: Vec<(usize, usize)>,
     /// Unit normal at each plate node, pointing to the upper face.
     pub up: Vec<Vector3<f64>>,
 }
@@ -159,6 +182,40 @@ fn quad_up(p: &[Point3<f64>], q: &[usize; 4]) -> Vector3<f64> {
     n.try_normalize(0.0).unwrap_or_else(|| -Vector3::z())
 }
 
+/// A stack the grid can build: at least one structural layer, at most one filling layer and
+/// that one within the plate, fixed thicknesses finite and > 0, every layer ≥ 1 sub-layer.
+fn check_stack(layers: &[Layer]) -> Result<(), GridError> {
+    let bad = |m: String| Err(GridError::BadStack(m));
+    if !layers.iter().any(|l| l.kind == LayerKind::Structure) {
+        return bad("the through-thickness stack has no structural layer".to_owned());
+    }
+    let filling: Vec<usize> = (layers.iter().enumerate())
+        .filter(|(_, l)| l.thickness_m.is_none())
+        .map(|(i, _)| i)
+        .collect();
+    if filling.len() > 1 {
+        return bad(format!(
+            "layers {filling:?} all take the plate's thickness; at most one may"
+        ));
+    }
+    for (i, layer) in layers.iter().enumerate() {
+        if layer.thickness_m.is_none() && layer.kind == LayerKind::Outer {
+            return bad(format!(
+                "outer layer {i} has no thickness; only a layer within the plate fills it"
+            ));
+        }
+        if let Some(t) = layer.thickness_m
+            && !(t.is_finite() && t > 0.0)
+        {
+            return bad(format!("layer {i} is {t} m thick (must be finite and > 0)"));
+        }
+        if layer.sublayers == 0 {
+            return bad(format!("layer {i} has no sub-layers (must have >= 1)"));
+        }
+    }
+    Ok(())
+}
+
 fn check_plate(plate: &SurfaceGrid) -> Result<(), GridError> {
     let n = plate.positions_m.len();
     if plate.elements.is_empty() {
@@ -200,8 +257,9 @@ fn check_plate(plate: &SurfaceGrid) -> Result<(), GridError> {
 }
 
 impl ThermalGrid {
-    /// Extrudes `plate` through `layers` (lower face first, structure in the middle) with the
-    /// structure at least `minimum_thickness_m` thick.
+    /// Extrudes `plate` through `layers` (lower face first, the plate's own layers in the
+    /// middle) with the filling layer (the solid structure or the interior) at least
+    /// `minimum_thickness_m` thick.
     pub fn new(
         plate: &SurfaceGrid,
         layers: &[Layer],
@@ -209,6 +267,7 @@ impl ThermalGrid {
         minimum_thickness_m: f64,
     ) -> Result<Self, GridError> {
         check_plate(plate)?;
+        check_stack(layers)?;
         let n = plate.positions_m.len();
         // Node normals: average of the adjacent quads' upward normals.
         let mut up = vec![Vector3::zeros(); n];
@@ -221,21 +280,26 @@ impl ThermalGrid {
         for u in &mut up {
             *u = u.try_normalize(0.0).unwrap_or_else(|| -Vector3::z());
         }
-        // Segment list (layer index of each element layer) and the structure's level range.
+        // Segment list (layer index of each element layer) and the structure's level ranges.
         let mut segments = Vec::new();
-        let mut structure_levels = (0, 0);
+        let mut structure_ranges = Vec::new();
         for (l, layer) in layers.iter().enumerate() {
-            if layer.thickness_m.is_none() {
-                structure_levels.0 = segments.len();
-                structure_levels.1 = segments.len() + layer.sublayers;
+            if layer.kind == LayerKind::Structure {
+                structure_ranges.push((segments.len(), segments.len() + layer.sublayers));
             }
             segments.extend(std::iter::repeat_n(l, layer.sublayers));
         }
         let n_levels = segments.len() + 1;
+        // The fixed layers within the plate's thickness (a built-up plate's skins).
+        let fixed_within: f64 = (layers.iter())
+            .filter(|l| l.kind != LayerKind::Outer)
+            .filter_map(|l| l.thickness_m)
+            .sum();
         // Level offsets along the normal at each node, from the lower face.
         let mut positions_m = vec![Point3::origin(); n * n_levels];
         for v in 0..n {
-            let h = plate.thickness_m[v].max(minimum_thickness_m);
+            // The filling layer's thickness (solid: the plate's, as fixed_within is 0).
+            let h = (plate.thickness_m[v] - fixed_within).max(minimum_thickness_m);
             let total: f64 = layers.iter().map(|l| l.thickness_m.unwrap_or(h)).sum();
             let mut s = -0.5 * total;
             positions_m[v * n_levels] = plate.positions_m[v] + up[v] * s;
@@ -307,7 +371,7 @@ impl ThermalGrid {
             volume_m3,
             band_index,
             bandwidth,
-            structure_levels,
+            structure_ranges,
             up,
         })
     }
@@ -336,18 +400,39 @@ impl ThermalGrid {
         })
     }
 
-    /// Weights over the structure's levels whose sum is the thickness average (trapezoid rule
-    /// over its equal sub-layers): (level, weight).
+    /// Weights over the structure's levels whose sum is its mean temperature: the trapezoid
+    /// average over each structural layer's equal sub-layers, the layers weighted equally (the
+    /// two skins of a built-up plate have one thickness): (level, weight), summing to 1.
     pub fn structure_average_weights(&self) -> Vec<(usize, f64)> {
-        let (lo, hi) = self.structure_levels;
-        let n = (hi - lo) as f64;
-        (lo..=hi)
-            .map(|l| {
-                let w = if l == lo || l == hi { 0.5 / n } else { 1.0 / n };
-                (l, w)
-            })
+        let share = 1.0 / self.structure_ranges.len() as f64;
+        (self.structure_ranges.iter())
+            .flat_map(|&range| layer_average_weights(range).map(move |(l, w)| (l, w * share)))
             .collect()
     }
+
+    /// Weights over the structure's levels whose sum is its through-thickness difference ΔT,
+    /// lower minus upper: solid, T at its lowest level minus T at its highest (the faces, for a
+    /// temperature linear through the thickness); built up, the lower skin's mean temperature
+    /// minus the upper skin's (trapezoid averages), what the thermal moment of two skins,
+    /// M_T = E α ΔT t_s d/2, takes. (level, weight), summing to 0.
+    pub fn structure_difference_weights(&self) -> Vec<(usize, f64)> {
+        match self.structure_ranges.as_slice() {
+            [] => Vec::new(),
+            [(lo, hi)] => vec![(*lo, 1.0), (*hi, -1.0)],
+            [lower, .., upper] => layer_average_weights(*lower)
+                .chain(layer_average_weights(*upper).map(|(l, w)| (l, -w)))
+                .collect(),
+        }
+    }
+}
+
+/// Trapezoid-rule weights of the levels `lo..=hi` of one layer's equal sub-layers, summing to 1.
+fn layer_average_weights((lo, hi): (usize, usize)) -> impl Iterator<Item = (usize, f64)> {
+    let n = (hi - lo) as f64;
+    (lo..=hi).map(move |l| {
+        let w = if l == lo || l == hi { 0.5 / n } else { 1.0 / n };
+        (l, w)
+    })
 }
 
 #[cfg(test)]
@@ -363,6 +448,7 @@ mod tests {
     fn brick_volumes_and_conduction_are_exact_for_a_box() {
         let layers = [Layer {
             thickness_m: None,
+            kind: LayerKind::Structure,
             material: 0,
             sublayers: 1,
         }];
@@ -381,6 +467,114 @@ mod tests {
             let flux: f64 = (0..8).map(|b| e.conduction_m[a * 8 + b] * t[b]).sum();
             let expected = if a < 4 { -0.5 } else { 0.5 };
             assert_relative_eq!(flux, expected, epsilon = 1e-12);
+        }
+    }
+
+    fn layer(
+        thickness_m: Option<f64>,
+        kind: LayerKind,
+        material: usize,
+        sublayers: usize,
+    ) -> Layer {
+        Layer {
+            thickness_m,
+            kind,
+            material,
+            sublayers,
+        }
+    }
+
+    /// Outer layer 1 mm, skins 2 mm (2 sub-layers), interior filling: on a 20 mm plate the
+    /// interior is 16 mm, the faces stay at ±11 mm (the plate ± the outer layers), the skins are
+    /// the level ranges (1, 3) and (4, 6); where the plate is thinner than the skins and the
+    /// minimum interior, the interior keeps the minimum.
+    #[test]
+    fn a_built_up_stack_puts_the_skins_inside_the_plate_thickness() {
+        let outer = layer(Some(0.001), LayerKind::Outer, 1, 1);
+        let skin = layer(Some(0.002), LayerKind::Structure, 0, 2);
+        let interior = layer(None, LayerKind::Interior, 2, 1);
+        let stack = [outer, skin, interior, skin, outer];
+        let grid = ThermalGrid::new(&unit_square(0.02), &stack, 3, 1e-3).unwrap();
+        assert_eq!(grid.n_levels, 8);
+        assert_eq!(grid.structure_ranges, vec![(1, 3), (4, 6)]);
+        let s = |level: usize| grid.positions_m[grid.dof(0, level)].coords.dot(&grid.up[0]);
+        let expected = [-0.011, -0.010, -0.009, -0.008, 0.008, 0.009, 0.010, 0.011];
+        for (level, e) in expected.iter().enumerate() {
+            assert_relative_eq!(s(level), *e, epsilon = 1e-15);
+        }
+        // Interior volume: 16 mm over the 2 m² plate, all of it material 2.
+        let air: f64 = (0..grid.n_dofs()).map(|d| grid.volume_m3[d * 3 + 2]).sum();
+        assert_relative_eq!(air, 0.016 * 2.0, max_relative = 1e-12);
+        // Averages: each skin's trapezoid rule, the skins weighted equally.
+        let avg = grid.structure_average_weights();
+        let expected_avg = [
+            (1, 0.125),
+            (2, 0.25),
+            (3, 0.125),
+            (4, 0.125),
+            (5, 0.25),
+            (6, 0.125),
+        ];
+        assert_eq!(avg.len(), expected_avg.len());
+        for ((l, w), (el, ew)) in avg.iter().zip(expected_avg) {
+            assert_eq!(*l, el);
+            assert_relative_eq!(*w, ew, epsilon = 1e-15);
+        }
+        let diff = grid.structure_difference_weights();
+        let total: f64 = diff.iter().map(|(_, w)| w).sum();
+        assert_relative_eq!(total, 0.0, epsilon = 1e-15);
+        assert_eq!(diff[0], (1, 0.25));
+        assert_eq!(diff[3], (4, -0.25));
+        // A plate thinner than two skins plus the minimum interior: the interior keeps 1 mm.
+        let thin = ThermalGrid::new(&unit_square(0.003), &stack, 3, 1e-3).unwrap();
+        let s = |level: usize| thin.positions_m[thin.dof(0, level)].coords.dot(&thin.up[0]);
+        assert_relative_eq!(s(4) - s(3), 1e-3, epsilon = 1e-15);
+    }
+
+    /// Solid: one structural range, the difference between its end levels.
+    #[test]
+    fn a_solid_structure_differences_its_end_levels() {
+        let stack = [layer(None, LayerKind::Structure, 0, 4)];
+        let grid = ThermalGrid::new(&unit_square(0.01), &stack, 1, 1e-3).unwrap();
+        assert_eq!(grid.structure_ranges, vec![(0, 4)]);
+        assert_eq!(
+            grid.structure_difference_weights(),
+            vec![(0, 1.0), (4, -1.0)]
+        );
+        let sum: f64 = grid.structure_average_weights().iter().map(|p| p.1).sum();
+        assert_relative_eq!(sum, 1.0, epsilon = 1e-15);
+    }
+
+    #[test]
+    fn bad_stacks_are_errors() {
+        let plate = unit_square(0.01);
+        let structure = layer(None, LayerKind::Structure, 0, 1);
+        let cases: [(&[Layer], &str); 4] = [
+            (
+                &[layer(Some(0.01), LayerKind::Outer, 0, 1)],
+                "no structural layer",
+            ),
+            (
+                &[structure, layer(None, LayerKind::Interior, 0, 1)],
+                "at most one",
+            ),
+            (
+                &[
+                    layer(None, LayerKind::Outer, 0, 1),
+                    layer(Some(0.01), LayerKind::Structure, 0, 1),
+                ],
+                "outer layer 0",
+            ),
+            (
+                &[layer(Some(0.001), LayerKind::Structure, 0, 0)],
+                "no sub-layers",
+            ),
+        ];
+        for (stack, message) in cases {
+            let err = ThermalGrid::new(&plate, stack, 1, 1e-3)
+                .unwrap_err()
+                .to_string();
+            assert!(err.contains(message), "{err}");
         }
     }
 }

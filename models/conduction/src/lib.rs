@@ -77,6 +77,10 @@ fn full_order_settings(ctx: &ModelContext<'_>) -> Result<FullOrderSettings, Mode
     .chain(
         (settings.layers.iter().enumerate())
             .map(|(i, layer)| (format!("layers[{i}].material"), &layer.material)),
+    )
+    .chain(
+        (settings.skin_thickness_m.is_some())
+            .then(|| ("interior_material".to_owned(), &settings.interior_material)),
     );
     for (key, material) in materials {
         material
@@ -86,9 +90,22 @@ fn full_order_settings(ctx: &ModelContext<'_>) -> Result<FullOrderSettings, Mode
     Ok(settings)
 }
 
+/// Skins with no room for the interior on `grid`: the settings error naming the key.
+fn check_skins_fit(
+    ctx: &ModelContext<'_>,
+    settings: &FullOrderSettings,
+    grid: &SurfaceGrid,
+) -> Result<(), ModelError> {
+    match settings.skins_misfit(grid) {
+        Some((key, value, allowed)) => Err(settings_error(ctx, &key, value, &allowed)),
+        None => Ok(()),
+    }
+}
+
 fn construct_full_order(ctx: &ModelContext<'_>) -> Result<Box<dyn ConductionModel>, ModelError> {
     let settings = full_order_settings(ctx)?;
     let (grid, mesh) = lifting_surface_geometry(ctx, &settings, full_order::NAME)?;
+    check_skins_fit(ctx, &settings, &grid)?;
     Ok(Box::new(FullOrder::new(&grid, &mesh, settings)?))
 }
 
@@ -98,6 +115,7 @@ pub fn full_order_for(ctx: &ModelContext<'_>) -> Result<FullOrder, ModelError> {
     let full_ctx = ModelContext::new(ctx.region, ctx.registry, &full);
     let full_settings = full_order_settings(&full_ctx)?;
     let (grid, mesh) = lifting_surface_geometry(&full_ctx, &full_settings, pod::NAME)?;
+    check_skins_fit(&full_ctx, &full_settings, &grid)?;
     FullOrder::new(&grid, &mesh, full_settings)
 }
 

@@ -449,7 +449,8 @@ pub struct Pod {
     surface_map: DMatrix<f64>,
     /// Column i: structural node i's temperature per coefficient.
     node_map: DMatrix<f64>,
-    /// Column i: structural node i's lower-minus-upper face temperature per coefficient.
+    /// Column i: structural node i's lower-minus-upper difference per coefficient (faces when
+    /// solid, skin means when built up; [`FullOrder::node_difference_weights`]).
     difference_map: DMatrix<f64>,
     /// Φᵀ 1: the coefficients of a uniform unit field.
     uniform: DVector<f64>,
@@ -566,10 +567,16 @@ impl Pod {
                 }
             }
         }
-        let (lower, upper) = grid.structure_levels;
-        let difference_map = DMatrix::from_fn(r, grid.n_plate_nodes, |j, node| {
-            phi[(grid.dof(node, lower), j)] - phi[(grid.dof(node, upper), j)]
-        });
+        let mut difference_map = DMatrix::zeros(r, grid.n_plate_nodes);
+        for node in 0..grid.n_plate_nodes {
+            for j in 0..r {
+                difference_map[(j, node)] = full
+                    .node_difference_weights()
+                    .iter()
+                    .map(|&(level, w)| w * phi[(grid.dof(node, level), j)])
+                    .sum();
+            }
+        }
         let uniform = phi.transpose() * DVector::from_element(n, 1.0);
         Ok(Self {
             difference_map,

@@ -121,7 +121,7 @@ fn steady_drop_through_a_protected_plate_is_the_series_resistance() {
     let mut state = model.uniform_state(400.0).unwrap();
     model.step(&mut state, &[q, -q], 1.0e9).unwrap();
     let top = model.thermal_grid().n_levels - 1;
-    let (s_lo, s_hi) = model.thermal_grid().structure_levels;
+    let (s_lo, s_hi) = model.thermal_grid().structure_ranges[0];
     let faces_drop = at_level(&model, &state, top) - at_level(&model, &state, 0);
     let structure_drop = at_level(&model, &state, s_hi) - at_level(&model, &state, s_lo);
     let layer_drop = at_level(&model, &state, top) - at_level(&model, &state, s_hi);

@@ -1,0 +1,486 @@
+//! `full-order` and `pod` with a built-up structure (`skin_thickness_m`): two titanium-like skins
+//! at the faces of the plate with still air between them, heated through the lower face only.
+//!
+//! A 1 m × 1 m plate 20 mm thick (one grid element, adiabatic sides, so conduction is
+//! one-dimensional through the thickness) of 2 mm constant-property skins (ρ = 4430 kg/m³,
+//! c_p = 560 J/(kg K), k = 7 W/(m K)) over a 16 mm interior of the built-in `air` (Incropera &
+//! DeWitt Table A.4, k 0.026-0.038 W/(m K) over the run), starting at 300 K; a uniform flux
+//! q = 40 kW/m² enters the lower face for 20 s.
+//!
+//! Closed forms:
+//! - **Lumped lower skin** (first law on the skin; its Biot-like number q t_s / (2 k) / ΔT_rise
+//!   is 3.5 %, and the mean temperature is the stored heat whatever the gradient): the skin's
+//!   mean rises at q / (ρ c_p t_s) = 8.06 K/s, less what leaks into the interior.
+//! - **Conduction leak through the interior** (Fourier's law across the gap, Incropera &
+//!   DeWitt §3.1): at most k_air(T_max) ΔT / h_i, with ΔT ≤ the lower skin's lumped rise
+//!   q t / (ρ c_p t_s); integrated over the run, Q_leak ≤ k_air(T_max) q t² / (2 ρ c_p t_s h_i),
+//!   which bounds the heat the upper skin receives (the air's own heat capacity and its
+//!   diffusion time h_i²/α ≈ 12 s only delay it).
+
+use approx::assert_relative_eq;
+use hsv_core::material::{Material, MaterialSetting};
+use hsv_core::mesh::{PanelMesh, PanelSpec, RegionKind, Surface};
+use hsv_core::registry::{ModelContext, Registry};
+use hsv_core::surface_grid::SurfaceGrid;
+use hsv_core::thermal::ConductionModel;
+use hsv_model_conduction::{
+    FullOrder, FullOrderSettings, Pod, PodBasis, PodSettings, collect_snapshots,
+};
+use nalgebra::DVector;
+
+const RHO: f64 = 4430.0;
+const CP: f64 = 560.0;
+const K: f64 = 7.0;
+/// Plate (outer mould line) thickness, m.
+const H: f64 = 0.02;
+/// Skin thickness, m.
+const T_S: f64 = 0.002;
+/// Heat flux into the lower face, W/m².
+const Q: f64 = 4.0e4;
+const T0: f64 = 300.0;
+const DT: f64 = 0.1;
+const STEPS: usize = 200;
+
+fn skin_material() -> MaterialSetting {
+    MaterialSetting::Table(
+        Material::constant("skin", RHO, 0.31, 110e9, 9e-6, K, CP, (1.0, 5000.0)).unwrap(),
+    )
+}
+
+/// Upper panel (normal −z) and lower panel (normal +z) over the unit plate at z = ∓h/2.
+fn faces(h: f64) -> PanelMesh {
+    let v = |x: f64, y: f64, z: f64| nalgebra::Point3::new(x, y, z);
+    let vertices = vec![
+        v(0.0, 0.0, -h / 2.0),
+        v(-1.0, 0.0, -h / 2.0),
+        v(-1.0, 1.0, -h / 2.0),
+        v(0.0, 1.0, -h / 2.0),
+        v(0.0, 0.0, h / 2.0),
+        v(-1.0, 0.0, h / 2.0),
+        v(-1.0, 1.0, h / 2.0),
+        v(0.0, 1.0, h / 2.0),
+    ];
+    let specs = [
+        PanelSpec::quad(0, 1, 2, 3, 0),
+        PanelSpec::quad(4, 7, 6, 5, 0),
+    ];
+    let mesh = PanelMesh::new(
+        vertices,
+        &specs,
+        Vec::new(),
+        vec![Surface::new("plate", RegionKind::LiftingSurface)],
+    )
+    .unwrap();
+    assert!(mesh.panels[0].normal.z < 0.0 && mesh.panels[1].normal.z > 0.0);
+    mesh
+}
+
+fn settings() -> FullOrderSettings {
+    FullOrderSettings {
+        structure_material: skin_material(),
+        structure_sublayers: 2,
+        skin_thickness_m: Some(T_S),
+        interior_sublayers: 4,
+        minimum_thickness_m: 1e-3,
+        picard_tolerance_k: 1e-7,
+        ..FullOrderSettings::default()
+    }
+}
+
+fn slab() -> FullOrder {
+    let grid = SurfaceGrid::rectangular(1.0, 1.0, H, 1, 1).unwrap();
+    FullOrder::new(&grid, &faces(H), settings()).unwrap()
+}
+
+/// Flux into the lower face only: panel 0 is the upper face, panel 1 the lower.
+fn lower_face_flux(q_w_m2: f64) -> [f64; 2] {
+    [0.0, q_w_m2]
+}
+
+/// Trapezoid mean over the levels lo..=hi of plate node 0.
+fn level_mean(model: &FullOrder, state: &DVector<f64>, (lo, hi): (usize, usize)) -> f64 {
+    let g = model.thermal_grid();
+    let n = (hi - lo) as f64;
+    (lo..=hi)
+        .map(|l| {
+            let w = if l == lo || l == hi { 0.5 } else { 1.0 };
+            w * state[g.dof(0, l)]
+        })
+        .sum::<f64>()
+        / n
+}
+
+/// (lower skin mean, upper skin mean) at plate node 0, K.
+fn skin_means(model: &FullOrder, state: &DVector<f64>) -> (f64, f64) {
+    let ranges = &model.thermal_grid().structure_ranges;
+    assert_eq!(ranges.len(), 2, "two skins");
+    (
+        level_mean(model, state, ranges[0]),
+        level_mean(model, state, ranges[1]),
+    )
+}
+
+/// Lumped rise of the heated skin with no leak, q t / (ρ c_p t_s), K.
+fn lumped_rise(q_w_m2: f64, time_s: f64) -> f64 {
+    q_w_m2 * time_s / (RHO * CP * T_S)
+}
+
+/// Closed-form bound on the heat through the interior over `time_s`, J/m²:
+/// k_air(T_max) q t² / (2 ρ c_p t_s h_i) (module docs).
+fn leak_bound_j_m2(q_w_m2: f64, time_s: f64) -> f64 {
+    let hottest = T0 + lumped_rise(q_w_m2, time_s);
+    let k_air = Material::air().conductivity_w_m_k(hottest).unwrap();
+    let h_interior = H - 2.0 * T_S;
+    k_air * q_w_m2 * time_s * time_s / (2.0 * RHO * CP * T_S * h_interior)
+}
+
+/// The 20 s run: the state after every step.
+fn run(model: &mut FullOrder, q_w_m2: f64) -> Vec<DVector<f64>> {
+    collect_snapshots(model, T0, DT, STEPS, 1, |_, q| {
+        q.copy_from_slice(&lower_face_flux(q_w_m2));
+        Ok(())
+    })
+    .unwrap()
+}
+
+/// Energy balance of the built-up slab against the closed forms of the module docs:
+/// - the lower skin's mean rise within 1 % of the lumped q t / (ρ c_p t_s) = 161.2 K, and not
+///   above it (heat only leaves it);
+/// - the upper skin's rise positive and below the conduction-leak bound
+///   k_air ΔT / h_i integrated (0.77 K), so within a few K of its start;
+/// - all the heat is stored (first law, 1e-6 relative);
+/// - ΔT from `node_temperature_differences` is mean(lower skin) − mean(upper skin) (1e-9 K) at
+///   every node, and `node_temperatures` the mean of the two skins' means.
+#[test]
+fn a_built_up_slab_heated_below_stores_the_heat_in_its_lower_skin() {
+    let mut model = slab();
+    let states = run(&mut model, Q);
+    let state = states.last().unwrap();
+    let t = DT * STEPS as f64;
+    let (lower, upper) = skin_means(&model, state);
+    let lumped = lumped_rise(Q, t);
+    let leak_bound = leak_bound_j_m2(Q, t) / (RHO * CP * T_S);
+    println!(
+        "lower skin rise {:.4} K (lumped {lumped:.4} K), upper skin rise {:.4} K (leak bound \
+         {leak_bound:.4} K)",
+        lower - T0,
+        upper - T0
+    );
+    assert_relative_eq!(lower - T0, lumped, max_relative = 0.01);
+    assert!(lower - T0 <= lumped, "{} > {lumped}", lower - T0);
+    assert!(
+        upper - T0 > 0.0 && upper - T0 < leak_bound,
+        "{}",
+        upper - T0
+    );
+    assert!(
+        leak_bound < 1.0,
+        "the closed-form bound itself: {leak_bound} K"
+    );
+    let stored = model.stored_energy_j(state, T0).unwrap();
+    assert_relative_eq!(stored, Q * t, max_relative = 1e-6);
+    // Outputs the plate model receives.
+    let n = model.n_nodes();
+    let (mut difference, mut mean) = (vec![0.0; n], vec![0.0; n]);
+    model.node_temperature_differences(state, &mut difference);
+    model.node_temperatures(state, &mut mean);
+    for node in 0..n {
+        assert_relative_eq!(difference[node], lower - upper, epsilon = 1e-9);
+        assert_relative_eq!(mean[node], 0.5 * (lower + upper), epsilon = 1e-9);
+    }
+    // ΔT against the closed forms: the lumped rise less at most 1 % and the upper skin's rise.
+    assert_relative_eq!(
+        difference[0],
+        lumped,
+        max_relative = 0.01 + leak_bound / lumped
+    );
+    // The outer mould line is where the solid plate's is: the faces at ∓h/2, the skins t_s thick.
+    let g = model.thermal_grid();
+    let s = |level: usize| g.positions_m[g.dof(0, level)].coords.dot(&g.up[0]);
+    let (lo, _) = g.structure_ranges[0];
+    let (_, hi) = g.structure_ranges[1];
+    assert_relative_eq!(s(lo), -0.5 * H, epsilon = 1e-15);
+    assert_relative_eq!(s(hi), 0.5 * H, epsilon = 1e-15);
+    assert_relative_eq!(s(g.structure_ranges[0].1) - s(lo), T_S, epsilon = 1e-15);
+}
+
+/// `pod` trained on the snapshots of that run (every 0.1 s step, 200 snapshots, 6 modes) against
+/// the full-order model, at the trained flux and at q = 30 kW/m², which is not in the
+/// snapshots: every temperature, both skin means and ΔT within the POD tests' usual 1 % of the
+/// largest temperature rise.
+#[test]
+fn pod_reproduces_the_built_up_slab() {
+    let mut full = slab();
+    let snapshots = run(&mut full, Q);
+    let basis = PodBasis::from_snapshots(&snapshots, 6, settings()).unwrap();
+    println!("energy fraction {:.9}", basis.energy_fraction);
+    for q in [Q, 3.0e4] {
+        let mut full = slab();
+        let mut pod = Pod::new(
+            &full,
+            basis.clone(),
+            PodSettings {
+                modes: 6,
+                picard_tolerance_k: 1e-7,
+                ..PodSettings::default()
+            },
+        )
+        .unwrap();
+        let mut t_full = full.uniform_state(T0).unwrap();
+        let mut a = pod.uniform_state(T0).unwrap();
+        let (mut worst, mut rise): (f64, f64) = (0.0, 0.0);
+        let n = full.n_nodes();
+        let (mut d_full, mut d_pod) = (vec![0.0; n], vec![0.0; n]);
+        let (mut m_full, mut m_pod) = (vec![0.0; n], vec![0.0; n]);
+        let mut worst_output: f64 = 0.0;
+        for _ in 0..STEPS {
+            full.step(&mut t_full, &lower_face_flux(q), DT).unwrap();
+            pod.step(&mut a, &lower_face_flux(q), DT).unwrap();
+            let reconstructed = pod.reconstruct(&a);
+            worst = worst.max((&reconstructed - &t_full).amax());
+            rise = rise.max(t_full.max() - T0);
+            full.node_temperature_differences(&t_full, &mut d_full);
+            pod.node_temperature_differences(&a, &mut d_pod);
+            full.node_temperatures(&t_full, &mut m_full);
+            pod.node_temperatures(&a, &mut m_pod);
+            for i in 0..n {
+                worst_output = worst_output
+                    .max((d_full[i] - d_pod[i]).abs())
+                    .max((m_full[i] - m_pod[i]).abs());
+            }
+        }
+        let (lower_f, upper_f) = skin_means(&full, &t_full);
+        let (lower_p, upper_p) = skin_means(&full, &pod.reconstruct(&a));
+        println!(
+            "q {q}: largest |T_pod - T_full| {worst:.2e} K, outputs {worst_output:.2e} K, rise \
+             {rise:.1} K; skins {lower_f:.3}/{upper_f:.3} K full, {lower_p:.3}/{upper_p:.3} K pod"
+        );
+        assert!(rise > 100.0);
+        assert!(worst < 0.01 * rise, "{worst} K vs rise {rise} K");
+        assert!(worst_output < 0.01 * rise, "{worst_output} K vs {rise} K");
+        assert!((lower_f - lower_p).abs() < 0.01 * rise);
+        assert!((upper_f - upper_p).abs() < 0.01 * rise);
+    }
+}
+
+fn context<'a>(settings: &'a toml::Table) -> ModelContext<'a> {
+    ModelContext {
+        settings,
+        key_path: "models.full-order",
+        file: "sample-hsv.toml",
+        region: hsv_core::testing::sample_region("right_surface"),
+        registry: hsv_core::testing::builtin_registry(),
+    }
+}
+
+fn create(text: &str) -> Result<Box<dyn ConductionModel>, String> {
+    let settings: toml::Table = toml::from_str(text).unwrap();
+    Registry::builtin()
+        .unwrap()
+        .create::<dyn ConductionModel>("full-order", &context(&settings))
+        .map_err(|e| e.to_string())
+}
+
+/// Bad built-up settings name their key path: a skin that is not finite and > 0, skins that
+/// leave no room for the interior on the sample surface, an unknown interior material, no
+/// elements through the interior; and the model built directly names the key too.
+#[test]
+fn bad_built_up_settings_name_their_keys() {
+    for (text, key) in [
+        (
+            "skin_thickness_m = -0.001",
+            "models.full-order.skin_thickness_m",
+        ),
+        (
+            "skin_thickness_m = 0.0",
+            "models.full-order.skin_thickness_m",
+        ),
+        (
+            "skin_thickness_m = nan",
+            "models.full-order.skin_thickness_m",
+        ),
+        (
+            "skin_thickness_m = 0.5",
+            "models.full-order.skin_thickness_m",
+        ),
+        (
+            "skin_thickness_m = 0.001\ninterior_material = \"unobtainium\"",
+            "models.full-order.interior_material",
+        ),
+        (
+            "skin_thickness_m = 0.001\ninterior_sublayers = 0",
+            "models.full-order.interior_sublayers",
+        ),
+    ] {
+        let err = create(text).err().expect(text);
+        assert!(err.contains(key), "{text}: {err}");
+    }
+    let err = create("skin_thickness_m = -0.001").err().unwrap();
+    assert!(err.contains("-0.001") && err.contains("> 0"), "{err}");
+    let err = create("skin_thickness_m = 0.5").err().unwrap();
+    assert!(err.contains("interior has room"), "{err}");
+    // Direct construction.
+    let grid = SurfaceGrid::rectangular(1.0, 1.0, H, 1, 1).unwrap();
+    for skin in [f64::INFINITY, 0.5 * H] {
+        let err = FullOrder::new(
+            &grid,
+            &faces(H),
+            FullOrderSettings {
+                skin_thickness_m: Some(skin),
+                ..settings()
+            },
+        )
+        .unwrap_err()
+        .to_string();
+        assert!(err.contains("skin_thickness_m"), "{err}");
+    }
+}
+
+/// The registered model built up on the sample lifting surface (1.5 mm skins, 2 mm minimum
+/// interior at the sharp edges): every watt of a uniform flux Σ q A Δt is stored (first law,
+/// 1e-5 as for the solid surface), its interior adds one material and the air's levels, and a
+/// uniform state has no through-thickness difference.
+#[test]
+fn registered_built_up_model_heats_the_sample_surface() {
+    let mut model = create("skin_thickness_m = 0.0015").unwrap();
+    let mut state = model.uniform_state(293.0).unwrap();
+    let mut difference = vec![1.0; model.n_nodes()];
+    model.node_temperature_differences(&state, &mut difference);
+    assert!(difference.iter().all(|d| d.abs() < 1e-12));
+    let n = model.n_surface_panels();
+    for _ in 0..4 {
+        model.step(&mut state, &vec![5.0e4; n], 0.5).unwrap();
+    }
+    let loaded = hsv_core::config::LoadedConfig::sample().unwrap();
+    let cfg = &loaded.config.lifting_surface;
+    let side = hsv_core::vehicle::Side::Right;
+    let mesh = hsv_core::vehicle::lifting_surface_mesh(cfg, side).unwrap();
+    let grid = SurfaceGrid::lifting_surface(cfg, side, 16, 8).unwrap();
+    let direct = FullOrder::new(
+        &grid,
+        &mesh,
+        FullOrderSettings {
+            skin_thickness_m: Some(0.0015),
+            ..FullOrderSettings::default()
+        },
+    )
+    .unwrap();
+    assert_eq!(direct.materials().len(), 2);
+    assert_eq!(direct.thermal_grid().n_levels, 6);
+    assert_eq!(direct.n_states(), model.n_states());
+    let wetted: f64 = mesh
+        .panels
+        .iter()
+        .filter(|p| mesh.surfaces[p.surface as usize].region == RegionKind::LiftingSurface)
+        .map(|p| p.area_m2)
+        .sum();
+    let stored = direct.stored_energy_j(&state, 293.0).unwrap();
+    assert_relative_eq!(stored, 5.0e4 * wetted * 2.0, max_relative = 1e-5);
+}
+
+/// The settings a POD basis records and fingerprints: a solid configuration serializes as before
+/// the built-up keys existed (no new keys, so its cached basis still serves); skins or an
+/// interior other than the default do appear, so a basis built for one is not reused for the
+/// other, and a basis built solid is refused by a built-up model.
+#[test]
+fn built_up_settings_change_what_a_pod_basis_records() {
+    let solid = serde_json::to_value(FullOrderSettings::default()).unwrap();
+    for key in [
+        "skin_thickness_m",
+        "interior_material",
+        "interior_sublayers",
+    ] {
+        assert!(solid.get(key).is_none(), "{key} in {solid}");
+    }
+    let built_up = FullOrderSettings {
+        skin_thickness_m: Some(0.0015),
+        ..FullOrderSettings::default()
+    };
+    let json = serde_json::to_value(&built_up).unwrap();
+    assert_eq!(json["skin_thickness_m"], 0.0015);
+    let back: FullOrderSettings = serde_json::from_value(json).unwrap();
+    assert_eq!(back, built_up);
+    let other_interior = FullOrderSettings {
+        interior_material: MaterialSetting::Name("vdi-l1400".to_owned()),
+        interior_sublayers: 3,
+        ..built_up.clone()
+    };
+    let json = serde_json::to_value(&other_interior).unwrap();
+    assert_eq!(json["interior_material"], "vdi-l1400");
+    assert_eq!(json["interior_sublayers"], 3);
+    // A basis of the solid slab does not serve the built-up one.
+    let grid = SurfaceGrid::rectangular(1.0, 1.0, H, 1, 1).unwrap();
+    let solid_slab = FullOrder::new(
+        &grid,
+        &faces(H),
+        FullOrderSettings {
+            skin_thickness_m: None,
+            ..settings()
+        },
+    )
+    .unwrap();
+    let mut solid_model = solid_slab.clone();
+    let snapshots = collect_snapshots(&mut solid_model, T0, DT, 20, 1, |_, q| {
+        q.copy_from_slice(&lower_face_flux(Q));
+        Ok(())
+    })
+    .unwrap();
+    let basis = PodBasis::from_snapshots(&snapshots, 2, solid_slab.settings().clone()).unwrap();
+    let err = Pod::new(&slab(), basis, PodSettings::default())
+        .err()
+        .unwrap()
+        .to_string();
+    assert!(err.contains("basis"), "{err}");
+}
+
+/// Solid (no `skin_thickness_m`), as before the built-up structure existed: one structural
+/// range from the lower face to the upper, ΔT exactly T(lowest level) − T(highest) and the node
+/// temperature exactly the trapezoid average, bit for bit; the settings serialize (and so
+/// fingerprint a POD basis) exactly as they did.
+#[test]
+fn a_solid_structure_is_unchanged() {
+    let grid = SurfaceGrid::rectangular(1.0, 1.0, H, 1, 1).unwrap();
+    let mut model = FullOrder::new(
+        &grid,
+        &faces(H),
+        FullOrderSettings {
+            skin_thickness_m: None,
+            structure_sublayers: 4,
+            ..settings()
+        },
+    )
+    .unwrap();
+    assert_eq!(model.materials().len(), 1);
+    assert_eq!(model.thermal_grid().structure_ranges, vec![(0, 4)]);
+    let mut state = model.uniform_state(T0).unwrap();
+    for _ in 0..10 {
+        model.step(&mut state, &lower_face_flux(Q), DT).unwrap();
+    }
+    let g = model.thermal_grid();
+    let n = model.n_nodes();
+    let (mut difference, mut mean) = (vec![0.0; n], vec![0.0; n]);
+    model.node_temperature_differences(&state, &mut difference);
+    model.node_temperatures(&state, &mut mean);
+    for node in 0..n {
+        let at = |level: usize| state[g.dof(node, level)];
+        assert_eq!(difference[node], at(0) - at(4));
+        let trapezoid = [0.125, 0.25, 0.25, 0.25, 0.125];
+        let expected: f64 = (0..=4).map(|l| trapezoid[l] * at(l)).sum();
+        assert_relative_eq!(mean[node], expected, max_relative = 1e-15);
+    }
+    assert_eq!(
+        serde_json::to_string(&FullOrderSettings::default()).unwrap(),
+        "{\"elements_chordwise\":16,\"elements_spanwise\":8,\"structure_material\":\"ti-6al-4v\",\
+         \"structure_sublayers\":2,\"minimum_thickness_m\":0.002,\"layers\":[],\
+         \"picard_tolerance_k\":0.001,\"max_picard_iterations\":30}"
+    );
+}
+
+/// `hsv-run describe full-order` prints the defaults, the built-up keys included.
+#[test]
+fn the_settings_doc_is_the_defaults() {
+    let doc: FullOrderSettings =
+        toml::from_str(hsv_model_conduction::full_order::SETTINGS_DOC).unwrap();
+    assert_eq!(doc, FullOrderSettings::default());
+    assert!(hsv_model_conduction::full_order::SETTINGS_DOC.contains("skin_thickness_m"));
+}

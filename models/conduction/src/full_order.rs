@@ -37,7 +37,7 @@ use hsv_core::surface_grid::SurfaceGrid;
 use hsv_core::thermal::{ConductionModel, check_step_inputs};
 use nalgebra::DVector;
 
-use crate::grid::{Layer, LayerKind, ThermalGrid};
+use crate::grid::{Layer, LayerKind, Quadrature, ThermalGrid};
 
 /// Registered name.
 pub const NAME: &str = "full-order";
@@ -104,6 +104,15 @@ pub struct Settings {
     /// k/h exactly; the interior's heat capacity is negligible for air.
     #[serde(skip_serializing_if = "is_one")]
     pub interior_sublayers: usize,
+    /// Quadrature of the elements' conduction matrices ([`crate::grid`] module docs):
+    /// `"gauss"` (2×2×2 Gauss, the consistent Galerkin matrix) or `"nodal"` (the 8 corners: the
+    /// finite-volume stencil, whose non-positive off-diagonals keep the discrete maximum
+    /// principle in thin elements). Absent: [`Settings::quadrature`], `gauss` for a solid
+    /// structure (as before the key existed) and `nodal` for a built-up one, whose skin and
+    /// outer-layer elements are ~100 times wider than thick. (Serialized only when given, so a
+    /// solid configuration's POD basis fingerprint is what it was before this key.)
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub conduction_quadrature: Option<Quadrature>,
     /// Outer layers over the structure on both faces, outermost first.
     pub layers: Vec<LayerSetting>,
     /// Picard iterations stop when no temperature changes by more than this, K.
@@ -124,6 +133,7 @@ impl Default for Settings {
             skin_thickness_m: None,
             interior_material: air(),
             interior_sublayers: 1,
+            conduction_quadrature: None,
             layers: Vec::new(),
             picard_tolerance_k: 1e-3,
             max_picard_iterations: 30,
@@ -143,6 +153,9 @@ minimum_thickness_m = 0.002    # smallest structural thickness (sharp edges), m;
 interior_material = \"air\"      # built-up interior: still air (k, c_p 100-3000 K, Incropera & DeWitt
                                #   Table A.4) or a table; no radiation or convection between the skins
 interior_sublayers = 1         # elements through the interior (built up)
+# conduction_quadrature = \"nodal\" # optional: \"gauss\" (2x2x2, consistent) or \"nodal\" (corners: the
+                               #   finite-volume stencil, no undershoot in thin elements); absent:
+                               #   gauss when solid, nodal when built up (skin_thickness_m given)
 layers = []                    # outer (TPS) layers on both faces, outermost first, e.g.
                                #   [{ thickness_m = 0.002, material = \"vdi-l1400\", sublayers = 2 }]
                                #   (built-in thermal-only insulator, k and c_p 293-1673.15 K, VDI
@@ -152,6 +165,31 @@ picard_tolerance_k = 1e-3      # Picard convergence: largest change per iteratio
 max_picard_iterations = 30     # Picard iterations allowed per step";
 
 impl Settings {
+    /// The conduction quadrature in effect: `conduction_quadrature` when given, otherwise
+    /// `gauss` for a solid structure and `nodal` for a built-up one (its thin skins and layers
+    /// would break the maximum principle under Gauss; [`crate::grid`] module docs).
+    pub fn quadrature(&self) -> Quadrature {
+        self.conduction_quadrature
+            .unwrap_or(match self.skin_thickness_m {
+                None => Quadrature::Gauss,
+                Some(_) => Quadrature::Nodal,
+            })
+    }
+
+    /// These settings with the quadrature in effect written out, except a solid structure's
+    /// default `gauss`, which stays absent: what a POD basis is fingerprinted and checked by, so
+    /// a basis serves exactly the runs with its grid matrices (a built-up basis from before the
+    /// key existed was built with Gauss and is not reused for the nodal default), and a solid
+    /// configuration's fingerprint is what it was before the key.
+    pub fn resolved(&self) -> Settings {
+        let quadrature = self.quadrature();
+        let legacy = self.skin_thickness_m.is_none() && quadrature == Quadrature::Gauss;
+        Settings {
+            conduction_quadrature: (!legacy).then_some(quadrature),
+            ..self.clone()
+        }
+    }
+
     /// The first setting out of range: (key, value, allowed).
     pub fn first_invalid(&self) -> Option<(String, f64, &'static str)> {
         let counts = [
@@ -401,8 +439,14 @@ impl FullOrder {
             }
         }
         stack.extend(outer.iter().rev());
-        let thermal = ThermalGrid::new(grid, &stack, materials.len(), settings.minimum_thickness_m)
-            .map_err(|e| ModelError::inconsistent(NAME, e.to_string()))?;
+        let thermal = ThermalGrid::new(
+            grid,
+            &stack,
+            materials.len(),
+            settings.minimum_thickness_m,
+            settings.quadrature(),
+        )
+        .map_err(|e| ModelError::inconsistent(NAME, e.to_string()))?;
         let panels = map_panels(grid, &thermal, mesh)?;
         let node_average = thermal.structure_average_weights();
         let node_difference = thermal.structure_difference_weights();
@@ -492,6 +536,9 @@ impl FullOrder {
             for (m, material) in self.materials.iter().enumerate() {
                 let v = self.grid.volume_m3[i * nm + m];
                 if v > 0.0 {
+                    // Round-off below the table's floor (a node held at its initial 293 K
+                    // solves to 292.9999999999999 K) counts as the floor, as in the step.
+                    let t = crate::clamp_round_off_k(material, t);
                     total += material.density_kg_m3 * v * enthalpy_rise(material, reference_k, t)?;
                 }
             }

@@ -14,16 +14,54 @@
 //! freedom, numbered `plate_node * n_levels + level` (level 0 on the lower face).
 //!
 //! **Elements.** Trilinear 8-node hexahedra: geometric conduction matrix
-//! G_ab = ∫ ∇N_a · ∇N_b dV and lumped volume V_a = ∫ N_a dV by 2×2×2 Gauss quadrature (Hughes,
-//! The Finite Element Method, 1987, §3.5 and §7.3.2; row-sum lumping is positive for the
-//! trilinear brick). The conductance of an element is k(T) G; the heat capacity of a node
-//! is Σ_materials ρ c_p(T) V.
+//! G_ab = ∫ ∇N_a · ∇N_b dV by the [`Quadrature`] chosen, and lumped volume V_a = ∫ N_a dV by
+//! 2×2×2 Gauss quadrature (Hughes, The Finite Element Method, 1987, §3.5 and §7.3.2; row-sum
+//! lumping is positive for the trilinear brick). The conductance of an element is k(T) G; the
+//! heat capacity of a node is Σ_materials ρ c_p(T) V.
+//!
+//! **Thin elements and the maximum principle.** Ciarlet & Raviart ("Maximum principle and
+//! uniform convergence for the finite element method", Comput. Methods Appl. Mech. Eng. 2,
+//! 1973) show that a finite-element matrix keeps the discrete maximum principle when its
+//! off-diagonal entries are ≤ 0 and its rows sum to ≥ 0. With the lumped (diagonal) capacity,
+//! the backward-Euler matrix C/Δt + K is then a diagonally dominant M-matrix, whose inverse is
+//! non-negative: with no heat taken out, no temperature falls below its initial minimum. The
+//! consistent (Gauss) G of a brick of in-plane size a and thickness h ≪ a carries
+//! the through-thickness term ∫ N_a,z N_b,z dV ≈ (1/h) ∫ N_a N_b dA between nodes of one face,
+//! which is positive and of order a²/h, far above the negative in-plane term of order h: the
+//! off-diagonal is positive, and heating one face makes its unheated neighbours undershoot.
+//! Nodal (2-point Gauss-Lobatto, corner) quadrature drops the in-plane "mass" ∫ N_a N_b dA to
+//! its diagonal, so for a rectangular brick only the 12 edge neighbours couple, each by
+//! −A/L ≤ 0 (A a quarter of the face across the edge, L the edge): the 7-point finite-volume
+//! stencil, an M-matrix. Its rows still sum to zero (Σ_b ∇N_b = 0 at every point), so energy
+//! is conserved exactly as with Gauss.
 
 use nalgebra::{Matrix3, Point3, Vector3};
 
 use hsv_core::surface_grid::SurfaceGrid;
 
 use hsv_core::linalg::reverse_cuthill_mckee;
+
+/// Quadrature of the conduction matrix G_ab = ∫ ∇N_a·∇N_b dV (module docs); 8 points of
+/// weight 1 in natural coordinates either way.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Deserialize, serde::Serialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum Quadrature {
+    /// 2×2×2 Gauss, points at ±1/√3: the consistent Galerkin matrix, exact for the brick.
+    Gauss,
+    /// 2-point Gauss-Lobatto, points at the 8 corners: the finite-volume stencil for a
+    /// rectangular brick, non-positive off-diagonals at any aspect ratio.
+    Nodal,
+}
+
+impl Quadrature {
+    /// Natural coordinate of the points along each axis (±).
+    fn abscissa(self) -> f64 {
+        match self {
+            Quadrature::Gauss => 1.0 / 3f64.sqrt(),
+            Quadrature::Nodal => 1.0,
+        }
+    }
+}
 
 /// What a layer of the stack is.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -135,42 +173,70 @@ fn shape(xi: f64, eta: f64, zeta: f64) -> ([f64; 8], [[f64; 3]; 8]) {
     (n, d)
 }
 
-/// G_ab = ∫ ∇N_a·∇N_b dV and V_a = ∫ N_a dV of a brick, 2×2×2 Gauss; `None` if degenerate.
-fn brick_matrices(x: &[Point3<f64>; 8]) -> Option<([f64; 64], [f64; 8])> {
-    let g = 1.0 / 3f64.sqrt();
-    let mut conduction = [0.0; 64];
-    let mut volume = [0.0; 8];
-    for &xi in &[-g, g] {
-        for &eta in &[-g, g] {
-            for &zeta in &[-g, g] {
-                let (n, d) = shape(xi, eta, zeta);
-                // J_ij = ∂x_i/∂ξ_j.
-                let mut j = Matrix3::<f64>::zeros();
-                for a in 0..8 {
-                    for i in 0..3 {
-                        for k in 0..3 {
-                            j[(i, k)] += x[a][i] * d[a][k];
-                        }
-                    }
-                }
-                let det = j.determinant();
-                if !(det.abs() > 0.0 && det.is_finite()) {
-                    return None;
-                }
-                let inv_t = j.try_inverse()?.transpose();
-                let grads: Vec<Vector3<f64>> = d
-                    .iter()
-                    .map(|da| inv_t * Vector3::new(da[0], da[1], da[2]))
-                    .collect();
-                let w = det.abs();
-                for a in 0..8 {
-                    volume[a] += n[a] * w;
-                    for b in 0..8 {
-                        conduction[a * 8 + b] += grads[a].dot(&grads[b]) * w;
-                    }
-                }
+/// Jacobian determinant and physical shape-function gradients ∇N_a = J⁻ᵀ ∇_ξ N_a at one point;
+/// `None` where the map is degenerate.
+fn gradients(x: &[Point3<f64>; 8], d: &[[f64; 3]; 8]) -> Option<(f64, [Vector3<f64>; 8])> {
+    // J_ij = ∂x_i/∂ξ_j.
+    let mut j = Matrix3::<f64>::zeros();
+    for a in 0..8 {
+        for i in 0..3 {
+            for k in 0..3 {
+                j[(i, k)] += x[a][i] * d[a][k];
             }
         }
+    }
+    let det = j.determinant();
+    if !(det.abs() > 0.0 && det.is_finite()) {
+        return None;
+    }
+    let inv_t = j.try_inverse()?.transpose();
+    let grads = d.map(|da| inv_t * Vector3::new(da[0], da[1], da[2]));
+    Some((det.abs(), grads))
+}
+
+/// Σ over the 8 points (±p, ±p, ±p), weight 1, of `f(N, ∇N, |J|)`; `None` if degenerate.
+fn integrate(
+    x: &[Point3<f64>; 8],
+    quadrature: Quadrature,
+    mut f: impl FnMut(&[f64; 8], &[Vector3<f64>; 8], f64),
+) -> Option<()> {
+    let p = quadrature.abscissa();
+    for &xi in &[-p, p] {
+        for &eta in &[-p, p] {
+            for &zeta in &[-p, p] {
+                let (n, d) = shape(xi, eta, zeta);
+                let (w, grads) = gradients(x, &d)?;
+                f(&n, &grads, w);
+            }
+        }
+    }
+    Some(())
+}
+
+/// G_ab = Σ_points ∇N_a·∇N_b |J| (`quadrature`) and V_a = ∫ N_a dV (2×2×2 Gauss) of a brick;
+/// `None` if degenerate.
+fn brick_matrices(x: &[Point3<f64>; 8], quadrature: Quadrature) -> Option<([f64; 64], [f64; 8])> {
+    let mut conduction = [0.0; 64];
+    let mut volume = [0.0; 8];
+    let add_conduction = |conduction: &mut [f64; 64], grads: &[Vector3<f64>; 8], w: f64| {
+        for a in 0..8 {
+            for b in 0..8 {
+                conduction[a * 8 + b] += grads[a].dot(&grads[b]) * w;
+            }
+        }
+    };
+    integrate(x, Quadrature::Gauss, |n, grads, w| {
+        for a in 0..8 {
+            volume[a] += n[a] * w;
+        }
+        if quadrature == Quadrature::Gauss {
+            add_conduction(&mut conduction, grads, w);
+        }
+    })?;
+    if quadrature == Quadrature::Nodal {
+        integrate(x, Quadrature::Nodal, |_, grads, w| {
+            add_conduction(&mut conduction, grads, w)
+        })?;
     }
     Some((conduction, volume))
 }
@@ -259,12 +325,13 @@ fn check_plate(plate: &SurfaceGrid) -> Result<(), GridError> {
 impl ThermalGrid {
     /// Extrudes `plate` through `layers` (lower face first, the plate's own layers in the
     /// middle) with the filling layer (the solid structure or the interior) at least
-    /// `minimum_thickness_m` thick.
+    /// `minimum_thickness_m` thick, its conduction matrices by `quadrature`.
     pub fn new(
         plate: &SurfaceGrid,
         layers: &[Layer],
         n_materials: usize,
         minimum_thickness_m: f64,
+        quadrature: Quadrature,
     ) -> Result<Self, GridError> {
         check_plate(plate)?;
         check_stack(layers)?;
@@ -344,7 +411,7 @@ impl ThermalGrid {
                 }
                 let corners = dofs.map(|d| positions_m[d]);
                 let (conduction_m, volume) =
-                    brick_matrices(&corners).ok_or(GridError::Degenerate {
+                    brick_matrices(&corners, quadrature).ok_or(GridError::Degenerate {
                         quad: e,
                         segment: k,
                     })?;
@@ -452,7 +519,7 @@ mod tests {
             material: 0,
             sublayers: 1,
         }];
-        let grid = ThermalGrid::new(&unit_square(0.1), &layers, 1, 0.0).unwrap();
+        let grid = ThermalGrid::new(&unit_square(0.1), &layers, 1, 0.0, Quadrature::Gauss).unwrap();
         let total: f64 = grid.volume_m3.iter().sum();
         assert_relative_eq!(total, 0.2, max_relative = 1e-12);
         // T = s (distance along the normal) has unit gradient: G T gives the face fluxes
@@ -494,7 +561,8 @@ mod tests {
         let skin = layer(Some(0.002), LayerKind::Structure, 0, 2);
         let interior = layer(None, LayerKind::Interior, 2, 1);
         let stack = [outer, skin, interior, skin, outer];
-        let grid = ThermalGrid::new(&unit_square(0.02), &stack, 3, 1e-3).unwrap();
+        let grid =
+            ThermalGrid::new(&unit_square(0.02), &stack, 3, 1e-3, Quadrature::Gauss).unwrap();
         assert_eq!(grid.n_levels, 8);
         assert_eq!(grid.structure_ranges, vec![(1, 3), (4, 6)]);
         let s = |level: usize| grid.positions_m[grid.dof(0, level)].coords.dot(&grid.up[0]);
@@ -526,7 +594,8 @@ mod tests {
         assert_eq!(diff[0], (1, 0.25));
         assert_eq!(diff[3], (4, -0.25));
         // A plate thinner than two skins plus the minimum interior: the interior keeps 1 mm.
-        let thin = ThermalGrid::new(&unit_square(0.003), &stack, 3, 1e-3).unwrap();
+        let thin =
+            ThermalGrid::new(&unit_square(0.003), &stack, 3, 1e-3, Quadrature::Gauss).unwrap();
         let s = |level: usize| thin.positions_m[thin.dof(0, level)].coords.dot(&thin.up[0]);
         assert_relative_eq!(s(4) - s(3), 1e-3, epsilon = 1e-15);
     }
@@ -535,7 +604,8 @@ mod tests {
     #[test]
     fn a_solid_structure_differences_its_end_levels() {
         let stack = [layer(None, LayerKind::Structure, 0, 4)];
-        let grid = ThermalGrid::new(&unit_square(0.01), &stack, 1, 1e-3).unwrap();
+        let grid =
+            ThermalGrid::new(&unit_square(0.01), &stack, 1, 1e-3, Quadrature::Gauss).unwrap();
         assert_eq!(grid.structure_ranges, vec![(0, 4)]);
         assert_eq!(
             grid.structure_difference_weights(),
@@ -571,10 +641,61 @@ mod tests {
             ),
         ];
         for (stack, message) in cases {
-            let err = ThermalGrid::new(&plate, stack, 1, 1e-3)
+            let err = ThermalGrid::new(&plate, stack, 1, 1e-3, Quadrature::Gauss)
                 .unwrap_err()
                 .to_string();
             assert!(err.contains(message), "{err}");
         }
+    }
+
+    /// A rectangular brick 0.25 m × 0.5 m × 1.25 mm (aspect ratio 200, a thin skin sub-layer):
+    /// nodal quadrature gives exactly the 7-point finite-volume conductances, −A/L between edge
+    /// neighbours (A a quarter of the face across the edge, L the edge) and 0 between face- and
+    /// body-diagonal ones (1e-12 relative to the largest entry), with zero row sums; the
+    /// consistent Gauss matrix of the same brick has positive off-diagonals (module docs).
+    #[test]
+    // Index loops mirror the matrix entries they check.
+    #[allow(clippy::needless_range_loop)]
+    fn nodal_quadrature_of_a_thin_brick_is_the_finite_volume_stencil() {
+        let layers = [layer(None, LayerKind::Structure, 0, 1)];
+        let plate = SurfaceGrid::rectangular(0.25, 0.5, 0.00125, 1, 1).unwrap();
+        let nodal = ThermalGrid::new(&plate, &layers, 1, 0.0, Quadrature::Nodal).unwrap();
+        let gauss = ThermalGrid::new(&plate, &layers, 1, 0.0, Quadrature::Gauss).unwrap();
+        assert_eq!(nodal.volume_m3, gauss.volume_m3);
+        let e = &nodal.elements[0];
+        let x = e.dofs.map(|d| nodal.positions_m[d]);
+        // Box edges along the three axes, from corner 0.
+        let lengths = [
+            (x[1] - x[0]).norm(),
+            (x[3] - x[0]).norm(),
+            (x[4] - x[0]).norm(),
+        ];
+        let scale = e.conduction_m.iter().fold(0.0_f64, |m, g| m.max(g.abs()));
+        let mut edges = 0;
+        for a in 0..8 {
+            let row: f64 = (0..8).map(|b| e.conduction_m[a * 8 + b]).sum();
+            assert!(row.abs() < 1e-12 * scale, "row {a} sums to {row}");
+            for b in (0..8).filter(|&b| b != a) {
+                let g = e.conduction_m[a * 8 + b];
+                assert!(g <= 1e-12 * scale, "G[{a}][{b}] = {g} > 0");
+                let differ: Vec<usize> =
+                    (0..3).filter(|&i| CORNERS[a][i] != CORNERS[b][i]).collect();
+                if let [axis] = differ.as_slice() {
+                    let others: f64 = (0..3).filter(|i| i != axis).map(|i| lengths[i]).product();
+                    let finite_volume = -0.25 * others / lengths[*axis];
+                    assert_relative_eq!(g, finite_volume, max_relative = 1e-12);
+                    edges += 1;
+                } else {
+                    assert!(g.abs() < 1e-12 * scale, "G[{a}][{b}] = {g}");
+                }
+            }
+        }
+        assert_eq!(edges, 24);
+        let most_positive = (0..64)
+            .filter(|i| i / 8 != i % 8)
+            .map(|i| gauss.elements[0].conduction_m[i])
+            .fold(f64::NEG_INFINITY, f64::max);
+        println!("largest Gauss off-diagonal {most_positive:.4e} m (nodal: none > 0)");
+        assert!(most_positive > 0.0);
     }
 }

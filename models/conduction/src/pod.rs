@@ -485,7 +485,7 @@ impl Pod {
                 ),
             ));
         }
-        if basis.full_order != *full.settings() {
+        if basis.full_order.resolved() != full.settings().resolved() {
             return Err(ModelError::inconsistent(
                 NAME,
                 "the POD basis was built for other [models.full-order] settings; rebuild it",

@@ -144,7 +144,8 @@ impl Training {
 }
 
 /// What a basis was built from, as one string: the training conditions, the revision of the
-/// panel-to-grid map, the full-order grid and materials, the planform and the settings of the base models. A cached basis serves only
+/// panel-to-grid map, the full-order grid and materials (settings with the quadrature in effect,
+/// [`crate::full_order::Settings::resolved`]), the planform and the settings of the base models. A cached basis serves only
 /// a run whose fingerprint is the same.
 pub fn fingerprint(
     ctx: &ModelContext<'_>,
@@ -155,7 +156,7 @@ pub fn fingerprint(
     serde_json::to_string(&(
         training,
         crate::full_order::PANEL_MAP_REVISION,
-        full.settings(),
+        full.settings().resolved(),
         planform,
         &ctx.settings_for(&training.heat_flux).table,
         &ctx.settings_for(&training.aero).table,

@@ -23,6 +23,8 @@ use hsv_core::mesh::{PanelMesh, PanelSpec, RegionKind, Surface};
 use hsv_core::registry::{ModelContext, Registry};
 use hsv_core::surface_grid::SurfaceGrid;
 use hsv_core::thermal::ConductionModel;
+use hsv_model_conduction::full_order::LayerSetting;
+use hsv_model_conduction::grid::Quadrature;
 use hsv_model_conduction::{
     FullOrder, FullOrderSettings, Pod, PodBasis, PodSettings, collect_snapshots,
 };
@@ -483,4 +485,227 @@ fn the_settings_doc_is_the_defaults() {
         toml::from_str(hsv_model_conduction::full_order::SETTINGS_DOC).unwrap();
     assert_eq!(doc, FullOrderSettings::default());
     assert!(hsv_model_conduction::full_order::SETTINGS_DOC.contains("skin_thickness_m"));
+}
+
+/// A 1 m × 1 m plate, 4 × 4 elements (0.25 m wide), with outer faces at ∓h/2: the upper face
+/// one panel, the lower face 4 × 4 panels over the elements (so panel i heats the 4 face
+/// nodes of element i), the lower panels first in row-major (x, then y) order.
+fn split_lower_face(h: f64) -> PanelMesh {
+    let v = |x: f64, y: f64, z: f64| nalgebra::Point3::new(x, y, z);
+    let mut vertices = vec![
+        v(0.0, 0.0, -h / 2.0),
+        v(-1.0, 0.0, -h / 2.0),
+        v(-1.0, 1.0, -h / 2.0),
+        v(0.0, 1.0, -h / 2.0),
+    ];
+    let mut specs = vec![PanelSpec::quad(0, 1, 2, 3, 0)];
+    for j in 0..4 {
+        for i in 0..4 {
+            let (x0, x1) = (-0.25 * i as f64, -0.25 * (i + 1) as f64);
+            let (y0, y1) = (0.25 * j as f64, 0.25 * (j + 1) as f64);
+            let first = vertices.len();
+            vertices.extend([
+                v(x0, y0, h / 2.0),
+                v(x0, y1, h / 2.0),
+                v(x1, y1, h / 2.0),
+                v(x1, y0, h / 2.0),
+            ]);
+            specs.push(PanelSpec::quad(first, first + 1, first + 2, first + 3, 0));
+        }
+    }
+    let mesh = PanelMesh::new(
+        vertices,
+        &specs,
+        Vec::new(),
+        vec![Surface::new("plate", RegionKind::LiftingSurface)],
+    )
+    .unwrap();
+    assert!(mesh.panels[0].normal.z < 0.0 && mesh.panels.iter().skip(1).all(|p| p.normal.z > 0.0));
+    mesh
+}
+
+/// `material` with the properties of its first table row (293 K for the built-in tables) at
+/// every temperature from 200 K to 1800 K: constant k and c_p, for which the midpoint capacity
+/// makes the first law exact, and a floor low enough that a run that undershoots 293 K reports
+/// by how much.
+fn held_at_floor(material: Material) -> MaterialSetting {
+    let mut m = material;
+    let (mut low, mut high) = (m.table[0], m.table[0]);
+    low.temperature_k = 200.0;
+    high.temperature_k = 1800.0;
+    m.table = vec![low, high];
+    MaterialSetting::Table(m)
+}
+
+/// Thermal-protection thickness and skin thickness of the thin stack, m.
+const TPS_M: f64 = 0.002;
+const THIN_SKIN_M: f64 = 0.0025;
+/// Heat flux into the heated half of the lower face, W/m².
+const HARD_Q: f64 = 3.0e5;
+
+/// The 20 mm plate with 2.5 mm Ti-6Al-4V skins in 2 sub-layers and 2 mm `vdi-l1400` outer
+/// layers in 2 sub-layers on 4 × 4 elements 0.25 m wide: elements 200 (skins) and 250 (outer
+/// layers) times wider than thick.
+fn thin_stack(
+    quadrature: Option<Quadrature>,
+    structure: MaterialSetting,
+    tps: MaterialSetting,
+) -> FullOrder {
+    let grid = SurfaceGrid::rectangular(1.0, 1.0, H, 4, 4).unwrap();
+    let settings = FullOrderSettings {
+        structure_material: structure,
+        structure_sublayers: 2,
+        skin_thickness_m: Some(THIN_SKIN_M),
+        conduction_quadrature: quadrature,
+        layers: vec![LayerSetting {
+            thickness_m: TPS_M,
+            material: tps,
+            sublayers: 2,
+        }],
+        minimum_thickness_m: 1e-3,
+        picard_tolerance_k: 1e-9,
+        ..FullOrderSettings::default()
+    };
+    FullOrder::new(&grid, &split_lower_face(H), settings).unwrap()
+}
+
+/// 1 s in 0.1 s steps from 293 K with HARD_Q on the lower panels of the half y < 0.5 (none
+/// elsewhere): (lowest temperature of any dof at any step, K; stored heat over Σ q A t).
+fn heat_half(model: &mut FullOrder) -> Result<(f64, f64), String> {
+    let mut state = model.uniform_state(293.0).map_err(|e| e.to_string())?;
+    let flux: Vec<f64> = (0..model.n_surface_panels())
+        .map(|p| if (1..=8).contains(&p) { HARD_Q } else { 0.0 })
+        .collect();
+    let mut lowest = f64::INFINITY;
+    for _ in 0..10 {
+        model
+            .step(&mut state, &flux, 0.1)
+            .map_err(|e| e.to_string())?;
+        lowest = lowest.min(state.min());
+    }
+    let stored = model
+        .stored_energy_j(&state, 293.0)
+        .map_err(|e| e.to_string())?;
+    Ok((lowest, stored / (HARD_Q * 0.5 * 1.0)))
+}
+
+/// The discrete maximum principle (Ciarlet & Raviart 1973; `grid` module docs) in thin
+/// elements: heating half of the lower face of the built-up plate from 293 K, 300 kW/m² for 1 s,
+/// with no heat taken out anywhere, no temperature may fall below 293 K.
+/// - Constant properties (`ti-6al-4v` and `vdi-l1400` at 293 K): with `nodal` the lowest
+///   temperature of any dof at any step is ≥ 293 K less 1e-9 K, with `gauss` it undershoots
+///   (by more than 1 K); both store all the heat, Σ q A t, to 1e-6 (first law: K's rows sum to
+///   zero under either quadrature, and the midpoint capacity is exact for constant c_p).
+/// - The built-in tables (which start at 293 K): `nodal`, the built-up default, stays ≥ 293 K
+///   less 1e-9 K and stores the heat to 1e-5 (the midpoint capacity is exact only for c_p linear
+///   over a step, and the heated face crosses several table rows per 0.1 s step), while `gauss`
+///   is refused below the tables' floor.
+#[test]
+fn nodal_quadrature_keeps_a_thin_built_up_plate_above_its_initial_temperature() {
+    let constant = |q| {
+        thin_stack(
+            q,
+            held_at_floor(Material::ti_6al_4v()),
+            held_at_floor(Material::vdi_l1400()),
+        )
+    };
+    let mut nodal = constant(Some(Quadrature::Nodal));
+    let (lowest_nodal, energy_nodal) = heat_half(&mut nodal).unwrap();
+    let (lowest_gauss, energy_gauss) = heat_half(&mut constant(Some(Quadrature::Gauss))).unwrap();
+    println!(
+        "constant properties: lowest temperature nodal {lowest_nodal:.12} K, gauss \
+         {lowest_gauss:.6} K (undershoot {:.4} K); stored/supplied nodal {energy_nodal:.12}, \
+         gauss {energy_gauss:.12}",
+        293.0 - lowest_gauss
+    );
+    assert!(lowest_nodal >= 293.0 - 1e-9, "{lowest_nodal}");
+    assert!(lowest_gauss < 293.0 - 1.0, "{lowest_gauss}");
+    assert_relative_eq!(energy_nodal, 1.0, max_relative = 1e-6);
+    assert_relative_eq!(energy_gauss, 1.0, max_relative = 1e-6);
+
+    let built_in = |q| {
+        let name = |n: &str| MaterialSetting::Name(n.to_owned());
+        thin_stack(q, name("ti-6al-4v"), name("vdi-l1400"))
+    };
+    let mut default = built_in(None);
+    assert_eq!(default.settings().quadrature(), Quadrature::Nodal);
+    let (lowest, energy) = heat_half(&mut default).unwrap();
+    let refused = heat_half(&mut built_in(Some(Quadrature::Gauss))).unwrap_err();
+    println!(
+        "built-in tables: lowest temperature nodal {lowest:.12} K, stored/supplied \
+         {energy:.12}; gauss: {refused}"
+    );
+    assert!(lowest >= 293.0 - 1e-9, "{lowest}");
+    assert_relative_eq!(energy, 1.0, max_relative = 1e-5);
+    assert!(refused.contains("outside the model's range"), "{refused}");
+}
+
+/// The quadrature in effect and what a POD basis is fingerprinted by: absent, `gauss` when solid
+/// (serialized as before the key, no `conduction_quadrature`) and `nodal` when built up (written
+/// out, so a built-up basis from before the key, built with Gauss, is not reused); an explicit
+/// `gauss` on a solid structure fingerprints as the absent key; the key parses in kebab case and
+/// an unknown value is an error naming the key path.
+#[test]
+fn the_conduction_quadrature_defaults_by_structure_and_fingerprints() {
+    let solid = FullOrderSettings::default();
+    assert_eq!(solid.quadrature(), Quadrature::Gauss);
+    assert_eq!(solid.resolved(), solid);
+    let explicit_gauss = FullOrderSettings {
+        conduction_quadrature: Some(Quadrature::Gauss),
+        ..solid.clone()
+    };
+    assert_eq!(explicit_gauss.resolved(), solid);
+    let built_up = FullOrderSettings {
+        skin_thickness_m: Some(0.0015),
+        ..solid.clone()
+    };
+    assert_eq!(built_up.quadrature(), Quadrature::Nodal);
+    let json = serde_json::to_value(built_up.resolved()).unwrap();
+    assert_eq!(json["conduction_quadrature"], "nodal");
+    assert!(
+        serde_json::to_value(&built_up)
+            .unwrap()
+            .get("conduction_quadrature")
+            .is_none()
+    );
+    let gauss_built_up = FullOrderSettings {
+        conduction_quadrature: Some(Quadrature::Gauss),
+        ..built_up.clone()
+    };
+    assert_ne!(gauss_built_up.resolved(), built_up.resolved());
+    let parsed: FullOrderSettings = toml::from_str("conduction_quadrature = \"nodal\"").unwrap();
+    assert_eq!(parsed.quadrature(), Quadrature::Nodal);
+    let err = create("conduction_quadrature = \"simpson\"").err().unwrap();
+    assert!(
+        err.contains("models.full-order") && err.contains("conduction_quadrature"),
+        "{err}"
+    );
+    // A basis recorded with `nodal` written out serves the built-up model left at its default.
+    let mut model = slab();
+    let snapshots = collect_snapshots(&mut model, T0, DT, 20, 1, |_, q| {
+        q.copy_from_slice(&lower_face_flux(Q));
+        Ok(())
+    })
+    .unwrap();
+    let recorded = FullOrderSettings {
+        conduction_quadrature: Some(Quadrature::Nodal),
+        ..settings()
+    };
+    let basis = PodBasis::from_snapshots(&snapshots, 2, recorded).unwrap();
+    let two = PodSettings {
+        modes: 2,
+        ..PodSettings::default()
+    };
+    Pod::new(&slab(), basis.clone(), two.clone()).unwrap();
+    let gauss_slab = FullOrder::new(
+        &SurfaceGrid::rectangular(1.0, 1.0, H, 1, 1).unwrap(),
+        &faces(H),
+        FullOrderSettings {
+            conduction_quadrature: Some(Quadrature::Gauss),
+            ..settings()
+        },
+    )
+    .unwrap();
+    let err = Pod::new(&gauss_slab, basis, two).err().unwrap().to_string();
+    assert!(err.contains("other [models.full-order] settings"), "{err}");
 }

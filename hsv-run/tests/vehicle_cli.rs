@@ -171,7 +171,12 @@ fn built_up_variant() -> String {
 fn the_built_up_variant_weighs_its_skins_webs_and_tps() {
     let path = std::env::temp_dir().join(format!("hsv-built-up-{}.toml", std::process::id()));
     std::fs::write(&path, built_up_variant()).expect("write");
-    let v = json(&["vehicle", "--json", "--config", path.to_str().expect("path")]);
+    let v = json(&[
+        "vehicle",
+        "--json",
+        "--config",
+        path.to_str().expect("path"),
+    ]);
     let _ = std::fs::remove_file(&path);
     let mass = v["regions"][1]["mass_properties"]["mass_kg"]
         .as_f64()

@@ -22,6 +22,14 @@ Measured on the sample vehicle (2026-12-03): d(alpha)/d(width) = -0.76 deg/m,
 d(elevon)/d(width) = -1.5 deg/m, d(elevon)/d(pivot) = +0.32 deg/m, d(phi)/d(efficiency) = -0.34:
 the first Newton step asks for a pivot 86 m aft of the nose (the body is 30.4 m long) and a
 negative combustion efficiency, so Table 2 is out of reach of these knobs (issue 22's note).
+
+Measured again on the built-up surface variant (2026-12-05, 221 kg surfaces instead of 1548 kg,
+pivot at its aft limit 28.4 m): width 3 / 5 / 9 / 30 m trims at alpha 1.95 / 0.87 / 0.10 / -0.61
+deg with elevon -2.9 / -5.3 / -7.7 / -13.8 deg. At trim the engine region's lift acts about 2.3 m
+ahead of the centre of mass (+0.64 MN m nose-up) and only trailing-edge-down surfaces balance
+it, while Table 2's positive elevon needs a nose-down body and engine: the B&D profile itself
+(its 3 deg upper surface's down-force) stands between this vehicle and Table 2 (README, "The
+sample vehicle against the paper's Table 2").
 """
 
 import argparse

@@ -59,6 +59,23 @@ pub struct MaterialPoint {
     pub specific_heat_j_kg_k: f64,
 }
 
+impl MaterialPoint {
+    /// A row with thermal properties only (an insulator's or a gas's: no E, no α).
+    pub fn thermal_only(
+        temperature_k: f64,
+        conductivity_w_m_k: f64,
+        specific_heat_j_kg_k: f64,
+    ) -> Self {
+        Self {
+            temperature_k,
+            youngs_modulus_pa: None,
+            thermal_expansion_per_k: None,
+            conductivity_w_m_k,
+            specific_heat_j_kg_k,
+        }
+    }
+}
+
 /// Thermal properties of a material at one temperature.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct ThermalProperties {

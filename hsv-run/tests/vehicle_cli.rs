@@ -139,22 +139,27 @@ fn simulate_writes_history_plots_vtk_frames_and_a_summary() {
 /// The sample config with its commented "built-up variant" lines switched on (the 4 % wedge, the
 /// built-up table, the skins and TPS layer of the conduction model, their carried mass).
 fn built_up_variant() -> String {
+    // The single commented lines the variant switches on, and the commented table after its
+    // header, row by row.
+    const VARIANT_LINES: [&str; 4] = [
+        "# thickness_to_chord = 0.04",
+        "# skin_thickness_m = 0.0025        # built-up",
+        "# non_structural_mass_kg_m2 = 3.16",
+        "# layers = [{ thickness_m = 0.002",
+    ];
+    const TABLE_HEADER: &str = "# [models.ritz-plate.built_up]";
     let sample = String::from_utf8(hsv_run(&["config"]).stdout).expect("utf-8");
     let mut out = String::new();
-    let mut in_built_up_table = false;
+    let mut in_table = false;
     for line in sample.lines() {
         let uncommented = line.strip_prefix("# ").unwrap_or(line);
-        let switch_on = line.starts_with("# thickness_to_chord = 0.04")
-            || line.starts_with("# skin_thickness_m = 0.0025        # built-up")
-            || line.starts_with("# non_structural_mass_kg_m2 = 3.16")
-            || line.starts_with("# layers = [{ thickness_m = 0.002")
-            || line.starts_with("# [models.ritz-plate.built_up]")
-            || (in_built_up_table && line.starts_with("# ") && uncommented.contains(" = "));
-        in_built_up_table = line.starts_with("# [models.ritz-plate.built_up]")
-            || (in_built_up_table && line.starts_with("# ") && uncommented.contains(" = "));
+        let header = line.starts_with(TABLE_HEADER);
+        let table_row = in_table && line.starts_with("# ") && uncommented.contains(" = ");
+        in_table = header || table_row;
         if line.starts_with("thickness_to_chord = 0.028") || line.starts_with("layers = []") {
             continue;
         }
+        let switch_on = header || table_row || VARIANT_LINES.iter().any(|p| line.starts_with(p));
         out.push_str(if switch_on { uncommented } else { line });
         out.push('\n');
     }

@@ -74,17 +74,6 @@ pub const AIR_DENSITY_KG_M3: f64 = 1.1614;
 /// Bound in place of a melting point, K: just above the table's last row (module docs).
 const TABLE_BOUND_K: f64 = 3001.0;
 
-/// A thermal-only table row.
-fn row(temperature_k: f64, conductivity_w_m_k: f64, specific_heat_j_kg_k: f64) -> MaterialPoint {
-    MaterialPoint {
-        temperature_k,
-        youngs_modulus_pa: None,
-        thermal_expansion_per_k: None,
-        conductivity_w_m_k,
-        specific_heat_j_kg_k,
-    }
-}
-
 impl Material {
     /// Still air at atmospheric pressure, thermal only, 100-3000 K (Incropera & DeWitt Table A.4;
     /// sources, density and what "still" leaves out in the module docs of `air.rs`). No
@@ -96,7 +85,10 @@ impl Material {
             density_kg_m3: AIR_DENSITY_KG_M3,
             poisson_ratio: f64::NAN,
             melting_point_k: TABLE_BOUND_K,
-            table: AIR_ROWS.iter().map(|&(t, k, c)| row(t, k, c)).collect(),
+            table: AIR_ROWS
+                .iter()
+                .map(|&(t, k, c)| MaterialPoint::thermal_only(t, k, c))
+                .collect(),
         }
     }
 }

@@ -61,17 +61,6 @@ fn continued(temperature_k: f64, value: impl Fn(&(f64, f64, f64)) -> f64) -> f64
     value(b) + (value(b) - value(a)) * (temperature_k - b.0) / (b.0 - a.0)
 }
 
-/// A thermal-only table row.
-fn row(temperature_k: f64, conductivity_w_m_k: f64, specific_heat_j_kg_k: f64) -> MaterialPoint {
-    MaterialPoint {
-        temperature_k,
-        youngs_modulus_pa: None,
-        thermal_expansion_per_k: None,
-        conductivity_w_m_k,
-        specific_heat_j_kg_k,
-    }
-}
-
 impl Material {
     /// VDI Heat Atlas lightweight insulating refractory L1400, thermal only, 293-1673.15 K
     /// (data 673.15-1473.15 K; sources and the two rows beyond the data in the module docs of
@@ -80,8 +69,10 @@ impl Material {
     /// not a structure.
     pub fn vdi_l1400() -> Self {
         let (_, k0, c0) = VDI_L1400_ROWS[0];
-        let data = VDI_L1400_ROWS.iter().map(|&(t, k, c)| row(t, k, c));
-        let top = row(
+        let data = VDI_L1400_ROWS
+            .iter()
+            .map(|&(t, k, c)| MaterialPoint::thermal_only(t, k, c));
+        let top = MaterialPoint::thermal_only(
             CONTINUED_CEILING_K,
             continued(CONTINUED_CEILING_K, |r| r.1),
             continued(CONTINUED_CEILING_K, |r| r.2),
@@ -91,7 +82,7 @@ impl Material {
             density_kg_m3: VDI_L1400_DENSITY_KG_M3,
             poisson_ratio: f64::NAN,
             melting_point_k: ALUMINOSILICATE_SOLIDUS_K,
-            table: std::iter::once(row(HELD_FLOOR_K, k0, c0))
+            table: std::iter::once(MaterialPoint::thermal_only(HELD_FLOOR_K, k0, c0))
                 .chain(data)
                 .chain(std::iter::once(top))
                 .collect(),

@@ -506,6 +506,18 @@ impl FullOrder {
         &self.node_difference
     }
 
+    /// Σ_levels w T(node, level) at every plate node: the structure's mean temperature or
+    /// through-thickness difference, as `weights` say.
+    fn weighted_levels(&self, weights: &[(usize, f64)], state: &DVector<f64>, out_k: &mut [f64]) {
+        let levels = self.grid.n_levels;
+        for (node, out) in out_k.iter_mut().enumerate().take(self.grid.n_plate_nodes) {
+            *out = weights
+                .iter()
+                .map(|&(level, w)| w * state[node * levels + level])
+                .sum();
+        }
+    }
+
     /// Picard iterations of the last step.
     pub fn last_picard_iterations(&self) -> usize {
         self.picard_iterations
@@ -751,24 +763,10 @@ impl ConductionModel for FullOrder {
     /// Solid: T at the structure's lowest level minus T at its highest (levels run lower face
     /// first); built up: the lower skin's mean temperature minus the upper skin's.
     fn node_temperature_differences(&self, state: &DVector<f64>, out_k: &mut [f64]) {
-        let levels = self.grid.n_levels;
-        for (node, out) in out_k.iter_mut().enumerate().take(self.grid.n_plate_nodes) {
-            *out = self
-                .node_difference
-                .iter()
-                .map(|&(level, w)| w * state[node * levels + level])
-                .sum();
-        }
+        self.weighted_levels(&self.node_difference, state, out_k);
     }
 
     fn node_temperatures(&self, state: &DVector<f64>, out_k: &mut [f64]) {
-        let levels = self.grid.n_levels;
-        for (node, out) in out_k.iter_mut().enumerate().take(self.grid.n_plate_nodes) {
-            *out = self
-                .node_average
-                .iter()
-                .map(|&(level, w)| w * state[node * levels + level])
-                .sum();
-        }
+        self.weighted_levels(&self.node_average, state, out_k);
     }
 }

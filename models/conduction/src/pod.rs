@@ -37,6 +37,7 @@ use hsv_core::thermal::{ConductionModel, check_step_inputs};
 use nalgebra::{DMatrix, DVector, SymmetricEigen};
 
 use crate::full_order::{FullOrder, Settings as FullOrderSettings};
+use crate::grid::ThermalGrid;
 use crate::training::Training;
 
 /// Registered name.
@@ -471,6 +472,21 @@ pub struct Pod {
     picard_iterations: usize,
 }
 
+/// Row j, column `node`: Σ_levels w φ_j(node, level), the structure's mean temperature (or
+/// through-thickness difference, as `weights` say) of POD mode j at each plate node.
+fn level_map(grid: &ThermalGrid, phi: &DMatrix<f64>, weights: &[(usize, f64)]) -> DMatrix<f64> {
+    let r = phi.ncols();
+    let mut map = DMatrix::zeros(r, grid.n_plate_nodes);
+    for node in 0..grid.n_plate_nodes {
+        for &(level, w) in weights {
+            for j in 0..r {
+                map[(j, node)] += w * phi[(grid.dof(node, level), j)];
+            }
+        }
+    }
+    map
+}
+
 impl Pod {
     /// Projects `full` onto the first `settings.modes` modes of `basis`.
     pub fn new(full: &FullOrder, basis: PodBasis, settings: Settings) -> Result<Self, ModelError> {
@@ -559,24 +575,8 @@ impl Pod {
                 }
             }
         }
-        let mut node_map = DMatrix::zeros(r, grid.n_plate_nodes);
-        for node in 0..grid.n_plate_nodes {
-            for &(level, w) in full.node_average_weights() {
-                for j in 0..r {
-                    node_map[(j, node)] += w * phi[(grid.dof(node, level), j)];
-                }
-            }
-        }
-        let mut difference_map = DMatrix::zeros(r, grid.n_plate_nodes);
-        for node in 0..grid.n_plate_nodes {
-            for j in 0..r {
-                difference_map[(j, node)] = full
-                    .node_difference_weights()
-                    .iter()
-                    .map(|&(level, w)| w * phi[(grid.dof(node, level), j)])
-                    .sum();
-            }
-        }
+        let node_map = level_map(grid, &phi, full.node_average_weights());
+        let difference_map = level_map(grid, &phi, full.node_difference_weights());
         let uniform = phi.transpose() * DVector::from_element(n, 1.0);
         Ok(Self {
             difference_map,

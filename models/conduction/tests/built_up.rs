@@ -17,9 +17,11 @@
 //!   which bounds the heat the upper skin receives (the air's own heat capacity and its
 //!   diffusion time h_i²/α ≈ 12 s only delay it).
 
+mod common;
 use approx::assert_relative_eq;
+use common::faces;
 use hsv_core::material::{Material, MaterialSetting};
-use hsv_core::mesh::{PanelMesh, PanelSpec, RegionKind, Surface};
+use hsv_core::mesh::{PanelMesh, PanelSpec, RegionKind};
 use hsv_core::registry::{ModelContext, Registry};
 use hsv_core::surface_grid::SurfaceGrid;
 use hsv_core::thermal::ConductionModel;
@@ -47,34 +49,6 @@ fn skin_material() -> MaterialSetting {
     MaterialSetting::Table(
         Material::constant("skin", RHO, 0.31, 110e9, 9e-6, K, CP, (1.0, 5000.0)).unwrap(),
     )
-}
-
-/// Upper panel (normal −z) and lower panel (normal +z) over the unit plate at z = ∓h/2.
-fn faces(h: f64) -> PanelMesh {
-    let v = |x: f64, y: f64, z: f64| nalgebra::Point3::new(x, y, z);
-    let vertices = vec![
-        v(0.0, 0.0, -h / 2.0),
-        v(-1.0, 0.0, -h / 2.0),
-        v(-1.0, 1.0, -h / 2.0),
-        v(0.0, 1.0, -h / 2.0),
-        v(0.0, 0.0, h / 2.0),
-        v(-1.0, 0.0, h / 2.0),
-        v(-1.0, 1.0, h / 2.0),
-        v(0.0, 1.0, h / 2.0),
-    ];
-    let specs = [
-        PanelSpec::quad(0, 1, 2, 3, 0),
-        PanelSpec::quad(4, 7, 6, 5, 0),
-    ];
-    let mesh = PanelMesh::new(
-        vertices,
-        &specs,
-        Vec::new(),
-        vec![Surface::new("plate", RegionKind::LiftingSurface)],
-    )
-    .unwrap();
-    assert!(mesh.panels[0].normal.z < 0.0 && mesh.panels[1].normal.z > 0.0);
-    mesh
 }
 
 fn settings() -> FullOrderSettings {
@@ -513,13 +487,7 @@ fn split_lower_face(h: f64) -> PanelMesh {
             specs.push(PanelSpec::quad(first, first + 1, first + 2, first + 3, 0));
         }
     }
-    let mesh = PanelMesh::new(
-        vertices,
-        &specs,
-        Vec::new(),
-        vec![Surface::new("plate", RegionKind::LiftingSurface)],
-    )
-    .unwrap();
+    let mesh = common::plate_mesh(vertices, &specs);
     assert!(mesh.panels[0].normal.z < 0.0 && mesh.panels.iter().skip(1).all(|p| p.normal.z > 0.0));
     mesh
 }

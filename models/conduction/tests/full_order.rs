@@ -5,15 +5,17 @@
 //! through its thickness, heated through one upper panel covering the whole top face; the
 //! sides are adiabatic, so the conduction is one-dimensional through the thickness.
 
+mod common;
 use approx::assert_relative_eq;
+use common::faces;
 use hsv_core::config::LoadedConfig;
 use hsv_core::material::{Material, MaterialSetting};
-use hsv_core::mesh::{PanelMesh, PanelSpec, RegionKind, Surface};
+use hsv_core::mesh::RegionKind;
 use hsv_core::registry::{ModelContext, Registry};
 use hsv_core::surface_grid::SurfaceGrid;
 use hsv_core::thermal::ConductionModel;
 use hsv_model_conduction::{FullOrder, FullOrderSettings};
-use nalgebra::{DVector, Point3};
+use nalgebra::DVector;
 
 const RHO: f64 = 4430.0;
 const CP: f64 = 560.0;
@@ -23,34 +25,6 @@ fn constant_material() -> MaterialSetting {
     MaterialSetting::Table(
         Material::constant("constant", RHO, 0.31, 110e9, 9e-6, K, CP, (1.0, 5000.0)).unwrap(),
     )
-}
-
-/// Upper panel (normal −z) and lower panel (normal +z) over the unit plate at z = ∓h/2.
-fn faces(h: f64) -> PanelMesh {
-    let v = |x: f64, y: f64, z: f64| Point3::new(x, y, z);
-    let vertices = vec![
-        v(0.0, 0.0, -h / 2.0),
-        v(-1.0, 0.0, -h / 2.0),
-        v(-1.0, 1.0, -h / 2.0),
-        v(0.0, 1.0, -h / 2.0),
-        v(0.0, 0.0, h / 2.0),
-        v(-1.0, 0.0, h / 2.0),
-        v(-1.0, 1.0, h / 2.0),
-        v(0.0, 1.0, h / 2.0),
-    ];
-    let specs = [
-        PanelSpec::quad(0, 1, 2, 3, 0),
-        PanelSpec::quad(4, 7, 6, 5, 0),
-    ];
-    let mesh = PanelMesh::new(
-        vertices,
-        &specs,
-        Vec::new(),
-        vec![Surface::new("plate", RegionKind::LiftingSurface)],
-    )
-    .unwrap();
-    assert!(mesh.panels[0].normal.z < 0.0 && mesh.panels[1].normal.z > 0.0);
-    mesh
 }
 
 fn slab(thickness_m: f64, sublayers: usize, material: MaterialSetting) -> FullOrder {

@@ -7,45 +7,20 @@
 //! structure / upper layer; flux q enters through the upper face and leaves through the lower,
 //! and one implicit step of 1e9 s reaches the steady state.
 
+mod common;
 use approx::assert_relative_eq;
+use common::faces;
 use hsv_core::material::{Material, MaterialSetting};
-use hsv_core::mesh::{PanelMesh, PanelSpec, RegionKind, Surface};
 use hsv_core::surface_grid::SurfaceGrid;
 use hsv_core::thermal::ConductionModel;
 use hsv_model_conduction::full_order::LayerSetting;
 use hsv_model_conduction::{FullOrder, FullOrderSettings};
-use nalgebra::{DVector, Point3};
+use nalgebra::DVector;
 
 /// Structure: a constant-property titanium-like plate (the closed form needs constant k).
 const K_STRUCTURE: f64 = 7.0;
 /// Protection layer: a constant-property insulator.
 const K_LAYER: f64 = 0.1;
-
-/// Upper panel (normal −z) and lower panel (normal +z) over the unit plate at z = ∓h/2.
-fn faces(h: f64) -> PanelMesh {
-    let v = |x: f64, y: f64, z: f64| Point3::new(x, y, z);
-    let vertices = vec![
-        v(0.0, 0.0, -h / 2.0),
-        v(-1.0, 0.0, -h / 2.0),
-        v(-1.0, 1.0, -h / 2.0),
-        v(0.0, 1.0, -h / 2.0),
-        v(0.0, 0.0, h / 2.0),
-        v(-1.0, 0.0, h / 2.0),
-        v(-1.0, 1.0, h / 2.0),
-        v(0.0, 1.0, h / 2.0),
-    ];
-    let specs = [
-        PanelSpec::quad(0, 1, 2, 3, 0),
-        PanelSpec::quad(4, 7, 6, 5, 0),
-    ];
-    PanelMesh::new(
-        vertices,
-        &specs,
-        Vec::new(),
-        vec![Surface::new("plate", RegionKind::LiftingSurface)],
-    )
-    .unwrap()
-}
 
 fn structure() -> MaterialSetting {
     MaterialSetting::Table(

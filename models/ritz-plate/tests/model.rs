@@ -1,36 +1,15 @@
 //! The registered `ritz-plate` model: settings, mode shapes on the aero meshes, bad input.
 
+mod common;
+use common::{build, descriptor};
+
 use approx::assert_relative_eq;
 use hsv_core::config::LoadedConfig;
-use hsv_core::registry::{Constructor, ModelContext, ModelDescriptor};
-use hsv_core::structure::StructureModel;
+use hsv_core::registry::{Constructor, ModelContext};
 use hsv_core::surface_grid::SurfaceGrid;
 use hsv_core::vehicle::{Side, lifting_surface_mesh};
 use hsv_model_ritz_plate::NAME;
 use nalgebra::DVector;
-
-fn descriptor() -> &'static ModelDescriptor {
-    hsv_core::inventory::iter::<ModelDescriptor>
-        .into_iter()
-        .find(|d| d.name == NAME)
-        .expect("ritz-plate is registered")
-}
-
-/// Builds the model from settings TOML (a `[models.ritz-plate]` body) over the sample config.
-fn build(settings_toml: &str) -> Result<Box<dyn StructureModel>, hsv_core::ModelError> {
-    let settings: toml::Table = toml::from_str(settings_toml).expect("toml");
-    let ctx = ModelContext {
-        settings: &settings,
-        key_path: "models.ritz-plate",
-        file: "test.toml",
-        region: hsv_core::testing::sample_region("right_surface"),
-        registry: hsv_core::testing::empty_registry(),
-    };
-    match descriptor().constructor {
-        Constructor::Structure(f) => f(&ctx),
-        _ => panic!("ritz-plate must be a structure model"),
-    }
-}
 
 const SMALL: &str = "elements_chordwise = 8\nelements_spanwise = 6\n";
 

@@ -3,28 +3,8 @@
 
 use std::f64::consts::PI;
 
-use hsv_core::registry::{Constructor, ModelContext, ModelDescriptor};
-use hsv_core::structure::StructureModel;
-use hsv_model_ritz_plate::NAME;
-
-fn build(settings_toml: &str) -> Result<Box<dyn StructureModel>, hsv_core::ModelError> {
-    let settings: toml::Table = toml::from_str(settings_toml).expect("toml");
-    let ctx = ModelContext {
-        settings: &settings,
-        key_path: "models.ritz-plate",
-        file: "test.toml",
-        region: hsv_core::testing::sample_region("right_surface"),
-        registry: hsv_core::testing::empty_registry(),
-    };
-    let descriptor = hsv_core::inventory::iter::<ModelDescriptor>
-        .into_iter()
-        .find(|d| d.name == NAME)
-        .expect("ritz-plate is registered");
-    match descriptor.constructor {
-        Constructor::Structure(f) => f(&ctx),
-        _ => panic!("ritz-plate must be a structure model"),
-    }
-}
+mod common;
+use common::build;
 
 /// SSSS square plate, 1 m × 1 m × 5 mm Ti-6Al-4V at 293 K: ω_mn = π² (m² + n²) √(D/(ρh)) / a²
 /// (Leissa, Vibration of Plates, NASA SP-160, 1969, ch. 4, the SSSS closed form), so the first

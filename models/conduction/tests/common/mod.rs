@@ -5,7 +5,7 @@
 #![allow(dead_code)]
 
 use hsv_core::config::LoadedConfig;
-use hsv_core::mesh::PanelMesh;
+use hsv_core::mesh::{PanelMesh, PanelSpec, RegionKind, Surface};
 use hsv_core::surface_grid::SurfaceGrid;
 use hsv_core::vehicle::{LiftingSurfaceConfig, Side, lifting_surface_mesh};
 use hsv_model_conduction::{FullOrder, FullOrderSettings};
@@ -59,4 +59,38 @@ pub fn convective(x: &[f64], t_aw: f64, h_ref: f64) -> impl FnMut(&[f64], &mut [
             q[i] = h_ref / x[i].sqrt() * (t_aw - wall[i]) - 0.8 * SIGMA * wall[i].powi(4);
         }
     }
+}
+
+/// A lifting-surface panel mesh of `vertices` and quads `specs` (surface "plate").
+pub fn plate_mesh(vertices: Vec<nalgebra::Point3<f64>>, specs: &[PanelSpec]) -> PanelMesh {
+    PanelMesh::new(
+        vertices,
+        specs,
+        Vec::new(),
+        vec![Surface::new("plate", RegionKind::LiftingSurface)],
+    )
+    .unwrap()
+}
+
+/// The unit plate's two faces at z = ∓h/2: panel 0 the upper (normal −z), panel 1 the lower
+/// (normal +z), each covering the whole face.
+pub fn faces(h: f64) -> PanelMesh {
+    let v = |x: f64, y: f64, z: f64| nalgebra::Point3::new(x, y, z);
+    let vertices = vec![
+        v(0.0, 0.0, -h / 2.0),
+        v(-1.0, 0.0, -h / 2.0),
+        v(-1.0, 1.0, -h / 2.0),
+        v(0.0, 1.0, -h / 2.0),
+        v(0.0, 0.0, h / 2.0),
+        v(-1.0, 0.0, h / 2.0),
+        v(-1.0, 1.0, h / 2.0),
+        v(0.0, 1.0, h / 2.0),
+    ];
+    let specs = [
+        PanelSpec::quad(0, 1, 2, 3, 0),
+        PanelSpec::quad(4, 7, 6, 5, 0),
+    ];
+    let mesh = plate_mesh(vertices, &specs);
+    assert!(mesh.panels[0].normal.z < 0.0 && mesh.panels[1].normal.z > 0.0);
+    mesh
 }

@@ -19,7 +19,7 @@
 
 mod common;
 use approx::assert_relative_eq;
-use common::faces;
+use common::{CP, RHO, constant_material, faces};
 use hsv_core::material::{Material, MaterialSetting};
 use hsv_core::mesh::{PanelMesh, PanelSpec, RegionKind};
 use hsv_core::registry::{ModelContext, Registry};
@@ -32,9 +32,6 @@ use hsv_model_conduction::{
 };
 use nalgebra::DVector;
 
-const RHO: f64 = 4430.0;
-const CP: f64 = 560.0;
-const K: f64 = 7.0;
 /// Plate (outer mould line) thickness, m.
 const H: f64 = 0.02;
 /// Skin thickness, m.
@@ -45,15 +42,9 @@ const T0: f64 = 300.0;
 const DT: f64 = 0.1;
 const STEPS: usize = 200;
 
-fn skin_material() -> MaterialSetting {
-    MaterialSetting::Table(
-        Material::constant("skin", RHO, 0.31, 110e9, 9e-6, K, CP, (1.0, 5000.0)).unwrap(),
-    )
-}
-
 fn settings() -> FullOrderSettings {
     FullOrderSettings {
-        structure_material: skin_material(),
+        structure_material: constant_material(),
         structure_sublayers: 2,
         skin_thickness_m: Some(T_S),
         interior_sublayers: 4,

@@ -7,7 +7,7 @@
 
 mod common;
 use approx::assert_relative_eq;
-use common::faces;
+use common::{CP, K, RHO, constant_material, faces};
 use hsv_core::config::LoadedConfig;
 use hsv_core::material::{Material, MaterialSetting};
 use hsv_core::mesh::RegionKind;
@@ -16,16 +16,6 @@ use hsv_core::surface_grid::SurfaceGrid;
 use hsv_core::thermal::ConductionModel;
 use hsv_model_conduction::{FullOrder, FullOrderSettings};
 use nalgebra::DVector;
-
-const RHO: f64 = 4430.0;
-const CP: f64 = 560.0;
-const K: f64 = 7.0;
-
-fn constant_material() -> MaterialSetting {
-    MaterialSetting::Table(
-        Material::constant("constant", RHO, 0.31, 110e9, 9e-6, K, CP, (1.0, 5000.0)).unwrap(),
-    )
-}
 
 fn slab(thickness_m: f64, sublayers: usize, material: MaterialSetting) -> FullOrder {
     let grid = SurfaceGrid::rectangular(1.0, 1.0, thickness_m, 1, 1).unwrap();

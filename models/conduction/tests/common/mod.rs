@@ -94,3 +94,26 @@ pub fn faces(h: f64) -> PanelMesh {
     assert!(mesh.panels[0].normal.z < 0.0 && mesh.panels[1].normal.z > 0.0);
     mesh
 }
+
+/// Density, specific heat and conductivity of the constant-property titanium-like material the
+/// closed-form tests use (kg/m³, J/(kg K), W/(m K)).
+pub const RHO: f64 = 4430.0;
+pub const CP: f64 = 560.0;
+pub const K: f64 = 7.0;
+
+/// The titanium-like material with [`RHO`], [`CP`], [`K`] at every temperature (1-5000 K).
+pub fn constant_material() -> hsv_core::material::MaterialSetting {
+    hsv_core::material::MaterialSetting::Table(
+        hsv_core::material::Material::constant(
+            "constant",
+            RHO,
+            0.31,
+            110e9,
+            9e-6,
+            K,
+            CP,
+            (1.0, 5000.0),
+        )
+        .unwrap(),
+    )
+}

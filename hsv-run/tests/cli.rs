@@ -387,3 +387,18 @@ fn a_run_through_sensors_resumes_bit_for_bit() {
         4
     );
 }
+
+/// `trim --start` takes α, δe, φ: two numbers or a φ outside (0, 1] are refused before any
+/// vehicle is built, naming what was expected.
+#[test]
+fn a_bad_trim_start_is_refused_with_what_it_takes() {
+    expect_error(
+        &["trim", "--start=1,2"],
+        &["--start takes three numbers", "got 2"],
+    );
+    expect_error(
+        &["trim", "--start=1,2,0"],
+        &["--start 1,2,0", "fuel equivalence ratio in (0, 1]"],
+    );
+    expect_error(&["trim", "--start=1,nan,0.2"], &["--start", "finite"]);
+}

@@ -405,6 +405,58 @@ fn a_gliding_rigid_vehicle_loses_kinetic_and_potential_energy_to_the_work_of_its
     );
 }
 
+#[test]
+fn the_heat_flux_comes_from_the_accepted_state_not_the_last_stage() {
+    use hsv_core::coupling::ElevonCommand;
+    use hsv_run::vehicle::partitioned::{HeatingRates, SurfaceModel};
+    // Issue 25: the in-flight heating read the surface aero the last Runge-Kutta stage left
+    // (the predictor at t + dt), not a state the flight passes through. Two heated vehicles
+    // open the same step from the same accepted state; one then evaluates a stage far from it
+    // (the elevon 10 degrees off), the other none; both commit the same end state. The step's
+    // conduction must see the same heat flux: the surfaces' temperatures agree to the last bit.
+    let loaded = common::parse(
+        &common::coarse_text().replace("conduction = \"pod\"", "conduction = \"full-order\""),
+    );
+    let rates = HeatingRates {
+        conduction_s: 0.01,
+        heat_flux_s: 0.02,
+        stiffness_s: 0.05,
+        initial_k: 293.0,
+    };
+    let start = || {
+        let (mut vehicle, state, controls) =
+            common::trimmed(&loaded, SurfaceModel::Partitioned, true);
+        vehicle.start_heating(&rates).expect("heating");
+        (vehicle, state, controls)
+    };
+    let (mut staged, state, controls) = start();
+    let (mut unstaged, _, _) = start();
+    for vehicle in [&mut staged, &mut unstaged] {
+        vehicle.begin_step(&state, &controls, 0.0).expect("opens");
+    }
+    let far_stage = FlightControls {
+        elevon: ElevonCommand {
+            symmetric_rad: controls.elevon.symmetric_rad + 10f64.to_radians(),
+            differential_rad: 0.0,
+        },
+        ..controls
+    };
+    let mut derivative = staged.dynamics().zero_derivative();
+    staged.set_time(0.01);
+    staged
+        .derivative(&state, &far_stage, &mut derivative)
+        .expect("stage");
+    for vehicle in [&mut staged, &mut unstaged] {
+        vehicle.commit_step(&state, 0.01).expect("commits");
+    }
+    let (heated, reference) = (
+        staged.surface_temperatures(),
+        unstaged.surface_temperatures(),
+    );
+    assert!(heated[0].1.max_k > 293.0, "the surfaces did not heat");
+    assert_eq!(heated, reference, "the heating read the last stage's aero");
+}
+
 #[global_allocator]
 static GLOBAL: hsv_core::testing::CountingAllocator = hsv_core::testing::CountingAllocator;
 

@@ -127,6 +127,7 @@ impl Vehicle {
                     !rigid,
                     mach,
                     altitude_m,
+                    None,
                 )
             })
             .map_err(hsv_error)?;

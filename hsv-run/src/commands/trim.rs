@@ -32,6 +32,16 @@ pub struct TrimArgs {
     /// Geometric altitude, m (default: the config's, 26000 for the sample).
     #[arg(long = "altitude-m", allow_negative_numbers = true)]
     pub altitude_m: Option<f64>,
+    /// Where the search starts: α (deg), δe (deg), φ, e.g. `--start=-0.5,1.5,0.13` (default
+    /// 2,0,0.3). A vehicle may have more than one trim (a low-φ one with the surfaces lifting
+    /// and a high-φ one with them pushing down): the start picks the basin.
+    #[arg(
+        long,
+        value_delimiter = ',',
+        allow_negative_numbers = true,
+        value_name = "ALPHA_DEG,ELEVON_DEG,PHI"
+    )]
+    pub start: Option<Vec<f64>>,
     #[command(flatten)]
     pub json: JsonFlag,
 }
@@ -45,6 +55,7 @@ pub fn run(args: TrimArgs, registry: &Registry) -> Result<()> {
         args.flexible,
         args.mach,
         args.altitude_m,
+        args.start.as_deref(),
     )?;
     let model = if args.flexible { "flexible" } else { "rigid" };
     if args.json.json {
@@ -70,13 +81,15 @@ pub fn run(args: TrimArgs, registry: &Registry) -> Result<()> {
 }
 
 /// Trims the vehicle of `loaded`, rigid or `flexible`, at `mach` and `altitude_m` (default:
-/// the config's flight condition).
+/// the config's flight condition), the search starting from `start` (α deg, δe deg, φ; default
+/// [`TrimRequest`]'s).
 pub fn trim_configured(
     loaded: &hsv_core::config::LoadedConfig,
     registry: &Registry,
     flexible: bool,
     mach: Option<f64>,
     altitude_m: Option<f64>,
+    start: Option<&[f64]>,
 ) -> Result<TrimResult> {
     let mach = mach.unwrap_or(loaded.config.flight.mach);
     let altitude_m = altitude_m.unwrap_or(loaded.config.flight.altitude_m);
@@ -85,11 +98,14 @@ pub fn trim_configured(
             anyhow::bail!("{flag} must be a finite number, got {value}");
         }
     }
-    let request = TrimRequest {
+    let mut request = TrimRequest {
         mach,
         altitude_m,
         ..TrimRequest::default()
     };
+    if let Some(start) = start {
+        request.start = trim_start(start)?;
+    }
     Ok(if flexible {
         let needs = partitioned_needs("trim of the flexible vehicle");
         let sets = assemble(loaded, registry, &needs)?;
@@ -111,6 +127,23 @@ pub fn trim_configured(
         let mut vehicle = RigidVehicle::new(sets)?;
         trim(&mut vehicle, &request)?
     })
+}
+
+/// A search start α (deg), δe (deg), φ checked: three finite numbers, φ in (0, 1].
+fn trim_start(start: &[f64]) -> Result<[f64; 3]> {
+    let &[alpha_deg, elevon_deg, phi] = start else {
+        bail!(
+            "--start takes three numbers (alpha_deg,elevon_deg,phi), got {}",
+            start.len()
+        );
+    };
+    if ![alpha_deg, elevon_deg, phi].iter().all(|v| v.is_finite()) || !(phi > 0.0 && phi <= 1.0) {
+        bail!(
+            "--start {alpha_deg},{elevon_deg},{phi}: expected finite angles in degrees and a fuel \
+             equivalence ratio in (0, 1]"
+        );
+    }
+    Ok([alpha_deg, elevon_deg, phi])
 }
 
 /// The JSON summary (what `--json` prints): keys name quantity and unit.

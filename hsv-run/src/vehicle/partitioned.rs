@@ -125,7 +125,8 @@ pub fn heated_needs(analysis: &str) -> AnalysisNeeds {
 pub struct HeatingRates {
     /// Conduction step, s (paper: heat transfer 1 ms).
     pub conduction_s: f64,
-    /// Interval between heat-flux updates, s (paper: aerothermal 10 ms).
+    /// Interval between heat-flux updates, s (paper: aerothermal 10 ms); the flux is refreshed
+    /// at the start of the step where it falls due, from the accepted state.
     pub heat_flux_s: f64,
     /// Interval between stiffness updates from the temperature field, s (our choice).
     pub stiffness_s: f64,
@@ -831,33 +832,61 @@ fn surface_region_loads(
     Ok(())
 }
 
-/// One surface's heating up to `time_s`: heat flux at its rate, conduction steps, and the
-/// stiffness from the temperature field at its rate (flagged for the vehicle's modal matrices).
-fn heat_surface(
+/// Whether a heated surface's heat flux is due again at `time_s` (every heat-flux interval).
+fn heat_flux_due(t: &SurfaceThermal, time_s: f64, rates: &HeatingRates) -> bool {
+    time_s - t.flux_time_s >= rates.heat_flux_s - 1e-12
+}
+
+/// One surface's heat flux at `time_s` from its aero at the accepted state (the surface's
+/// modes, the body's, the elevon and its flight condition), held until it is due again. The
+/// aero is evaluated here, not read from the last derivative: inside a step that is the last
+/// Runge-Kutta stage's predictor, not a state the flight passes through.
+#[allow(clippy::too_many_arguments)]
+fn refresh_heat_flux(
     s: &mut Surface,
+    modes: (&crate::dynamics::ModalState, &crate::dynamics::ModalState),
+    elevon: &ElevonCommand,
     flight: &FlightCondition,
     time_s: f64,
     rates: &HeatingRates,
+    scratch: &mut DVector<f64>,
 ) -> Result<(), VehicleError> {
+    if !s
+        .thermal
+        .as_ref()
+        .is_some_and(|t| heat_flux_due(t, time_s, rates))
+    {
+        return Ok(());
+    }
+    surface_region_loads(s, modes, elevon, flight, time_s, false, scratch)?;
+    let err = model_error(&s.name);
+    let Some(t) = &mut s.thermal else {
+        return Ok(());
+    };
+    t.conduction.surface_temperatures(&t.state, &mut t.wall_k);
+    t.heat_flux
+        .heat_flux(
+            &s.deflected,
+            flight,
+            &s.solution,
+            &t.wall_k,
+            &mut t.flux_w_m2,
+        )
+        .map_err(&err)?;
+    t.flux_time_s = time_s;
+    Ok(())
+}
+
+/// One surface's heating up to `time_s`: conduction steps under the heat flux last refreshed
+/// ([`refresh_heat_flux`], at the steps' starts), and the stiffness from the temperature field
+/// at its rate (flagged for the vehicle's modal matrices).
+fn heat_surface(s: &mut Surface, time_s: f64, rates: &HeatingRates) -> Result<(), VehicleError> {
     let Some(t) = &mut s.thermal else {
         return Ok(());
     };
     let err = model_error(&s.name);
     let mut stepped = false;
     while time_s - t.conduction_time_s > 1e-9 * rates.conduction_s {
-        if t.conduction_time_s - t.flux_time_s >= rates.heat_flux_s - 1e-12 {
-            t.conduction.surface_temperatures(&t.state, &mut t.wall_k);
-            t.heat_flux
-                .heat_flux(
-                    &s.deflected,
-                    flight,
-                    &s.solution,
-                    &t.wall_k,
-                    &mut t.flux_w_m2,
-                )
-                .map_err(&err)?;
-            t.flux_time_s = t.conduction_time_s;
-        }
         let dt = rates.conduction_s.min(time_s - t.conduction_time_s);
         t.trial.copy_from(&t.state);
         t.conduction
@@ -1331,6 +1360,7 @@ impl PartitionedVehicle {
         // The field a step reads (its stages and every region ahead of the centre of mass).
         self.disturbances
             .extend_to(time_s + DISTURBANCE_LOOKAHEAD_S, self.region_lead_max_m());
+        self.refresh_heat_fluxes(state, controls, time_s)?;
         if self.body_rate == BodyLoadRate::EveryStage {
             return Ok(());
         }
@@ -1362,6 +1392,61 @@ impl PartitionedVehicle {
         }
         self.in_step = true;
         Ok(())
+    }
+
+    /// The heated surfaces' heat flux, where due, from their aero at the accepted `state`
+    /// (each in its own flight condition, side by side).
+    fn refresh_heat_fluxes(
+        &mut self,
+        state: &VehicleState,
+        controls: &FlightControls,
+        time_s: f64,
+    ) -> Result<(), VehicleError> {
+        let rates = self.heating;
+        let due = |s: &Surface| {
+            s.thermal
+                .as_ref()
+                .is_some_and(|t| heat_flux_due(t, time_s, &rates))
+        };
+        if !self.surfaces.iter().any(due) {
+            return Ok(());
+        }
+        let flight = self.flight(state)?;
+        self.update_surface_flights(state, &flight)?;
+        let elevon = controls.elevon;
+        let body_modes = &state.body_modes;
+        let refresh = |(((s, scratch), modes), flight): (
+            (
+                (&mut Surface, &mut DVector<f64>),
+                &crate::dynamics::ModalState,
+            ),
+            &FlightCondition,
+        )| {
+            refresh_heat_flux(
+                s,
+                (modes, body_modes),
+                &elevon,
+                flight,
+                time_s,
+                &rates,
+                scratch,
+            )
+        };
+        if side_by_side() {
+            self.surfaces
+                .par_iter_mut()
+                .zip(self.loads.surface_generalized_forces.par_iter_mut())
+                .zip(state.surface_modes.par_iter())
+                .zip(self.surface_flights.par_iter())
+                .try_for_each(refresh)
+        } else {
+            self.surfaces
+                .iter_mut()
+                .zip(self.loads.surface_generalized_forces.iter_mut())
+                .zip(state.surface_modes.iter())
+                .zip(self.surface_flights.iter())
+                .try_for_each(refresh)
+        }
     }
 
     /// The last derivative's coupling iterations and residual.
@@ -1633,25 +1718,17 @@ impl PartitionedVehicle {
         Ok(())
     }
 
-    /// Advances every heated surface to `time_s`: heat flux from the surface's latest aero
-    /// solution every heat-flux interval, conduction steps, and the structure's stiffness (and
-    /// the modal equations) from the temperature field every stiffness interval.
+    /// Advances every heated surface to `time_s`: conduction steps under the heat flux of the
+    /// step's start ([`Self::begin_step`]), and the structure's stiffness (and the modal
+    /// equations) from the temperature field every stiffness interval.
     fn advance_heating(&mut self, time_s: f64) -> Result<(), VehicleError> {
         let rates = self.heating;
-        // Each surface heats on its own (heat flux, conduction, its stiffness) in its own flight
-        // condition: side by side.
-        let heat =
-            |(s, flight): (&mut Surface, &FlightCondition)| heat_surface(s, flight, time_s, &rates);
+        // Each surface heats on its own (conduction, its stiffness): side by side.
+        let heat = |s: &mut Surface| heat_surface(s, time_s, &rates);
         if side_by_side() {
-            self.surfaces
-                .par_iter_mut()
-                .zip(self.surface_flights.par_iter())
-                .try_for_each(heat)?;
+            self.surfaces.par_iter_mut().try_for_each(heat)?;
         } else {
-            self.surfaces
-                .iter_mut()
-                .zip(self.surface_flights.iter())
-                .try_for_each(heat)?;
+            self.surfaces.iter_mut().try_for_each(heat)?;
         }
         for (i, s) in self.surfaces.iter_mut().enumerate() {
             if let Some(t) = &mut s.thermal

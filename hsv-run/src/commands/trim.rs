@@ -137,7 +137,8 @@ fn trim_start(start: &[f64]) -> Result<[f64; 3]> {
             start.len()
         );
     };
-    if ![alpha_deg, elevon_deg, phi].iter().all(|v| v.is_finite()) || !(phi > 0.0 && phi <= 1.0) {
+    let finite = [alpha_deg, elevon_deg, phi].iter().all(|v| v.is_finite());
+    if !(finite && phi > 0.0 && phi <= 1.0) {
         bail!(
             "--start {alpha_deg},{elevon_deg},{phi}: expected finite angles in degrees and a fuel \
              equivalence ratio in (0, 1]"

@@ -31,10 +31,10 @@ it, while Table 2's positive elevon needs a nose-down body and engine: the B&D p
 (its 3 deg upper surface's down-force) stands between this vehicle and Table 2 (README, "The
 sample vehicle against the paper's Table 2").
 
-Reached (2026-12-05) with two more knobs than this script turns: configs/table2-hsv.toml
-(built-up surfaces, width 16.5 m, upper aftbody -3.22 deg with the nozzle angle closing the
-tail, inlet height 0.9 m, internal nozzle area ratio 1.8) trims at alpha -0.56, elevon 1.37,
-phi 0.150 (hsv-run/tests/table2.rs). Pass `--config configs/table2-hsv.toml` to start there.
+Reached (2026-12-05) with one more knob than this script turns: configs/table2-hsv.toml
+(built-up surfaces, width 15.5 m, upper aftbody -1.884 deg with the nozzle angle closing the
+tail, internal nozzle area ratio 1.4) trims at alpha -0.41, elevon 1.45, phi 0.138
+(hsv-run/tests/table2.rs). Pass `--config configs/table2-hsv.toml` to start there.
 """
 
 import argparse

@@ -83,6 +83,35 @@ pub enum AccelerationName {
     Constant,
 }
 
+/// `[simulation]`: how every flight (`simulate`, `compare`, trade studies, Python, the FMU)
+/// runs (its rates, integrator and Earth) and what it flies (its input tables). Keys are checked
+/// here; values (ranges, names) by the runner, which knows the integrators and Earth models.
+#[derive(Debug, Clone, PartialEq, Default, serde::Serialize, serde::Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct SimulationConfig {
+    /// Tables of offsets from trim by time (`symmetric_elevon_deg`, `differential_elevon_deg`,
+    /// `fuel_equivalence_ratio`: `time_s`, `value`); absent: the paper's elevon doublet.
+    pub inputs: Option<toml::Table>,
+    /// `flat` (the paper's, the default), `spherical` or `spherical-rotating`.
+    pub earth: Option<String>,
+    /// Latitude the flight starts at over a spherical Earth, deg (default 0).
+    pub latitude_deg: Option<f64>,
+    /// Conduction step, s (paper Table 3: heat transfer 1 ms).
+    pub heat_transfer_dt_s: Option<f64>,
+    /// Heat-flux interval, s (paper Table 3: aerothermal 10 ms).
+    pub aerothermal_dt_s: Option<f64>,
+    /// Interval between stiffness updates from the temperature field, s.
+    pub stiffness_interval_s: Option<f64>,
+    /// The surfaces' uniform starting temperature, K (paper: 293 K).
+    pub initial_temperature_k: Option<f64>,
+    /// How often the main body region is evaluated, s (0: at every Runge-Kutta stage).
+    pub body_loads_dt_s: Option<f64>,
+    /// How often the body's skin friction is evaluated again, s (0: at every evaluation).
+    pub body_friction_dt_s: Option<f64>,
+    /// `exponential-rk4` (the default) or `rk4`.
+    pub integrator: Option<String>,
+}
+
 /// `[coupling]`: the scheme and its tolerances.
 #[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]
 #[serde(deny_unknown_fields, default)]
@@ -247,9 +276,9 @@ pub struct HsvConfig {
     /// Dylib plugins to load before models are looked up.
     #[serde(default)]
     pub plugins: Vec<PathBuf>,
-    /// `[simulation]`: settings of `hsv-run simulate` (its inputs), checked by the runner.
+    /// `[simulation]`: how a flight runs and what it flies.
     #[serde(default)]
-    pub simulation: toml::Table,
+    pub simulation: SimulationConfig,
     /// `[coupling]`: how the body-surface interfaces are closed.
     #[serde(default)]
     pub coupling: CouplingConfig,
@@ -714,6 +743,36 @@ mod tests {
         let text = SAMPLE_CONFIG_TOML.replace("[lifting_surface]", "[lifting_surfaces]");
         let err = parse_config(&text, "my.toml").unwrap_err().to_string();
         assert!(err.contains("lifting_surface"), "{err}");
+    }
+
+    #[test]
+    fn simulation_keys_are_typed_and_unknown_ones_refused_at_load() {
+        // Issue 25 item 3: `[simulation]` is read like every other table, so a misspelt key
+        // fails at load (for every command, not only when a flight starts), naming its path
+        // and the keys allowed; whole numbers are accepted for seconds and kelvins.
+        let with = |table: &str| format!("{SAMPLE_CONFIG_TOML}\n[simulation]\n{table}\n");
+        let err = parse_config(&with("body_load_dt_s = 0.002"), "my.toml")
+            .unwrap_err()
+            .to_string();
+        assert!(
+            err.contains("my.toml")
+                && err.contains("simulation.body_load_dt_s")
+                && err.contains("body_loads_dt_s"),
+            "{err}"
+        );
+        let err = parse_config(&with("heat_transfer_dt_s = \"1 ms\""), "my.toml")
+            .unwrap_err()
+            .to_string();
+        assert!(err.contains("simulation.heat_transfer_dt_s"), "{err}");
+        let loaded = parse_config(
+            &with("initial_temperature_k = 700\nintegrator = \"rk4\""),
+            "my.toml",
+        )
+        .expect("config");
+        let simulation = &loaded.config.simulation;
+        assert_eq!(simulation.initial_temperature_k, Some(700.0));
+        assert_eq!(simulation.integrator.as_deref(), Some("rk4"));
+        assert_eq!(simulation.inputs, None);
     }
 
     #[test]

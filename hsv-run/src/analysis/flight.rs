@@ -22,54 +22,41 @@ use crate::vehicle::partitioned::{
     ElevonCommand, FlightControls, HeatingRates, PartitionedVehicle, SurfaceModel, VehicleError,
 };
 
-/// The keys `[simulation]` may hold.
-const SIMULATION_KEYS: [&str; 10] = [
-    "inputs",
-    "earth",
-    "latitude_deg",
-    "heat_transfer_dt_s",
-    "aerothermal_dt_s",
-    "stiffness_interval_s",
-    "initial_temperature_k",
-    "body_loads_dt_s",
-    "body_friction_dt_s",
-    "integrator",
-];
-
 /// The heating rates: `[simulation]` keys `heat_transfer_dt_s`, `aerothermal_dt_s`,
 /// `stiffness_interval_s`, `initial_temperature_k` over the paper's Table 3 defaults.
 pub fn heating_rates(loaded: &LoadedConfig) -> Result<HeatingRates> {
+    let simulation = &loaded.config.simulation;
     let mut rates = HeatingRates::default();
-    for (key, slot) in [
-        ("heat_transfer_dt_s", &mut rates.conduction_s),
-        ("aerothermal_dt_s", &mut rates.heat_flux_s),
-        ("stiffness_interval_s", &mut rates.stiffness_s),
-        ("initial_temperature_k", &mut rates.initial_k),
+    for (key, value, slot) in [
+        (
+            "heat_transfer_dt_s",
+            simulation.heat_transfer_dt_s,
+            &mut rates.conduction_s,
+        ),
+        (
+            "aerothermal_dt_s",
+            simulation.aerothermal_dt_s,
+            &mut rates.heat_flux_s,
+        ),
+        (
+            "stiffness_interval_s",
+            simulation.stiffness_interval_s,
+            &mut rates.stiffness_s,
+        ),
+        (
+            "initial_temperature_k",
+            simulation.initial_temperature_k,
+            &mut rates.initial_k,
+        ),
     ] {
-        if let Some(value) = loaded.config.simulation.get(key) {
-            let v = value
-                .as_float()
-                .or_else(|| value.as_integer().map(|i| i as f64));
-            match v {
-                Some(v) if v.is_finite() && v > 0.0 => *slot = v,
-                _ => bail!(
-                    "{}: key `simulation.{key}` must be a positive number, got {value}",
-                    loaded.file
-                ),
-            }
+        match value {
+            None => {}
+            Some(v) if v.is_finite() && v > 0.0 => *slot = v,
+            Some(v) => bail!(
+                "{}: key `simulation.{key}` must be a positive number, got {v}",
+                loaded.file
+            ),
         }
-    }
-    if let Some(key) = loaded
-        .config
-        .simulation
-        .keys()
-        .find(|k| !SIMULATION_KEYS.contains(&k.as_str()))
-    {
-        bail!(
-            "{}: key `simulation.{key}` is unknown; expected one of {}",
-            loaded.file,
-            SIMULATION_KEYS.join(", ")
-        );
     }
     Ok(rates)
 }
@@ -80,6 +67,7 @@ pub fn body_load_rate(loaded: &LoadedConfig) -> Result<BodyLoadRate> {
     rate_setting(
         loaded,
         "body_loads_dt_s",
+        loaded.config.simulation.body_loads_dt_s,
         BodyLoadRate::default(),
         "0: at every Runge-Kutta stage",
     )
@@ -91,32 +79,31 @@ pub fn body_friction_rate(loaded: &LoadedConfig) -> Result<BodyLoadRate> {
     rate_setting(
         loaded,
         "body_friction_dt_s",
+        loaded.config.simulation.body_friction_dt_s,
         BodyLoadRate::Interval(DEFAULT_BODY_FRICTION_DT_S),
         "0: at every evaluation of the body",
     )
 }
 
-/// A `[simulation]` interval `key` in seconds (0 meaning every evaluation), or `default`.
+/// A `[simulation]` interval `key` of `value` seconds (0 meaning every evaluation), or
+/// `default`.
 fn rate_setting(
     loaded: &LoadedConfig,
     key: &str,
+    value: Option<f64>,
     default: BodyLoadRate,
     zero_means: &str,
 ) -> Result<BodyLoadRate> {
-    let Some(value) = loaded.config.simulation.get(key) else {
+    let Some(value) = value else {
         return Ok(default);
     };
-    value
-        .as_float()
-        .or_else(|| value.as_integer().map(|i| i as f64))
-        .and_then(BodyLoadRate::from_interval_s)
-        .with_context(|| {
-            format!(
-                "{}: key `simulation.{key}` is {value}; expected a number of seconds >= 0 \
-                 ({zero_means})",
-                loaded.file
-            )
-        })
+    BodyLoadRate::from_interval_s(value).with_context(|| {
+        format!(
+            "{}: key `simulation.{key}` is {value}; expected a number of seconds >= 0 \
+             ({zero_means})",
+            loaded.file
+        )
+    })
 }
 
 /// A rate as the `[simulation]` key writes it: seconds, 0 for every evaluation.
@@ -130,60 +117,47 @@ pub fn rate_seconds(rate: BodyLoadRate) -> f64 {
 /// The Earth: `[simulation] earth` (`flat`, the default and the paper's; `spherical`;
 /// `spherical-rotating`) starting at `[simulation] latitude_deg` (default 0).
 pub fn earth(loaded: &LoadedConfig) -> Result<EarthModel> {
-    let latitude_deg = match loaded.config.simulation.get("latitude_deg") {
+    let simulation = &loaded.config.simulation;
+    let latitude_deg = match simulation.latitude_deg {
         None => 0.0,
-        Some(value) => value
-            .as_float()
-            .or_else(|| value.as_integer().map(|i| i as f64))
-            .filter(|v| (-89.0..=89.0).contains(v))
-            .with_context(|| {
-                format!(
-                    "{}: key `simulation.latitude_deg` is {value}; expected degrees in [-89, 89]",
-                    loaded.file
-                )
-            })?,
+        Some(value) if (-89.0..=89.0).contains(&value) => value,
+        Some(value) => bail!(
+            "{}: key `simulation.latitude_deg` is {value}; expected degrees in [-89, 89]",
+            loaded.file
+        ),
     };
-    let Some(value) = loaded.config.simulation.get("earth") else {
+    let Some(name) = &simulation.earth else {
         return Ok(EarthModel::Flat);
     };
-    value
-        .as_str()
-        .and_then(|name| EarthModel::from_name(name, latitude_deg.to_radians()))
-        .with_context(|| {
-            format!(
-                "{}: key `simulation.earth` is {value}; expected one of {}",
-                loaded.file,
-                EarthModel::NAMES.map(|n| format!("\"{n}\"")).join(", ")
-            )
-        })
+    EarthModel::from_name(name, latitude_deg.to_radians()).with_context(|| {
+        format!(
+            "{}: key `simulation.earth` is \"{name}\"; expected one of {}",
+            loaded.file,
+            EarthModel::NAMES.map(|n| format!("\"{n}\"")).join(", ")
+        )
+    })
 }
 
 /// The integrator: `[simulation] integrator` (`exponential-rk4`, the default, or `rk4`).
 pub fn integrator(loaded: &LoadedConfig) -> Result<Integrator> {
-    let Some(value) = loaded.config.simulation.get("integrator") else {
+    let Some(name) = &loaded.config.simulation.integrator else {
         return Ok(Integrator::default());
     };
-    value
-        .as_str()
-        .and_then(Integrator::from_name)
-        .with_context(|| {
-            format!(
-                "{}: key `simulation.integrator` is {value}; expected one of {}",
-                loaded.file,
-                Integrator::NAMES.map(|n| format!("\"{n}\"")).join(", ")
-            )
-        })
+    Integrator::from_name(name).with_context(|| {
+        format!(
+            "{}: key `simulation.integrator` is \"{name}\"; expected one of {}",
+            loaded.file,
+            Integrator::NAMES.map(|n| format!("\"{n}\"")).join(", ")
+        )
+    })
 }
 
 /// The inputs: `[simulation.inputs]` of the config over the paper's doublet (also what a
 /// simulate trade study flies).
 pub fn inputs(loaded: &LoadedConfig) -> Result<Inputs> {
-    let Some(table) = loaded.config.simulation.get("inputs") else {
+    let Some(table) = &loaded.config.simulation.inputs else {
         return Ok(Inputs::paper_doublet());
     };
-    let table = table
-        .as_table()
-        .with_context(|| format!("{}: key `simulation.inputs` must be a table", loaded.file))?;
     Ok(Inputs::from_table(
         table,
         &loaded.file,

@@ -578,7 +578,7 @@ pub fn build_control_loop(
             .cloned()
             .unwrap_or_default()
     };
-    let schedule = &sub_table(&loaded.config.simulation, "inputs");
+    let schedule = &loaded.config.simulation.inputs.clone().unwrap_or_default();
     let commands = &sub_table(&loaded.config.control, "commands");
     let key_path = format!("models.{name}");
     let context = hsv_core::control::ControlContext {

@@ -74,6 +74,16 @@ pub enum CouplingError {
         value: f64,
         allowed: &'static str,
     },
+    /// Conduction temperatures that cannot reach a structure's nodes: neither shares the other's
+    /// nodes nor has a grid to transfer them.
+    #[error(
+        "coupling: the conduction model's {conduction_nodes} node temperatures have no grid to \
+         transfer them onto the structure's {structure_nodes} temperature nodes"
+    )]
+    NoTemperatureTransfer {
+        conduction_nodes: usize,
+        structure_nodes: usize,
+    },
     #[error(transparent)]
     Mesh(#[from] MeshError),
     #[error(transparent)]
@@ -442,6 +452,44 @@ impl GridTransfer {
             map: source.map_points(&target.positions_m, "target grid node")?,
             n_source: source.n_nodes(),
         })
+    }
+
+    /// The transfer from a conduction grid onto a structure's temperature grid of the same
+    /// surface; a structure keeping the other side's grid (same node order) is taken at its
+    /// nodes' mirror images on the conduction's side.
+    pub fn onto_structure_grid(
+        conduction: &SurfaceGrid,
+        structure: &SurfaceGrid,
+    ) -> Result<Self, CouplingError> {
+        if structure.side == conduction.side {
+            return Self::new(conduction, structure);
+        }
+        let mut mirrored = structure.clone();
+        mirrored.positions_m.iter_mut().for_each(|p| p.y = -p.y);
+        mirrored.side = conduction.side;
+        Self::new(conduction, &mirrored)
+    }
+
+    /// The one transfer of a conduction model's node temperatures onto a structure's
+    /// temperature nodes: across their grids when both have one
+    /// ([`Self::onto_structure_grid`]); `None` when one lacks a grid and both count the same nodes (they are taken as
+    /// the same nodes); an error otherwise, never a silent fallback.
+    pub fn conduction_to_structure(
+        conduction: (Option<&SurfaceGrid>, usize),
+        structure: (Option<&SurfaceGrid>, usize),
+    ) -> Result<Option<Self>, CouplingError> {
+        match (conduction, structure) {
+            ((Some(source), _), (Some(target), _)) => {
+                Self::onto_structure_grid(source, target).map(Some)
+            }
+            ((_, n_source), (_, n_target)) if n_source == n_target => Ok(None),
+            ((_, conduction_nodes), (_, structure_nodes)) => {
+                Err(CouplingError::NoTemperatureTransfer {
+                    conduction_nodes,
+                    structure_nodes,
+                })
+            }
+        }
     }
 
     /// Number of source-grid nodes.

@@ -531,6 +531,39 @@ fn grid_transfer_reproduces_a_linear_temperature_field_exactly() {
     }
 }
 
+/// The one conduction-to-structure transfer (issue 25 item 6): a structure keeping the other
+/// side's grid (the left surface's model built on the right's) is read at its nodes' mirror
+/// images, so a field symmetric in y arrives exactly; nodes without grids pass through when
+/// they count the same and are an error naming both counts otherwise, never a silent fallback.
+#[test]
+fn conduction_temperatures_reach_the_structure_by_one_rule() {
+    let cfg = lifting_config();
+    let field = |p: &Point3<f64>| 1500.0 + 25.0 * p.x - 40.0 * p.y.abs();
+    let conduction = SurfaceGrid::lifting_surface(&cfg, Side::Left, 8, 6).expect("grid");
+    let structure = SurfaceGrid::lifting_surface(&cfg, Side::Right, 20, 13).expect("grid");
+    let transfer = GridTransfer::conduction_to_structure(
+        (Some(&conduction), conduction.n_nodes()),
+        (Some(&structure), structure.n_nodes()),
+    )
+    .expect("mirrored transfer")
+    .expect("a grid transfer");
+    let values: Vec<f64> = conduction.positions_m.iter().map(field).collect();
+    let mut out = vec![0.0; structure.n_nodes()];
+    transfer.apply(&values, &mut out).expect("apply");
+    for (p, t) in structure.positions_m.iter().zip(&out) {
+        assert_relative_eq!(*t, field(p), max_relative = 1e-10);
+    }
+    let same = GridTransfer::conduction_to_structure((None, 12), (Some(&structure), 12));
+    assert_eq!(same.expect("same nodes"), None);
+    let err = GridTransfer::conduction_to_structure((None, 12), (Some(&structure), 15))
+        .unwrap_err()
+        .to_string();
+    assert!(
+        err.contains("12 node temperatures") && err.contains("15 temperature nodes"),
+        "{err}"
+    );
+}
+
 #[test]
 fn mismatched_grids_buffers_and_non_finite_inputs_are_errors_naming_the_quantity() {
     let cfg = lifting_config();

@@ -526,9 +526,11 @@ fn stopped_error(histories: &[History], folder: &Path) -> Result<()> {
     )
 }
 
-/// The transfer of a conduction model's node temperatures onto the grid of the region's
-/// structure model, when both have a grid (the structure is built by name to ask it), with a
-/// description of the target grid.
+/// The transfer of a conduction model's node temperatures onto the temperature nodes of the
+/// region's structure model (built by name to ask it), with a description of the target: `None`
+/// when the region names no structure or the structure has no temperature-dependent stiffness
+/// (the conduction nodes are written as they are), the one conduction-to-structure transfer
+/// otherwise ([`GridTransfer::conduction_to_structure`]), whose mismatch is an error.
 fn structure_transfer(
     s: &Setup,
     registry: &Registry,
@@ -550,28 +552,29 @@ fn structure_transfer(
                 region.name
             )
         })?;
-    let (Some(source), Some(target)) = (
-        conduction.node_grid(),
-        structure
-            .thermal_stiffness()
-            .and_then(|t| t.temperature_grid()),
-    ) else {
+    let Some(thermal) = structure.thermal_stiffness() else {
         return Ok(None);
     };
-    if source.side != target.side {
-        return Ok(None);
-    }
-    let Ok(transfer) = GridTransfer::new(source, target) else {
-        // Another planform (a rectangular test plate): the conduction nodes are written as they are.
-        return Ok(None);
-    };
-    Ok(Some((
-        transfer,
+    let target = thermal.temperature_grid();
+    let transfer = GridTransfer::conduction_to_structure(
+        (conduction.node_grid(), conduction.n_nodes()),
+        (target, thermal.temperature_nodes()),
+    )
+    .with_context(|| {
         format!(
+            "region `{}`: the temperatures of conduction `{}` onto structure `{structure_name}`",
+            region.name,
+            conduction.name()
+        )
+    })?;
+    let on = match target {
+        Some(grid) => format!(
             "the {structure_name} grid ({} x {} elements)",
-            target.elements_chordwise, target.elements_spanwise
+            grid.elements_chordwise, grid.elements_spanwise
         ),
-    )))
+        None => format!("the {structure_name} nodes"),
+    };
+    Ok(transfer.map(|transfer| (transfer, on)))
 }
 
 /// The final structural temperatures as the `node,temperature_k` CSV that
@@ -584,7 +587,7 @@ fn write_temperature_field(
 ) -> Result<()> {
     let path = run.join(&format!("temperature_field_{}.csv", h.model));
     let (values, on) = match transfer {
-        Some((transfer, on)) if transfer.n_source() == h.final_node_temperatures_k.len() => {
+        Some((transfer, on)) => {
             let mut values = vec![0.0; transfer.n_target()];
             transfer.apply(&h.final_node_temperatures_k, &mut values)?;
             (values, on.clone())

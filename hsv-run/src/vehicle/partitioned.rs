@@ -529,33 +529,11 @@ fn surface_thermal(
         .thermal_stiffness()
         .ok_or_else(|| assembly_error(name, "temperature-dependent stiffness".into()))?;
     let n_structure = thermal.temperature_nodes();
-    let transfer = match (conduction.node_grid(), thermal.temperature_grid()) {
-        (Some(source), Some(target)) => {
-            let mut target = target.clone();
-            if target.side != source.side {
-                for p in &mut target.positions_m {
-                    p.y = -p.y;
-                }
-                target.side = source.side;
-            }
-            Some(
-                hsv_core::coupling::GridTransfer::new(source, &target)
-                    .map_err(|e| assembly_error(name, e.to_string()))?,
-            )
-        }
-        _ if conduction.n_nodes() == n_structure => None,
-        _ => {
-            return Err(assembly_error(
-                name,
-                format!(
-                    "conduction `{}` reports {} node temperatures and has no grid to transfer \
-                     them onto the structure's {n_structure}",
-                    conduction.name(),
-                    conduction.n_nodes()
-                ),
-            ));
-        }
-    };
+    let transfer = hsv_core::coupling::GridTransfer::conduction_to_structure(
+        (conduction.node_grid(), conduction.n_nodes()),
+        (thermal.temperature_grid(), n_structure),
+    )
+    .map_err(|e| assembly_error(name, format!("conduction `{}`: {e}", conduction.name())))?;
     if conduction.n_surface_panels() != n_panels {
         return Err(assembly_error(
             name,

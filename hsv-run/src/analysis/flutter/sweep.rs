@@ -203,14 +203,7 @@ impl Thermal {
                 setup.models.structure
             )));
         };
-        // A structure may keep the other side's grid (the left surface mirrors the right's,
-        // same node order): its nodes are taken at their mirror images on this side.
-        let mut target = target.clone();
-        if target.side != source.side {
-            target.positions_m.iter_mut().for_each(|p| p.y = -p.y);
-            target.side = source.side;
-        }
-        let transfer = GridTransfer::new(source, &target)?;
+        let transfer = GridTransfer::onto_structure_grid(source, target)?;
         let n_source = conduction.n_nodes();
         let n_target = transfer.n_target();
         Ok(Self {

@@ -98,6 +98,22 @@ fn check_wall_inputs(
     flight.check_finite()
 }
 
+/// r = Pr^(1/2) laminar, Pr^(1/3) turbulent (Anderson, Hypersonic §6.7 and §6.10): the
+/// recovery factor every heat-flux model's adiabatic wall uses.
+pub fn recovery_factor(prandtl_number: f64, turbulent: bool) -> f64 {
+    if turbulent {
+        prandtl_number.cbrt()
+    } else {
+        prandtl_number.sqrt()
+    }
+}
+
+/// T_aw = T_e (1 + r (γ−1)/2 M_e²), K: the adiabatic-wall (recovery) temperature (Anderson,
+/// Hypersonic §6.7).
+pub fn recovery_temperature_k(edge_temperature_k: f64, mach: f64, gamma: f64, r: f64) -> f64 {
+    edge_temperature_k * (1.0 + r * 0.5 * (gamma - 1.0) * mach * mach)
+}
+
 /// Checks 0 < T_w ≤ melting point (K) for heat-flux model `model`, naming the panel if given:
 /// a wall above its melting point has no meaningful heat flux.
 pub fn check_wall_temperature(

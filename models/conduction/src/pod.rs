@@ -34,7 +34,7 @@ use hsv_core::linalg::BandedMatrix;
 use hsv_core::material::Material;
 use hsv_core::surface_grid::SurfaceGrid;
 use hsv_core::thermal::{ConductionModel, check_step_inputs};
-use nalgebra::{DMatrix, DVector, SymmetricEigen};
+use nalgebra::{DMatrix, DVector};
 
 use crate::full_order::{FullOrder, Settings as FullOrderSettings};
 use crate::grid::ThermalGrid;
@@ -129,12 +129,19 @@ impl PodBasis {
             x.set_column(j, &fluctuation);
         }
         let correlation = x.transpose() * &x;
-        let eigen = SymmetricEigen::new(correlation);
-        let mut order: Vec<usize> = (0..m).collect();
-        order.sort_by(|&a, &b| eigen.eigenvalues[b].total_cmp(&eigen.eigenvalues[a]));
+        // The method of snapshots: XᵀX = V Λ Vᵀ (the workspace's one symmetric eigen path).
+        let mut eigenvalues = vec![0.0; m];
+        let mut eigenvectors = DMatrix::zeros(m, m);
+        hsv_core::linalg::SymmetricEigenSolver::new(m)
+            .decompose(&correlation, &mut eigenvalues, &mut eigenvectors)
+            .map_err(|e| {
+                ModelError::inconsistent(NAME, format!("snapshot correlation matrix: {e}"))
+            })?;
+        // Largest first.
+        let order: Vec<usize> = (0..m).rev().collect();
         let singular_values: Vec<f64> = order
             .iter()
-            .map(|&k| eigen.eigenvalues[k].max(0.0).sqrt())
+            .map(|&k| eigenvalues[k].max(0.0).sqrt())
             .collect();
         let total: f64 = singular_values.iter().map(|s| s * s).sum();
         let mut modes = DMatrix::zeros(n, n_modes);
@@ -153,7 +160,7 @@ impl PodBasis {
                     ),
                 ));
             }
-            let v = eigen.eigenvectors.column(order[k - 1]);
+            let v = eigenvectors.column(order[k - 1]);
             let phi = (&x * v) / sigma;
             modes.set_column(k, &phi);
         }

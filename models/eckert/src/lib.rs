@@ -272,19 +272,9 @@ pub struct ConvectiveHeating {
     pub heat_flux_w_m2: f64,
 }
 
-/// r = Pr^(1/2) laminar, Pr^(1/3) turbulent (Anderson, Hypersonic §6.7 and §6.10).
-pub fn recovery_factor(prandtl_number: f64, turbulent: bool) -> f64 {
-    if turbulent {
-        prandtl_number.cbrt()
-    } else {
-        prandtl_number.sqrt()
-    }
-}
-
-/// T_aw = T_e (1 + r (γ−1)/2 M_e²), K (Anderson, Hypersonic §6.7).
-pub fn recovery_temperature_k(edge_temperature_k: f64, mach: f64, gamma: f64, r: f64) -> f64 {
-    edge_temperature_k * (1.0 + r * 0.5 * (gamma - 1.0) * mach * mach)
-}
+/// The recovery factor and temperature are the shared kernels of `hsv_core::thermal` (kriging
+/// uses them too).
+pub use hsv_core::thermal::{recovery_factor, recovery_temperature_k};
 
 /// T* = T_e + 0.5 (T_w − T_e) + 0.22 (T_aw − T_e), K (Eckert 1955; Anderson, Hypersonic §6.9).
 pub fn eckert_reference_temperature_k(

@@ -100,18 +100,11 @@ impl Regime {
     }
 }
 
-/// r = Pr^(1/2) laminar, Pr^(1/3) turbulent (Anderson, Hypersonic §6.7 and §6.10).
-pub fn recovery_factor(prandtl_number: f64, turbulent: bool) -> f64 {
-    if turbulent {
-        prandtl_number.cbrt()
-    } else {
-        prandtl_number.sqrt()
-    }
-}
+pub use hsv_core::thermal::recovery_factor;
 
-/// T_aw = T_e (1 + r (γ−1)/2 M_e²), K (Anderson, Hypersonic §6.7).
+/// T_aw at an edge state, K ([`hsv_core::thermal::recovery_temperature_k`]).
 pub fn recovery_temperature_k(edge: &EdgeState, gamma: f64, r: f64) -> f64 {
-    edge.temperature_k * (1.0 + r * 0.5 * (gamma - 1.0) * edge.mach * edge.mach)
+    hsv_core::thermal::recovery_temperature_k(edge.temperature_k, edge.mach, gamma, r)
 }
 
 /// The `[models.kriging-stanton]` table.

@@ -5,7 +5,6 @@ use std::path::{Path, PathBuf};
 
 use anyhow::{Context, Result, bail};
 use clap::Args;
-use hsv_core::aero::AeroDiagnostics;
 use hsv_core::config::LoadedConfig;
 use hsv_core::registry::Registry;
 
@@ -179,7 +178,9 @@ pub fn evaluate(args: &AeroArgs, loaded: &LoadedConfig, registry: &Registry) -> 
         aero_job::run_aero_with_friction(loaded, registry, &mesh, &request, friction.as_ref())?;
     let flight_condition = aero_job::flight_condition(loaded, &request)?;
     for r in &rows {
-        for warning in validity_warnings(&r.model, &flight_condition, &r.diagnostics) {
+        for warning in
+            crate::aero_job::validity_warnings(&r.model, &flight_condition, &r.diagnostics)
+        {
             let _ = writeln!(std::io::stderr(), "warning: {warning}");
             warnings.push(warning);
         }
@@ -328,79 +329,6 @@ fn print_rows(report: &AeroReport) -> Result<()> {
         }
     }
     Ok(())
-}
-
-/// Lowest Mach number of each model's stated range: Newtonian impact theory is a hypersonic
-/// approximation (Anderson, Hypersonic and High-Temperature Gas Dynamics, 2nd ed., §3.2-3.3:
-/// hypersonic roughly above Mach 5), piston theory needs M² ≫ 1 (Ashley & Zartarian, J. Aero.
-/// Sci. 23(12), 1956; the `piston-theory` model's own summary: M ≳ 2).
-fn lowest_mach(model: &str) -> Option<(f64, &'static str)> {
-    match model {
-        "newtonian-scalar" | "newtonian-vector" => Some((
-            5.0,
-            "Newtonian impact theory is a hypersonic approximation (M >~ 5)",
-        )),
-        "piston-theory" | "shock-expansion-piston" => {
-            Some((2.0, "piston theory needs M well above 1 (M >~ 2)"))
-        }
-        _ => None,
-    }
-}
-
-/// Where aero model `model` left its range of validity at `flight`: the model's Mach range
-/// and the panels its evaluation counted beyond it ([`AeroDiagnostics`]); one sentence each,
-/// for stderr and the JSON `warnings`. Shadowed panels are not listed: the shadow rule is part
-/// of every panel method's stated model.
-pub fn validity_warnings(
-    model: &str,
-    flight: &hsv_core::flow::FlightCondition,
-    d: &AeroDiagnostics,
-) -> Vec<String> {
-    let mach = flight.freestream.mach;
-    let mut warnings = Vec::new();
-    if let Some((lowest, why)) = lowest_mach(model)
-        && mach < lowest
-    {
-        warnings.push(format!(
-            "{model}: Mach {mach} is below the model's range; {why}"
-        ));
-    }
-    // Beyond 90 deg the flow meets the vehicle from behind: every panel method here measures
-    // running lengths and leading edges from the nose, so its numbers mean nothing there.
-    for (quantity, angle_rad) in [
-        ("angle of attack", flight.alpha_rad),
-        ("angle of sideslip", flight.beta_rad),
-    ] {
-        let angle_deg = angle_rad.to_degrees();
-        if angle_deg.abs() > 90.0 {
-            warnings.push(format!(
-                "{model}: {quantity} {angle_deg} deg is beyond 90 deg (flow from behind the \
-                 vehicle), outside the model's range"
-            ));
-        }
-    }
-    let counts = [
-        (
-            d.detached_shocks,
-            "turn the flow beyond the largest oblique-shock deflection (detached shock; \
-             pressure from the model's post-detachment rule): angle of attack or deflection \
-             beyond the model's range",
-        ),
-        (
-            d.piston_theory_violations,
-            "move at |w|/a >= 1 normal to themselves, beyond piston theory",
-        ),
-        (
-            d.vacuum_expansions,
-            "expand to vacuum (pressure clipped at zero)",
-        ),
-    ];
-    for (count, what) in counts {
-        if count > 0 {
-            warnings.push(format!("{model}: {count} panels {what}"));
-        }
-    }
-    warnings
 }
 
 /// `X,Y,Z` in metres.

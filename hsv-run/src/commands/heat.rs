@@ -385,7 +385,8 @@ pub fn run(args: HeatArgs, registry: &Registry) -> Result<()> {
                 warnings.push(format!("{name}: {note}"));
             }
         }
-        for w in super::aero::validity_warnings(&s.aero, &s.flight, heating.aero_diagnostics()) {
+        for w in crate::aero_job::validity_warnings(&s.aero, &s.flight, heating.aero_diagnostics())
+        {
             let w = format!("{name}: {w}");
             if !warnings.contains(&w) {
                 warnings.push(w);

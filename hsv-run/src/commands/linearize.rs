@@ -226,7 +226,7 @@ pub fn run(args: LinearizeArgs, registry: &Registry) -> Result<()> {
         )?;
     }
     if let Some((name, values, design, dynamics)) = &closed {
-        super::simulate::print_gains(design)?;
+        super::print_gains(design)?;
         outln!(
             "closed loop under `{name}` (full flexible model; actuator lags {} s elevon, {} s \
              phi; delay {} s as first-order Pade), eigenvalues by real part, largest first:",

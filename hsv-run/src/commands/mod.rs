@@ -1,4 +1,7 @@
-//! The `hsv-run` commands, one module each: clap arguments plus a `run` function.
+//! The `hsv-run` commands, one module each: clap arguments plus a `run` function. What more
+//! than one command reads or prints lives here (the shared arguments, the flutter map's, the
+//! controller gains) or in [`shard`] (the cluster shards); a command imports no other command,
+//! except `merge`, which joins the sharded commands' outputs with their own writers.
 
 pub mod aero;
 pub mod catalog;
@@ -23,10 +26,12 @@ pub mod vehicle;
 
 use std::path::{Path, PathBuf};
 
-use anyhow::{Context, Result};
+use anyhow::{Context, Result, bail};
 use clap::Args;
 use hsv_core::config::LoadedConfig;
 use hsv_core::registry::Registry;
+
+use crate::outln;
 
 /// `--json`, shared by every command.
 #[derive(Args, Debug, Clone, Copy)]
@@ -124,4 +129,80 @@ pub fn load_config_text(
     let registry = with_plugins(&loaded, Path::new(""), registry)?;
     validate_config(&loaded, &registry)?;
     Ok((loaded, registry))
+}
+
+/// The gains of a designed controller (its `controller.json` report): an LQR axis in three
+/// lines, any other entry (a plugin's report) as `key: JSON`.
+pub(crate) fn print_gains(report: &serde_json::Value) -> Result<()> {
+    let Some(axes) = report.as_object() else {
+        return Ok(());
+    };
+    for (axis, r) in axes {
+        if r.get("care_relative_residual").is_none() {
+            outln!("{axis}: {r}")?;
+            continue;
+        }
+        outln!(
+            "{axis} LQR: states {}, inputs {}; CARE relative residual {:.2e}",
+            r["states"],
+            r["inputs"],
+            r["care_relative_residual"].as_f64().unwrap_or(f64::NAN)
+        )?;
+        outln!("  K = {}", r["gain_k"])?;
+        outln!("  closed-loop poles (re, im) = {}", r["closed_loop_poles"])?;
+    }
+    Ok(())
+}
+
+// The flutter map's arguments, shared by `flutter` and `trade --job flutter`.
+
+/// `A:B` with 1 ≤ A < B, finite.
+pub(crate) fn parse_mach_range(text: &str) -> Result<(f64, f64)> {
+    let Some((a, b)) = text.split_once(':') else {
+        bail!("--mach-range must be A:B (e.g. 2:20), got `{text}`");
+    };
+    let parse = |s: &str| -> Result<f64> {
+        s.trim()
+            .parse::<f64>()
+            .with_context(|| format!("--mach-range: `{s}` is not a number"))
+    };
+    let (a, b) = (parse(a)?, parse(b)?);
+    if !(a.is_finite() && b.is_finite() && a >= 1.0 && b > a) {
+        bail!("--mach-range must have 1 <= A < B (supersonic aero models), got {a}:{b}");
+    }
+    Ok((a, b))
+}
+
+/// The Mach grid A, A + step, ..., B.
+pub(crate) fn flutter_mach_grid(range: (f64, f64), step: f64) -> Result<Vec<f64>> {
+    if !(step.is_finite() && step > 0.0) {
+        bail!("--mach-step must be a positive number, got {step}");
+    }
+    let intervals = ((range.1 - range.0) / step).round();
+    let limit = crate::limits::MAX_MACH_POINTS;
+    if intervals + 1.0 > limit as f64 {
+        bail!("--mach-step {step} gives {intervals:.3e} grid points; the limit is {limit} points");
+    }
+    let n = intervals as usize;
+    Ok(crate::analysis::flutter::panel::mach_grid(
+        range.0,
+        range.1,
+        n.max(1) + 1,
+    ))
+}
+
+/// The times of a flutter map within their limits: at most
+/// [`MAX_FLUTTER_TIMES`](crate::limits::MAX_FLUTTER_TIMES) of them, and the heating to the last
+/// at most [`MAX_HEATING_STEPS`](crate::limits::MAX_HEATING_STEPS) conduction steps.
+pub(crate) fn check_flutter_times(times_s: &[f64], dt_s: f64) -> Result<()> {
+    use crate::limits::{MAX_FLUTTER_TIMES, MAX_HEATING_STEPS, check_count};
+    check_count("--times-s (count)", times_s.len(), 1, MAX_FLUTTER_TIMES)?;
+    let last_s = times_s.last().copied().unwrap_or(0.0);
+    let steps = (last_s / dt_s).ceil();
+    if steps.is_nan() || steps > MAX_HEATING_STEPS as f64 {
+        bail!(
+            "--times-s up to {last_s:e} s at --dt-s {dt_s} is {steps:.3e} heating steps; the limit is {MAX_HEATING_STEPS} steps (shorten the times or lengthen the step)"
+        );
+    }
+    Ok(())
 }

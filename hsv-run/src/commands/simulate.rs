@@ -399,7 +399,7 @@ pub fn run(args: SimulateArgs, registry: &Registry) -> Result<()> {
         .aero_diagnostics()
         .iter()
         .flat_map(|(region, model, d)| {
-            super::aero::validity_warnings(model, &final_flight, d)
+            crate::aero_job::validity_warnings(model, &final_flight, d)
                 .into_iter()
                 .map(move |w| format!("{region}: {w}"))
         })
@@ -491,7 +491,7 @@ pub fn run(args: SimulateArgs, registry: &Registry) -> Result<()> {
             last.pitch_deg,
             last.q_deg_s
         )?;
-        print_gains(&design_report)?;
+        super::print_gains(&design_report)?;
         outln!("outputs in {}", folder.path.display())?;
     }
     outcome.map(|_| ()).map_err(|e| {
@@ -500,29 +500,6 @@ pub fn run(args: SimulateArgs, registry: &Registry) -> Result<()> {
             folder.path.display()
         )
     })
-}
-
-/// The gains of a designed controller (its `controller.json` report): an LQR axis in three
-/// lines, any other entry (a plugin's report) as `key: JSON`.
-pub(crate) fn print_gains(report: &serde_json::Value) -> Result<()> {
-    let Some(axes) = report.as_object() else {
-        return Ok(());
-    };
-    for (axis, r) in axes {
-        if r.get("care_relative_residual").is_none() {
-            outln!("{axis}: {r}")?;
-            continue;
-        }
-        outln!(
-            "{axis} LQR: states {}, inputs {}; CARE relative residual {:.2e}",
-            r["states"],
-            r["inputs"],
-            r["care_relative_residual"].as_f64().unwrap_or(f64::NAN)
-        )?;
-        outln!("  K = {}", r["gain_k"])?;
-        outln!("  closed-loop poles (re, im) = {}", r["closed_loop_poles"])?;
-    }
-    Ok(())
 }
 
 /// The CSV history and the PNG figures.

@@ -252,9 +252,9 @@ fn flutter_grid(
         .clone()
         .or_else(|| settings.mach_range.clone())
         .unwrap_or_else(|| "2:20".to_owned());
-    let range = super::flutter::parse_mach_range(&range_text)?;
+    let range = super::parse_mach_range(&range_text)?;
     let mach_step = args.mach_step.or(settings.mach_step).unwrap_or(3.0);
-    let machs = super::flutter::grid(range, mach_step)?;
+    let machs = super::flutter_mach_grid(range, mach_step)?;
     let times_s = if args.times_s.is_empty() {
         settings.times_s.clone().unwrap_or_else(|| vec![0.0, 20.0])
     } else {
@@ -270,7 +270,7 @@ fn flutter_grid(
     if !(dt_s.is_finite() && dt_s > 0.0) {
         bail!("--dt-s (or `trade.dt_s`) of a flutter study must be a positive number, got {dt_s}");
     }
-    super::flutter::check_times(&times_s, dt_s)?;
+    super::check_flutter_times(&times_s, dt_s)?;
     let alpha_deg = args.alpha_deg.unwrap_or(loaded.config.flight.alpha_deg);
     crate::limits::check_flow_angle_deg("--alpha-deg", alpha_deg)?;
     Ok(FlutterGrid {

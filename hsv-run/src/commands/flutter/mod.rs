@@ -16,9 +16,11 @@
 //! conduction (no POD training), the direct state derivative with the paper's forward
 //! difference compared at every grid point.
 
+mod shard;
+
 use std::path::Path;
 
-use anyhow::{Context, Result, bail};
+use anyhow::{Result, bail};
 use clap::{Args, ValueEnum};
 use hsv_core::aero::AeroModel;
 use hsv_core::config::LoadedConfig;
@@ -27,7 +29,7 @@ use serde_json::json;
 
 use super::{ConfigArg, JsonFlag, OutArgs, load_config};
 use crate::analysis::flutter::Instability;
-use crate::analysis::flutter::panel::{SimplySupportedPanel, mach_grid, panel_flutter};
+use crate::analysis::flutter::panel::{SimplySupportedPanel, panel_flutter};
 use crate::analysis::flutter::sweep::{
     FlutterBoundary, FlutterMap, FlutterModels, FlutterPoint, FlutterSetup, PointStatus,
     flutter_map, status_text,
@@ -139,53 +141,6 @@ pub struct FlutterArgs {
     pub shards: super::shard::ShardArgs,
 }
 
-/// `A:B` with 1 ≤ A < B, finite.
-pub(super) fn parse_mach_range(text: &str) -> Result<(f64, f64)> {
-    let Some((a, b)) = text.split_once(':') else {
-        bail!("--mach-range must be A:B (e.g. 2:20), got `{text}`");
-    };
-    let parse = |s: &str| -> Result<f64> {
-        s.trim()
-            .parse::<f64>()
-            .with_context(|| format!("--mach-range: `{s}` is not a number"))
-    };
-    let (a, b) = (parse(a)?, parse(b)?);
-    if !(a.is_finite() && b.is_finite() && a >= 1.0 && b > a) {
-        bail!("--mach-range must have 1 <= A < B (supersonic aero models), got {a}:{b}");
-    }
-    Ok((a, b))
-}
-
-/// The Mach grid A, A + step, ..., B.
-pub(super) fn grid(range: (f64, f64), step: f64) -> Result<Vec<f64>> {
-    if !(step.is_finite() && step > 0.0) {
-        bail!("--mach-step must be a positive number, got {step}");
-    }
-    let intervals = ((range.1 - range.0) / step).round();
-    let limit = crate::limits::MAX_MACH_POINTS;
-    if intervals + 1.0 > limit as f64 {
-        bail!("--mach-step {step} gives {intervals:.3e} grid points; the limit is {limit} points");
-    }
-    let n = intervals as usize;
-    Ok(mach_grid(range.0, range.1, n.max(1) + 1))
-}
-
-/// The times of a flutter map within their limits: at most
-/// [`MAX_FLUTTER_TIMES`](crate::limits::MAX_FLUTTER_TIMES) of them, and the heating to the last
-/// at most [`MAX_HEATING_STEPS`](crate::limits::MAX_HEATING_STEPS) conduction steps.
-pub(super) fn check_times(times_s: &[f64], dt_s: f64) -> Result<()> {
-    use crate::limits::{MAX_FLUTTER_TIMES, MAX_HEATING_STEPS, check_count};
-    check_count("--times-s (count)", times_s.len(), 1, MAX_FLUTTER_TIMES)?;
-    let last_s = times_s.last().copied().unwrap_or(0.0);
-    let steps = (last_s / dt_s).ceil();
-    if steps.is_nan() || steps > MAX_HEATING_STEPS as f64 {
-        bail!(
-            "--times-s up to {last_s:e} s at --dt-s {dt_s} is {steps:.3e} heating steps; the limit is {MAX_HEATING_STEPS} steps (shorten the times or lengthen the step)"
-        );
-    }
-    Ok(())
-}
-
 /// Runs the flutter analysis and writes the run folder.
 pub fn run(args: FlutterArgs, registry: &Registry) -> Result<()> {
     let (loaded, registry) = load_config(args.config.config.as_deref(), registry)?;
@@ -198,7 +153,7 @@ pub fn run(args: FlutterArgs, registry: &Registry) -> Result<()> {
     }
     let (setup, times) = map_setup(&args, &loaded)?;
     if args.shards.is_sharded() {
-        return super::shard::flutter(&args, &loaded, &registry, &setup, &machs, &times);
+        return shard::run_shard(&args, &loaded, &registry, &setup, &machs, &times);
     }
     let (folder, map, summary) = map_run(&args, &setup, &registry, &machs, &times)?;
     if args.json.json {
@@ -232,8 +187,8 @@ fn map_machs(args: &FlutterArgs) -> Result<Vec<f64>> {
             args.altitude_m
         );
     }
-    let range = parse_mach_range(&args.mach_range)?;
-    grid(range, args.mach_step)
+    let range = super::parse_mach_range(&args.mach_range)?;
+    super::flutter_mach_grid(range, args.mach_step)
 }
 
 /// The analysis of a flutter map and its times in the flow, from the flags and the config.
@@ -252,7 +207,7 @@ fn map_setup(args: &FlutterArgs, loaded: &LoadedConfig) -> Result<(FlutterSetup,
     if !(args.dt_s.is_finite() && args.dt_s > 0.0) {
         bail!("--dt-s must be a positive number, got {}", args.dt_s);
     }
-    check_times(&times, args.dt_s)?;
+    super::check_flutter_times(&times, args.dt_s)?;
     let configured = loaded
         .config
         .regions

@@ -2350,15 +2350,48 @@ impl PartitionedVehicle {
     }
 
     /// Brings the modal coordinates of the body and the surfaces to static equilibrium at the
-    /// state's rigid motion (q̇ = 0): q ← q + K⁻¹ M q̈ until every modal acceleration is below
+    /// state's rigid motion (q̇ = 0): q ← q + ω K⁻¹ M q̈ until every modal acceleration is below
     /// `tolerance` (1/s²), which includes aero, engine, gravity and inertial relief through the
     /// root motion. Returns the iterations. Allocates (trim and start-up only).
+    ///
+    /// ω = 1 first (the plain fixed point q ← K⁻¹ F(q)); when it fails, again from the same
+    /// start under-relaxed, ω = 1/2 then 1/4. With J = K⁻¹ ∂F/∂q the relaxed iteration's
+    /// factors are 1 − ω (1 − λ(J)): aero loads that stiffen the structure strongly (λ < −1)
+    /// make the plain iteration overshoot and diverge while a relaxed one converges; λ > 1 is
+    /// static divergence, and no relaxation converges (the plain iteration's error is returned).
     pub fn settle(
         &mut self,
         state: &mut VehicleState,
         controls: &FlightControls,
         tolerance: f64,
         max_iterations: usize,
+        out: &mut VehicleDerivative,
+    ) -> Result<usize, VehicleError> {
+        let start = state.clone();
+        let plain = self.settle_relaxed(state, controls, tolerance, max_iterations, 1.0, out);
+        let Err(plain_error) = plain else {
+            return plain;
+        };
+        for relaxation in [0.5, 0.25] {
+            state.clone_from(&start);
+            if let Ok(iterations) =
+                self.settle_relaxed(state, controls, tolerance, max_iterations, relaxation, out)
+            {
+                return Ok(iterations);
+            }
+        }
+        state.clone_from(&start);
+        Err(plain_error)
+    }
+
+    /// [`Self::settle`] at one relaxation factor ω.
+    fn settle_relaxed(
+        &mut self,
+        state: &mut VehicleState,
+        controls: &FlightControls,
+        tolerance: f64,
+        max_iterations: usize,
+        relaxation: f64,
         out: &mut VehicleDerivative,
     ) -> Result<usize, VehicleError> {
         let body_k_m = {
@@ -2387,11 +2420,11 @@ impl PartitionedVehicle {
                 return Ok(iteration);
             }
             if let Some(km) = &body_k_m {
-                state.body_modes.q += km * &out.body_modes.q_ddot;
+                state.body_modes.q += relaxation * (km * &out.body_modes.q_ddot);
             }
             for (i, km) in surface_k_m.iter().enumerate() {
                 if let Some(km) = km {
-                    state.surface_modes[i].q += km * &out.surface_modes[i].q_ddot;
+                    state.surface_modes[i].q += relaxation * (km * &out.surface_modes[i].q_ddot);
                 }
             }
         }

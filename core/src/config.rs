@@ -6,10 +6,7 @@
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 
-use serde::de::DeserializeOwned;
-
 use crate::aero::ReferenceValues;
-use crate::error::ModelError;
 use crate::gas::PerfectGas;
 use crate::mesh::{PanelMesh, RegionKind};
 use crate::region::{ModelSettings, RegionGeometry, RegionInfo, merge_tables};
@@ -24,24 +21,8 @@ pub const SAMPLE_CONFIG_TOML: &str = include_str!("../../configs/sample-hsv.toml
 /// Name under which the embedded sample config is reported in messages.
 pub const EMBEDDED_CONFIG_NAME: &str = "<embedded configs/sample-hsv.toml>";
 
-/// A config error: where (file and dotted key path) and what.
-#[derive(Debug, Clone, PartialEq, thiserror::Error)]
-#[error("{file}: {}{message}", if key_path.is_empty() { String::new() } else { format!("key `{key_path}`: ") })]
-pub struct ConfigError {
-    pub file: String,
-    pub key_path: String,
-    pub message: String,
-}
-
-impl From<ConfigError> for ModelError {
-    fn from(error: ConfigError) -> Self {
-        ModelError::Settings {
-            file: error.file,
-            key_path: error.key_path,
-            message: error.message,
-        }
-    }
-}
+use crate::settings::first_line;
+pub use crate::settings::{ConfigError, parse_table};
 
 /// The flight condition a command starts from.
 #[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]
@@ -632,34 +613,6 @@ impl LoadedConfig {
         }
         problems
     }
-}
-
-/// Deserializes `table` (found at `key_path` in `file`) into `T`, naming the full key path of
-/// the first offending key.
-pub fn parse_table<T: DeserializeOwned>(
-    table: &toml::Table,
-    file: &str,
-    key_path: &str,
-) -> Result<T, ConfigError> {
-    let value = toml::Value::Table(table.clone());
-    serde_path_to_error::deserialize(value).map_err(|error| {
-        let inner = error.path().to_string();
-        let path = match (key_path.is_empty(), inner == ".") {
-            (true, _) => inner,
-            (false, true) => key_path.to_owned(),
-            (false, false) => format!("{key_path}.{inner}"),
-        };
-        ConfigError {
-            file: file.to_owned(),
-            key_path: path,
-            message: first_line(&error.inner().to_string()),
-        }
-    })
-}
-
-/// The first line of a message: deserializer errors append context lines the key path already gives.
-fn first_line(message: &str) -> String {
-    message.lines().next().unwrap_or_default().trim().to_owned()
 }
 
 /// Largest magnitude of a flow angle (α, β), deg: an angle is one turn at most, so 720° is a

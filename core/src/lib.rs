@@ -28,6 +28,7 @@ pub mod flow;
 pub mod propulsion;
 pub mod reduced_order;
 pub mod registry;
+pub mod settings;
 pub mod structure;
 pub mod thermal;
 

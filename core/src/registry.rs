@@ -124,7 +124,7 @@ impl<'a> ModelContext<'a> {
     ///
     /// `T` should be `#[serde(deny_unknown_fields)]` so misspelt keys are caught.
     pub fn parse_settings<T: DeserializeOwned>(&self) -> Result<T, ModelError> {
-        crate::config::parse_table(self.settings, self.file, self.key_path)
+        crate::settings::parse_table(self.settings, self.file, self.key_path)
             .map_err(ModelError::from)
     }
 

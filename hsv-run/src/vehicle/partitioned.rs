@@ -2468,7 +2468,7 @@ impl PartitionedVehicle {
     }
 }
 
-impl crate::analysis::trim::SteadyFlight for PartitionedVehicle {
+impl super::rigid::SteadyFlight for PartitionedVehicle {
     fn steady_accelerations(
         &mut self,
         mach: f64,

@@ -367,3 +367,44 @@ impl RigidVehicle {
         ))
     }
 }
+
+/// A model trim can drive: the accelerations of steady flight at given controls.
+pub trait SteadyFlight {
+    /// u̇, ẇ, q̇ and the loads at `controls` and the request's Mach and altitude.
+    fn steady_accelerations(
+        &mut self,
+        mach: f64,
+        altitude_m: f64,
+        controls: &Controls,
+    ) -> Result<(Accelerations, RigidLoads), hsv_core::ModelError>;
+
+    /// Mass of the vehicle, kg (reported).
+    fn mass_kg(&self) -> f64;
+
+    /// The gas the vehicle flies in (the trim's freestream, for its envelope checks).
+    fn gas(&self) -> PerfectGas;
+
+    /// Body modal amplitudes at the last evaluated point (empty for a rigid vehicle).
+    fn modal_amplitudes(&self) -> Vec<(String, f64)> {
+        Vec::new()
+    }
+}
+
+impl SteadyFlight for RigidVehicle {
+    fn steady_accelerations(
+        &mut self,
+        mach: f64,
+        altitude_m: f64,
+        controls: &Controls,
+    ) -> Result<(Accelerations, RigidLoads), hsv_core::ModelError> {
+        self.accelerations(mach, altitude_m, controls)
+    }
+
+    fn mass_kg(&self) -> f64 {
+        self.mass_properties().mass_kg
+    }
+
+    fn gas(&self) -> PerfectGas {
+        RigidVehicle::gas(self)
+    }
+}

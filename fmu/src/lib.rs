@@ -359,7 +359,7 @@ fn guarded<T>(f: impl FnOnce() -> Result<T>) -> Result<T> {
 /// Logs `error` through the importer's callback (and to stderr, which importers that drop
 /// their log do not hide).
 fn report(context: &dyn Context<HsvVehicle>, error: &anyhow::Error) {
-    let message = format!("{error:#}");
+    let message = hsv_run::error_line::error_line(error);
     eprintln!("hsv_fmu: error: {message}");
     context.log(
         Fmi3Error::Error.into(),
@@ -398,7 +398,7 @@ impl UserModel for HsvVehicle {
         let stepped =
             guarded(|| self.advance(current_communication_point, communication_step_size));
         if let Err(e) = stepped {
-            self.failure = Some(format!("{e:#}"));
+            self.failure = Some(hsv_run::error_line::error_line(&e));
             report(context, &e);
             return Err(Fmi3Error::Error);
         }

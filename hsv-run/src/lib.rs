@@ -8,6 +8,7 @@ pub mod commands;
 pub mod control;
 pub mod disturbance;
 pub mod dynamics;
+pub mod error_line;
 pub mod limits;
 pub mod linked;
 pub mod npz;

@@ -106,7 +106,11 @@ fn main() -> ExitCode {
         }
         Err(error) => {
             // Nothing more to do if stderr is gone too.
-            let _ = writeln!(std::io::stderr(), "error: {}", chain(&error));
+            let _ = writeln!(
+                std::io::stderr(),
+                "error: {}",
+                hsv_run::error_line::error_line(&error)
+            );
             ExitCode::FAILURE
         }
     }
@@ -139,22 +143,6 @@ fn quiet_on_closed_stdout() {
 }
 
 /// One line: the error and its causes, outermost first.
-/// The error and its causes, `: `-joined, each said once: a message that already ends with its
-/// cause's (`region `propulsion`: {source}`) is not followed by the cause again.
-fn chain(error: &anyhow::Error) -> String {
-    let mut text = String::new();
-    for cause in error.chain().map(|e| e.to_string()) {
-        if text.ends_with(&cause) {
-            continue;
-        }
-        if !text.is_empty() {
-            text.push_str(": ");
-        }
-        text.push_str(&cause);
-    }
-    text
-}
-
 fn run(cli: Cli) -> Result<()> {
     let mut registry = hsv_run::registry()?;
     for path in &cli.plugins {
@@ -187,26 +175,5 @@ fn run(cli: Cli) -> Result<()> {
         Command::Merge(args) => commands::merge::run(args, &registry),
         Command::Rom(args) => commands::rom::run(args, &registry),
         Command::Fmu(args) => commands::fmu::run(args, &registry),
-    }
-}
-
-#[cfg(test)]
-mod tests {
-    use super::chain;
-
-    /// A vehicle error quotes its model's message and also chains it as its source: the error
-    /// line says it once, while distinct causes are all kept.
-    #[test]
-    fn the_error_line_says_each_cause_once() {
-        let model = hsv_core::ModelError::inconsistent("scramjet-1d", "the flow would expand");
-        let vehicle = hsv_run::vehicle::partitioned::VehicleError::Model {
-            region: "propulsion".to_owned(),
-            source: model,
-        };
-        let error = anyhow::Error::from(vehicle).context("trimming the flexible vehicle");
-        assert_eq!(
-            chain(&error),
-            "trimming the flexible vehicle: region `propulsion`: scramjet-1d: the flow would expand"
-        );
     }
 }

@@ -246,11 +246,7 @@ impl RunFolder {
         summary: impl FnOnce() -> serde_json::Value,
     ) -> Result<T> {
         job(self).inspect_err(|error| {
-            let reason = error
-                .chain()
-                .map(ToString::to_string)
-                .collect::<Vec<_>>()
-                .join(": ");
+            let reason = crate::error_line::error_line(error);
             // The job's error is the one to report; a second failure here adds nothing.
             let _ = self.write_summary(summary(), &RunStatus::Failed(reason));
         })

@@ -27,12 +27,12 @@ pyo3::create_exception!(
 
 /// An analysis error as `HsvError`, with its whole chain of causes.
 fn hsv_error(e: impl Into<anyhow::Error>) -> PyErr {
-    HsvError::new_err(format!("{:#}", e.into()))
+    HsvError::new_err(hsv_run::error_line::error_line(&e.into()))
 }
 
 /// A config error as `ConfigError`.
 fn config_error(e: impl Into<anyhow::Error>) -> PyErr {
-    ConfigError::new_err(format!("{:#}", e.into()))
+    ConfigError::new_err(hsv_run::error_line::error_line(&e.into()))
 }
 
 /// The built-in registry (every model crate linked into this module).

@@ -426,7 +426,7 @@ impl Flight {
         if self.vehicle.stiffness_heated() {
             let (loaded, registry, options) = &self.source;
             self.vehicle = flight_vehicle(loaded, registry, options, &self.settings)
-                .map_err(|e| VehicleError::Input(format!("{e:#}")))?;
+                .map_err(|e| VehicleError::Input(crate::error_line::error_line(&e)))?;
         }
         self.vehicle
             .set_disturbances(self.initial.disturbances.clone());

@@ -147,7 +147,7 @@ fn linearize_point(
             };
             (Some(model), None)
         }
-        Err(e) => (None, Some(format!("{e:#}"))),
+        Err(e) => (None, Some(crate::error_line::error_line(&e))),
     };
     GridPoint {
         index,

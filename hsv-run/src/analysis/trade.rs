@@ -348,13 +348,7 @@ pub fn run_case(
             TradeJob::Flutter => flutter_case(spec, &loaded, registry, &mut result),
         });
     if let Err(error) = outcome {
-        result.failure = Some(
-            error
-                .chain()
-                .map(ToString::to_string)
-                .collect::<Vec<_>>()
-                .join(": "),
-        );
+        result.failure = Some(crate::error_line::error_line(&error));
     }
     result.wall_time_s = start.elapsed().as_secs_f64();
     result

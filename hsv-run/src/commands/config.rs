@@ -51,7 +51,7 @@ pub fn check_config(path: &Path, registry: &Registry, json: bool) -> Result<()> 
             .map_err(anyhow::Error::from)
             .and_then(|sets| Ok(RigidVehicle::new(sets)?));
         if let Err(e) = rigid {
-            problems.push(format!("{e:#}"));
+            problems.push(crate::error_line::error_line(&e));
         }
     }
     if json {

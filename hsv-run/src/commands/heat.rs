@@ -568,14 +568,14 @@ fn structure_transfer(
             conduction.name()
         )
     })?;
-    let on = match target {
-        Some(grid) => format!(
+    // A transfer exists only between two grids.
+    Ok(transfer.zip(target).map(|(transfer, grid)| {
+        let on = format!(
             "the {structure_name} grid ({} x {} elements)",
             grid.elements_chordwise, grid.elements_spanwise
-        ),
-        None => format!("the {structure_name} nodes"),
-    };
-    Ok(transfer.map(|transfer| (transfer, on)))
+        );
+        (transfer, on)
+    }))
 }
 
 /// The final structural temperatures as the `node,temperature_k` CSV that

@@ -678,26 +678,17 @@ fn body_region_loads(
     Ok((body_aero?, engine_loads?))
 }
 
-/// One lifting surface's aero on its Ritz-deformed mesh rotated by its elevon, its
-/// generalized forces (aero and thermal) into `out`, and its skin friction about the pivot; its
-/// mesh moves with its own modes and the body's at the pivot (the modal states given).
-///
-/// Inside an open step (`hold_friction`), the skin friction is evaluated at the step's first
-/// stage, the accepted state, and held by the others: friction reaches only the root loads, and
-/// it changes on the flight's time scale (the elevon ramps over 0.5 s), so holding it over one
-/// 1 ms step moves the state by O(Δt · dF/dt) while sparing three of its four evaluations.
-/// Outside a step (trim, linearization, flutter) and with `body_loads_dt_s = 0` (the every-stage
-/// reference) it is evaluated every time.
-fn surface_region_loads(
+/// One lifting surface's aero on its Ritz-deformed mesh rotated by its elevon (the mesh moves
+/// with its own modes and the body's at the pivot, the modal states given): the panel solution
+/// and, for a model with memory (convolution ROM), the generalized forces from its modal
+/// history (`true`). Returns the elevon's rotation.
+fn surface_aero(
     s: &mut Surface,
     (modes, body_modes): (&crate::dynamics::ModalState, &crate::dynamics::ModalState),
     elevon: &ElevonCommand,
     flight: &FlightCondition,
     time_s: f64,
-    hold_friction: bool,
-    out: &mut DVector<f64>,
-) -> Result<(), VehicleError> {
-    let p_inf = flight.freestream.pressure_pa;
+) -> Result<(nalgebra::Rotation3<f64>, bool), VehicleError> {
     let err = model_error(&s.name);
     let deflection = elevon.deflection_rad(s.side);
     // Elastic displacement, then the elevon's rotation about the torque tube (what
@@ -759,16 +750,43 @@ fn surface_region_loads(
                 Some(&mut s.solution),
             )
             .map_err(&err)?;
+            Ok((rotation, true))
         }
         _ => {
             s.aero
                 .evaluate(&s.deflected, flight, &motion, &mut s.solution)
                 .map_err(&err)?;
-            // The modes turn with the surface, so A n·φ is that of the reference geometry.
-            s.projection
-                .generalized_forces(&s.solution.pressure_pa, p_inf, &mut s.generalized)
-                .map_err(|e| err(ModelError::inconsistent("coupling", e.to_string())))?;
+            Ok((rotation, false))
         }
+    }
+}
+
+/// One lifting surface's aero ([`surface_aero`]), its generalized forces (aero and thermal)
+/// into `out`, and its skin friction about the pivot.
+///
+/// Inside an open step (`hold_friction`), the skin friction is evaluated at the step's first
+/// stage, the accepted state, and held by the others: friction reaches only the root loads, and
+/// it changes on the flight's time scale (the elevon ramps over 0.5 s), so holding it over one
+/// 1 ms step moves the state by O(Δt · dF/dt) while sparing three of its four evaluations.
+/// Outside a step (trim, linearization, flutter) and with `body_loads_dt_s = 0` (the every-stage
+/// reference) it is evaluated every time.
+fn surface_region_loads(
+    s: &mut Surface,
+    modes: (&crate::dynamics::ModalState, &crate::dynamics::ModalState),
+    elevon: &ElevonCommand,
+    flight: &FlightCondition,
+    time_s: f64,
+    hold_friction: bool,
+    out: &mut DVector<f64>,
+) -> Result<(), VehicleError> {
+    let p_inf = flight.freestream.pressure_pa;
+    let (rotation, from_history) = surface_aero(s, modes, elevon, flight, time_s)?;
+    let err = model_error(&s.name);
+    if !from_history {
+        // The modes turn with the surface, so A n·φ is that of the reference geometry.
+        s.projection
+            .generalized_forces(&s.solution.pressure_pa, p_inf, &mut s.generalized)
+            .map_err(|e| err(ModelError::inconsistent("coupling", e.to_string())))?;
     }
     // Pressure and skin friction on the deflected surface, about the pivot: the applied load of
     // the root loads' force summation, which works in the surface's own frame.
@@ -819,7 +837,6 @@ fn heat_flux_due(t: &SurfaceThermal, time_s: f64, rates: &HeatingRates) -> bool 
 /// modes, the body's, the elevon and its flight condition), held until it is due again. The
 /// aero is evaluated here, not read from the last derivative: inside a step that is the last
 /// Runge-Kutta stage's predictor, not a state the flight passes through.
-#[allow(clippy::too_many_arguments)]
 fn refresh_heat_flux(
     s: &mut Surface,
     modes: (&crate::dynamics::ModalState, &crate::dynamics::ModalState),
@@ -827,7 +844,6 @@ fn refresh_heat_flux(
     flight: &FlightCondition,
     time_s: f64,
     rates: &HeatingRates,
-    scratch: &mut DVector<f64>,
 ) -> Result<(), VehicleError> {
     if !s
         .thermal
@@ -836,7 +852,8 @@ fn refresh_heat_flux(
     {
         return Ok(());
     }
-    surface_region_loads(s, modes, elevon, flight, time_s, false, scratch)?;
+    // The panel solution only: the step's first stage evaluates the loads at this state.
+    surface_aero(s, modes, elevon, flight, time_s)?;
     let err = model_error(&s.name);
     let Some(t) = &mut s.thermal else {
         return Ok(());
@@ -1393,34 +1410,21 @@ impl PartitionedVehicle {
         self.update_surface_flights(state, &flight)?;
         let elevon = controls.elevon;
         let body_modes = &state.body_modes;
-        let refresh = |(((s, scratch), modes), flight): (
-            (
-                (&mut Surface, &mut DVector<f64>),
-                &crate::dynamics::ModalState,
-            ),
+        let refresh = |((s, modes), flight): (
+            (&mut Surface, &crate::dynamics::ModalState),
             &FlightCondition,
         )| {
-            refresh_heat_flux(
-                s,
-                (modes, body_modes),
-                &elevon,
-                flight,
-                time_s,
-                &rates,
-                scratch,
-            )
+            refresh_heat_flux(s, (modes, body_modes), &elevon, flight, time_s, &rates)
         };
         if side_by_side() {
             self.surfaces
                 .par_iter_mut()
-                .zip(self.loads.surface_generalized_forces.par_iter_mut())
                 .zip(state.surface_modes.par_iter())
                 .zip(self.surface_flights.par_iter())
                 .try_for_each(refresh)
         } else {
             self.surfaces
                 .iter_mut()
-                .zip(self.loads.surface_generalized_forces.iter_mut())
                 .zip(state.surface_modes.iter())
                 .zip(self.surface_flights.iter())
                 .try_for_each(refresh)

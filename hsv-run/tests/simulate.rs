@@ -21,6 +21,29 @@ fn trimmed() -> (
     )
 }
 
+/// The heated partitioned vehicle (coarse surfaces, full-order conduction) trimmed, heating at
+/// coarse rates (10 ms conduction, 20 ms heat flux, 50 ms stiffness) from 293 K.
+fn heated_trimmed() -> (
+    PartitionedVehicle,
+    hsv_run::dynamics::VehicleState,
+    FlightControls,
+) {
+    use hsv_run::vehicle::partitioned::{HeatingRates, SurfaceModel};
+    let loaded = common::parse(
+        &common::coarse_text().replace("conduction = \"pod\"", "conduction = \"full-order\""),
+    );
+    let (mut vehicle, state, controls) = common::trimmed(&loaded, SurfaceModel::Partitioned, true);
+    vehicle
+        .start_heating(&HeatingRates {
+            conduction_s: 0.01,
+            heat_flux_s: 0.02,
+            stiffness_s: 0.05,
+            initial_k: 293.0,
+        })
+        .expect("heating");
+    (vehicle, state, controls)
+}
+
 fn fly(duration_s: f64, inputs: &Inputs) -> Vec<Sample> {
     fly_with(duration_s, 0.002, inputs)
 }
@@ -237,25 +260,14 @@ fn a_duration_that_is_not_a_whole_number_of_steps_ends_exactly_at_it() {
 
 #[test]
 fn a_run_resumed_from_its_restart_file_continues_bit_for_bit() {
-    use hsv_run::vehicle::partitioned::{HeatingRates, SurfaceModel, VehicleRestart};
+    use hsv_run::vehicle::partitioned::VehicleRestart;
     // The heated partitioned vehicle (coarse surfaces), trimmed and flown for 0.2 s in one go,
     // and again stopped at 0.102 s, written to JSON, read back into a freshly built vehicle and
     // resumed: the final states must be identical to the last bit. The body region runs every
     // other step, so the restart falls between two of its evaluations and the resumed run must
     // extrapolate from the saved ones.
-    let loaded = common::parse(
-        &common::coarse_text().replace("conduction = \"pod\"", "conduction = \"full-order\""),
-    );
-    let rates = HeatingRates {
-        conduction_s: 0.01,
-        heat_flux_s: 0.02,
-        stiffness_s: 0.05,
-        initial_k: 293.0,
-    };
     let start = || {
-        let (mut vehicle, state, controls) =
-            common::trimmed(&loaded, SurfaceModel::Partitioned, true);
-        vehicle.start_heating(&rates).expect("heating");
+        let (mut vehicle, state, controls) = heated_trimmed();
         vehicle.set_body_load_rate(hsv_run::vehicle::body_rate::BodyLoadRate::Interval(0.004));
         (vehicle, state, controls)
     };
@@ -408,27 +420,12 @@ fn a_gliding_rigid_vehicle_loses_kinetic_and_potential_energy_to_the_work_of_its
 #[test]
 fn the_heat_flux_comes_from_the_accepted_state_not_the_last_stage() {
     use hsv_core::coupling::ElevonCommand;
-    use hsv_run::vehicle::partitioned::{HeatingRates, SurfaceModel};
     // Issue 25: the in-flight heating read the surface aero the last Runge-Kutta stage left
     // (the predictor at t + dt), not a state the flight passes through. Two heated vehicles
     // open the same step from the same accepted state; one then evaluates a stage far from it
     // (the elevon 10 degrees off), the other none; both commit the same end state. The step's
     // conduction must see the same heat flux: the surfaces' temperatures agree to the last bit.
-    let loaded = common::parse(
-        &common::coarse_text().replace("conduction = \"pod\"", "conduction = \"full-order\""),
-    );
-    let rates = HeatingRates {
-        conduction_s: 0.01,
-        heat_flux_s: 0.02,
-        stiffness_s: 0.05,
-        initial_k: 293.0,
-    };
-    let start = || {
-        let (mut vehicle, state, controls) =
-            common::trimmed(&loaded, SurfaceModel::Partitioned, true);
-        vehicle.start_heating(&rates).expect("heating");
-        (vehicle, state, controls)
-    };
+    let start = heated_trimmed;
     let (mut staged, state, controls) = start();
     let (mut unstaged, _, _) = start();
     for vehicle in [&mut staged, &mut unstaged] {

@@ -22,7 +22,7 @@ use approx::assert_relative_eq;
 use common::{CP, RHO, constant_material, faces};
 use hsv_core::material::{Material, MaterialSetting};
 use hsv_core::mesh::{PanelMesh, PanelSpec, RegionKind};
-use hsv_core::registry::{ModelContext, Registry};
+use hsv_core::registry::Registry;
 use hsv_core::surface_grid::SurfaceGrid;
 use hsv_core::thermal::ConductionModel;
 use hsv_model_conduction::full_order::LayerSetting;
@@ -230,21 +230,14 @@ fn pod_reproduces_the_built_up_slab() {
     }
 }
 
-fn context<'a>(settings: &'a toml::Table) -> ModelContext<'a> {
-    ModelContext {
-        settings,
-        key_path: "models.full-order",
-        file: "sample-hsv.toml",
-        region: hsv_core::testing::sample_region("right_surface"),
-        registry: hsv_core::testing::builtin_registry(),
-    }
-}
-
 fn create(text: &str) -> Result<Box<dyn ConductionModel>, String> {
     let settings: toml::Table = toml::from_str(text).unwrap();
     Registry::builtin()
         .unwrap()
-        .create::<dyn ConductionModel>("full-order", &context(&settings))
+        .create::<dyn ConductionModel>(
+            "full-order",
+            &common::sample_context(&settings, "models.full-order"),
+        )
         .map_err(|e| e.to_string())
 }
 

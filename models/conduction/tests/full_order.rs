@@ -11,7 +11,7 @@ use common::{CP, K, RHO, constant_material, faces};
 use hsv_core::config::LoadedConfig;
 use hsv_core::material::{Material, MaterialSetting};
 use hsv_core::mesh::RegionKind;
-use hsv_core::registry::{ModelContext, Registry};
+use hsv_core::registry::Registry;
 use hsv_core::surface_grid::SurfaceGrid;
 use hsv_core::thermal::ConductionModel;
 use hsv_model_conduction::{FullOrder, FullOrderSettings};
@@ -287,28 +287,17 @@ fn a_protection_layer_shields_the_structure() {
     );
 }
 
-fn sample_context<'a>(_config: &'a toml::Table, settings: &'a toml::Table) -> ModelContext<'a> {
-    ModelContext {
-        settings,
-        key_path: "models.full-order",
-        file: "sample-hsv.toml",
-        region: hsv_core::testing::sample_region("right_surface"),
-        registry: hsv_core::testing::builtin_registry(),
-    }
-}
-
 /// The registered model on the sample lifting surface: every wetted panel maps to the grid,
 /// a uniform flux raises the stored energy by exactly Σ q A Δt, the root cap takes no heat.
 #[test]
 fn registered_model_heats_the_sample_lifting_surface() {
     let loaded = LoadedConfig::sample().unwrap();
-    let config = loaded.raw.clone();
     let settings = toml::Table::new();
     let registry = Registry::builtin().unwrap();
     let mut model = registry
         .create::<dyn hsv_core::thermal::ConductionModel>(
             "full-order",
-            &sample_context(&config, &settings),
+            &common::sample_context(&settings, "models.full-order"),
         )
         .unwrap();
     let mut state = model.uniform_state(293.0).unwrap();

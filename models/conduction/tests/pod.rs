@@ -12,7 +12,6 @@ mod common;
 use std::sync::OnceLock;
 
 use common::{convective, full_order, lifting, mesh, running_lengths};
-use hsv_core::config::LoadedConfig;
 use hsv_core::mesh::PanelMesh;
 use hsv_core::registry::{ModelContext, Registry};
 use hsv_core::thermal::ConductionModel;
@@ -145,8 +144,6 @@ fn basis_is_saved_and_reloaded_by_the_registered_model() {
     assert!((back.modes.clone() - &b.modes).amax() < 1e-15);
     assert_eq!(back.singular_values.len(), b.singular_values.len());
 
-    let loaded = LoadedConfig::sample().unwrap();
-    let config = loaded.raw.clone();
     let mut settings = toml::Table::new();
     settings.insert(
         "basis_file".into(),
@@ -155,7 +152,10 @@ fn basis_is_saved_and_reloaded_by_the_registered_model() {
     settings.insert("modes".into(), toml::Value::Integer(12));
     let registry = Registry::builtin().unwrap();
     let model = registry
-        .create::<dyn hsv_core::thermal::ConductionModel>("pod", &context(&settings, &config))
+        .create::<dyn hsv_core::thermal::ConductionModel>(
+            "pod",
+            &common::sample_context(&settings, "models.pod"),
+        )
         .unwrap();
     assert_eq!(model.n_states(), 12);
     let state = model.uniform_state(293.0).unwrap();
@@ -166,7 +166,10 @@ fn basis_is_saved_and_reloaded_by_the_registered_model() {
     // Too many modes for the basis.
     settings.insert("modes".into(), toml::Value::Integer(40));
     let err = registry
-        .create::<dyn hsv_core::thermal::ConductionModel>("pod", &context(&settings, &config))
+        .create::<dyn hsv_core::thermal::ConductionModel>(
+            "pod",
+            &common::sample_context(&settings, "models.pod"),
+        )
         .err()
         .unwrap()
         .to_string();
@@ -184,7 +187,7 @@ fn basis_is_saved_and_reloaded_by_the_registered_model() {
             "pod",
             &ModelContext {
                 region: &other,
-                ..context(&settings, &config)
+                ..common::sample_context(&settings, "models.pod")
             },
         )
         .err()
@@ -195,7 +198,10 @@ fn basis_is_saved_and_reloaded_by_the_registered_model() {
     // No basis file.
     std::fs::remove_file(&path).unwrap();
     let err = registry
-        .create::<dyn hsv_core::thermal::ConductionModel>("pod", &context(&settings, &config))
+        .create::<dyn hsv_core::thermal::ConductionModel>(
+            "pod",
+            &common::sample_context(&settings, "models.pod"),
+        )
         .err()
         .unwrap()
         .to_string();
@@ -204,16 +210,6 @@ fn basis_is_saved_and_reloaded_by_the_registered_model() {
         "{err}"
     );
     let _ = std::fs::remove_dir_all(&dir);
-}
-
-fn context<'a>(settings: &'a toml::Table, _config: &'a toml::Table) -> ModelContext<'a> {
-    ModelContext {
-        settings,
-        key_path: "models.pod",
-        file: "sample-hsv.toml",
-        region: hsv_core::testing::sample_region("right_surface"),
-        registry: hsv_core::testing::builtin_registry(),
-    }
 }
 
 /// Heat flux q = 1e5 (T_ref − T_w) / 300 K W/m² with T_ref = 1200 K: a test stand-in for a

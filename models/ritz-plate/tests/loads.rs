@@ -9,7 +9,7 @@ use hsv_core::aero::Loads;
 use hsv_core::material::Material;
 use hsv_core::structure::StructureModel;
 use hsv_core::surface_grid::SurfaceGrid;
-use hsv_model_ritz_plate::plate::{ElementState, PlateModel};
+use hsv_model_ritz_plate::plate::PlateModel;
 use hsv_model_ritz_plate::{RitzPlate, Settings};
 use nalgebra::{DVector, Point3, Vector3};
 
@@ -351,15 +351,7 @@ fn cantilever_strip_curls_to_the_free_thermal_curvature() {
             .expect("temperatures");
         // Full order: K u = f_T at 293 K (the mean temperature is the reference: E, no stress).
         let plate = model.plate();
-        let mut states = vec![ElementState::REFERENCE; plate.n_elements()];
-        plate
-            .element_states(&mean, Some(&diff), &mut states)
-            .expect("states");
-        let f = plate.thermal_moment_load(&states);
-        let full = plate
-            .static_solve(&nalgebra::DMatrix::from_column_slice(f.len(), 1, &f))
-            .expect("solve");
-        let full: Vec<f64> = full.column(0).iter().copied().collect();
+        let (_, full) = common::thermal_moment_displacements(plate, &mean, &diff);
         // Reduced: K_r q = Q_T.
         let q = model
             .modal_model()

@@ -117,3 +117,18 @@ pub fn constant_material() -> hsv_core::material::MaterialSetting {
         .unwrap(),
     )
 }
+
+/// The registry's view of model settings `settings` (at `key_path` of the sample config) on
+/// the sample right lifting surface.
+pub fn sample_context<'a>(
+    settings: &'a toml::Table,
+    key_path: &'a str,
+) -> hsv_core::registry::ModelContext<'a> {
+    hsv_core::registry::ModelContext {
+        settings,
+        key_path,
+        file: "sample-hsv.toml",
+        region: hsv_core::testing::sample_region("right_surface"),
+        registry: hsv_core::testing::builtin_registry(),
+    }
+}

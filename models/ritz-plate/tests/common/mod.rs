@@ -59,13 +59,13 @@ pub struct FreeBending {
     pub net_load_ratio: f64,
 }
 
-pub fn free_thermal_bending(
+/// The thermal moment load f_T of the field (node means `mean_k`, face differences
+/// `difference_k`) and the full-order displacements u of K u = f_T at the reference stiffness.
+pub fn thermal_moment_displacements(
     plate: &PlateModel,
     mean_k: &[f64],
     difference_k: &[f64],
-    kappa: f64,
-    (c, s): (f64, f64),
-) -> FreeBending {
+) -> (Vec<f64>, Vec<f64>) {
     let mut states = vec![ElementState::REFERENCE; plate.n_elements()];
     plate
         .element_states(mean_k, Some(difference_k), &mut states)
@@ -74,7 +74,18 @@ pub fn free_thermal_bending(
     let u = plate
         .static_solve(&nalgebra::DMatrix::from_column_slice(f.len(), 1, &f))
         .expect("solve");
-    let u: Vec<f64> = u.column(0).iter().copied().collect();
+    let u = u.column(0).iter().copied().collect();
+    (f, u)
+}
+
+pub fn free_thermal_bending(
+    plate: &PlateModel,
+    mean_k: &[f64],
+    difference_k: &[f64],
+    kappa: f64,
+    (c, s): (f64, f64),
+) -> FreeBending {
+    let (f, u) = thermal_moment_displacements(plate, mean_k, difference_k);
     let g = &plate.grid;
     let (nc, ns) = (g.nodes_chordwise(), g.nodes_spanwise());
     let w = |i: usize, j: usize| plate.nodal_value(&u, g.node_index(i, j));

@@ -843,20 +843,18 @@ impl ModeShapes {
                 .zip(modal_velocities.iter())
                 .take(n_modes)
             {
-                for ((v, w), d) in vertices_out
-                    .iter_mut()
-                    .zip(vertex_velocity.chunks_exact_mut(3))
-                    .zip(column.chunks_exact(3))
-                {
-                    if q != 0.0 {
+                // Two branch-free sweeps (they vectorize) instead of one that tests q and q̇
+                // at every vertex; each entry gets the same sum in the same order.
+                if q != 0.0 {
+                    for (v, d) in vertices_out.iter_mut().zip(column.chunks_exact(3)) {
                         v.x += d[0] * q;
                         v.y += d[1] * q;
                         v.z += d[2] * q;
                     }
-                    if q_dot != 0.0 {
-                        w[0] += d[0] * q_dot;
-                        w[1] += d[1] * q_dot;
-                        w[2] += d[2] * q_dot;
+                }
+                if q_dot != 0.0 {
+                    for (w, d) in vertex_velocity.iter_mut().zip(column) {
+                        *w += d * q_dot;
                     }
                 }
             }

@@ -390,3 +390,194 @@ fn kernels_keep_the_published_values() {
         );
     }
 }
+
+/// The small-turn expansion (second order in θ) against 50-digit solutions of the exact
+/// relations (mpmath, γ = 1.4): the weak oblique shock of the θ-β-M relation (Anderson MCF eq.
+/// 4.17 with NACA 1135 eqs. 93-96) for θ > 0, the Prandtl-Meyer fan (Anderson MCF eq. 4.44,
+/// isentropic ratios NACA 1135 eqs. 43-45) for θ < 0. Columns: M1, θ (rad), M2, p2/p1, T2/T1,
+/// printed to 20 digits. The expansion must give each to 1e-15 relative, which resolves the
+/// turn's whole effect (p2/p1 - 1 is 5.6e-12 at the smallest turn).
+#[test]
+#[allow(clippy::excessive_precision)] // the reference values as printed, to 20 digits
+fn small_turns_match_fifty_digit_shocks_and_fans() {
+    let reference: [[f64; 5]; 9] = [
+        [
+            6.0,
+            1e-7,
+            5.9999991683683129118,
+            1.0000008519157942933,
+            1.0000002434044385981,
+        ],
+        [
+            6.0,
+            -1e-7,
+            6.0000008316318862176,
+            0.99999914808481676045,
+            0.99999975659558787443,
+        ],
+        [
+            2.0,
+            1e-6,
+            1.9999979215396309143,
+            1.0000032331656141314,
+            1.0000009237605373711,
+        ],
+        [
+            2.0,
+            -1e-6,
+            2.0000020784615690834,
+            0.99999676684259920215,
+            0.99999907623967596326,
+        ],
+        [
+            20.0,
+            3e-8,
+            19.999997566957084756,
+            1.0000008410522755151,
+            1.0000002403005779667,
+        ],
+        [
+            1.2,
+            -2e-7,
+            1.2000004660157689921,
+            0.99999939215346428669,
+            0.99999982632952352298,
+        ],
+        [
+            200.0,
+            -2e-14,
+            200.0000000001600220003,
+            0.9999999999943999299987,
+            0.9999999999983999799996,
+        ],
+        [
+            4.5,
+            2e-11,
+            4.499999999896409836,
+            1.000000000129231293712,
+            1.000000000036923226773,
+        ],
+        [
+            1.5,
+            1e-12,
+            1.49999999999805462086,
+            1.000000000002817445652,
+            1.000000000000804984472,
+        ],
+    ];
+    for [mach, theta, m2, p, t] in reference {
+        let at = format!("M {mach}, turn {theta:e}");
+        let change = small_turn(mach, theta, G).unwrap_or_else(|| panic!("{at}: refused"));
+        assert_same(&format!("M2 at {at}"), change.mach_downstream, m2, 1e-15);
+        assert_same(&format!("p2/p1 at {at}"), change.pressure_ratio, p, 1e-15);
+        assert_same(
+            &format!("T2/T1 at {at}"),
+            change.temperature_ratio,
+            t,
+            1e-15,
+        );
+        assert_same(
+            &format!("rho2/rho1 at {at}"),
+            change.density_ratio,
+            p / t,
+            1e-15,
+        );
+    }
+}
+
+/// Wherever the small-turn expansion accepts a turn (M 1.02 to 500, |θ| from 1e-14 to 1e-5,
+/// both signs) it refuses every turn above 1.26e-6 rad, accepts the panel-to-panel turns it is
+/// for (θ ≤ 1e-7 at M 1.5 to 20), and from 1e-8 rad up gives the weak shock's or the fan's
+/// state to 1e-15 plus 1e-7 of the turn's change: the exact paths resolve a turn through ν(M)
+/// or β, so to about 4e-16/θ of the change (at M 200, θ = -2e-14 the fan is 2 % off the change
+/// the 50-digit value gives; the expansion is checked there by
+/// `small_turns_match_fifty_digit_shocks_and_fans`).
+#[test]
+fn small_turns_agree_with_the_exact_turns_wherever_accepted() {
+    let close = |what: &str, new: f64, old: f64, upstream: f64| {
+        let tolerance = 1e-15 * upstream.abs() + 1e-7 * (old - upstream).abs();
+        assert!(
+            (new - old).abs() <= tolerance,
+            "{what}: new {new:e}, old {old:e}, tolerance {tolerance:e}"
+        );
+    };
+    let mut compared = 0;
+    for mach in log_space(1.02, 500.0, 80) {
+        for size in log_space(1e-14, 1e-5, 60) {
+            for theta in [size, -size] {
+                let Some(change) = small_turn(mach, theta, G) else {
+                    assert!(
+                        size > 1e-7 || !(1.5..=20.0).contains(&mach),
+                        "M {mach}, turn {theta:e} refused"
+                    );
+                    continue;
+                };
+                assert!(size <= 1.26e-6, "M {mach}, turn {theta:e} accepted");
+                if size < 1e-8 {
+                    continue;
+                }
+                compared += 1;
+                let at = format!("M {mach}, turn {theta:e}");
+                let (m2, p, t, rho) = if theta > 0.0 {
+                    let s = oblique_shock(mach, theta, G, ShockBranch::Weak).unwrap();
+                    (
+                        s.mach_downstream,
+                        s.pressure_ratio,
+                        s.temperature_ratio,
+                        s.density_ratio,
+                    )
+                } else {
+                    let e = prandtl_meyer_expansion(mach, -theta, G).unwrap();
+                    (
+                        e.mach_downstream,
+                        e.pressure_ratio,
+                        e.temperature_ratio,
+                        e.density_ratio,
+                    )
+                };
+                close(&format!("M2 at {at}"), change.mach_downstream, m2, mach);
+                close(&format!("p2/p1 at {at}"), change.pressure_ratio, p, 1.0);
+                close(&format!("T2/T1 at {at}"), change.temperature_ratio, t, 1.0);
+                close(
+                    &format!("rho2/rho1 at {at}"),
+                    change.density_ratio,
+                    rho,
+                    1.0,
+                );
+            }
+        }
+    }
+    assert!(compared > 500, "{compared} turns compared");
+}
+
+/// The weak shock's state change without its wave angle is the oblique shock's, bit for bit.
+#[test]
+fn the_weak_turn_is_the_weak_oblique_shock() {
+    for mach in log_space(1.05, 25.0, 30) {
+        let (theta_max, _) = max_deflection(mach, G).unwrap();
+        for fraction in [1e-6, 0.01, 0.3, 0.9, 1.0] {
+            let theta = fraction * theta_max;
+            let s = oblique_shock(mach, theta, G, ShockBranch::Weak).unwrap();
+            let t = weak_oblique_turn(mach, theta, G).unwrap();
+            assert_eq!(
+                [
+                    t.mach_downstream,
+                    t.pressure_ratio,
+                    t.temperature_ratio,
+                    t.density_ratio
+                ],
+                [
+                    s.mach_downstream,
+                    s.pressure_ratio,
+                    s.temperature_ratio,
+                    s.density_ratio
+                ],
+                "M {mach}, theta {theta}"
+            );
+        }
+    }
+    assert!(matches!(
+        weak_oblique_turn(2.0, 0.5, G),
+        Err(GasError::Detached { .. })
+    ));
+}

@@ -7,7 +7,7 @@
 use hsv_core::aero::EdgeState;
 use std::f64::consts::FRAC_PI_2;
 
-use hsv_core::gas::{self, GasError, PerfectGas, ShockBranch};
+use hsv_core::gas::{self, GasError, PerfectGas};
 
 /// Mach number that stands for "expanded to vacuum" in an edge state: large enough that the
 /// static temperature is ~1e-6 of the total temperature, finite so that T M² (and with it the
@@ -93,11 +93,16 @@ pub fn turn(local: Local, turn_rad: f64, gamma: f64) -> Result<Local, GasError> 
         return Ok(local);
     }
     let flow = local.flow;
+    if flow.mach > 1.0
+        && let Some(change) = gas::small_turn(flow.mach, turn_rad, gamma)
+    {
+        return Ok(small_turn(local, change, turn_rad, gamma));
+    }
     if turn_rad > 0.0 {
         if flow.mach < 1.0 {
             return subsonic_impact(flow, turn_rad, gamma);
         }
-        return match gas::oblique_shock(flow.mach, turn_rad, gamma, ShockBranch::Weak) {
+        return match gas::weak_oblique_turn(flow.mach, turn_rad, gamma) {
             Ok(shock) => Ok(Local {
                 flow: flow.scaled(
                     shock.mach_downstream,
@@ -136,6 +141,33 @@ pub fn turn(local: Local, turn_rad: f64, gamma: f64) -> Result<Local, GasError> 
         }),
         Err(GasError::VacuumExpansion { .. }) => Ok(vacuum(flow, gamma)),
         Err(other) => Err(other),
+    }
+}
+
+/// A turn small enough for [`gas::small_turn`]: labelled and carried like the weak shock or
+/// the expansion it stands for (an expansion's ν(M) moves by the turn).
+fn small_turn(local: Local, change: gas::TurnChange, turn_rad: f64, gamma: f64) -> Local {
+    let flow = local.flow.scaled(
+        change.mach_downstream,
+        change.pressure_ratio,
+        change.temperature_ratio,
+        change.density_ratio,
+    );
+    if turn_rad > 0.0 {
+        return Local {
+            flow,
+            regime: Regime::Compression,
+            prandtl_meyer_rad: None,
+        };
+    }
+    let nu_max = gas::max_prandtl_meyer(gamma);
+    Local {
+        flow,
+        regime: Regime::Expansion,
+        prandtl_meyer_rad: local
+            .prandtl_meyer_rad
+            .map(|nu| nu - turn_rad)
+            .filter(|&nu| nu < nu_max),
     }
 }
 

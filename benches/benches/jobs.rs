@@ -3,7 +3,8 @@
 //! converged), one rigid and one flexible trim (Nelder–Mead, the Newton polish and the restart
 //! check, as `hsv-run trim`), 0.1 s of flight from trim under the paper's elevon doublet (100
 //! steps of 1 ms), the 2 s doublet as `hsv-run simulate` flies it (heated partitioned vehicle;
-//! issue 24's target 0.3 s on one core) with the implicit and the staggered coupling, and one
+//! issue 24's target 0.3 s on one core) with the implicit and the staggered coupling and with the
+//! surfaces evaluated once per step, and one
 //! lifting surface's POD training from a cold cache (nine full-order runs side by side). `RAYON_NUM_THREADS=1` for the one-core figures.
 //!
 //! `cargo bench -p hsv-benches --bench jobs -- --measurement-time 3 --warm-up-time 1`. The
@@ -120,6 +121,25 @@ fn jobs(c: &mut Criterion) {
         |b| {
             b.iter_batched(
                 || Flight::trimmed(&loaded, &registry, &options, |_| {}).expect("trims"),
+                |mut flight| {
+                    let steps = flight.fly(2.0, 5, |_, _, _| true).expect("flies");
+                    black_box(steps)
+                },
+                criterion::BatchSize::PerIteration,
+            )
+        },
+    );
+
+    // The same flight with the surfaces' aero recalculated once per 1 ms aeroelastic step and
+    // extrapolated over the stages (`[simulation] surface_loads_dt_s = 0.001`), evaluated
+    // beside the body.
+    let mut surfaces_per_step = loaded.clone();
+    surfaces_per_step.config.simulation.surface_loads_dt_s = Some(0.001);
+    group.bench_function(
+        "simulate 2 s (heated partitioned, surfaces once per step)",
+        |b| {
+            b.iter_batched(
+                || Flight::trimmed(&surfaces_per_step, &registry, &options, |_| {}).expect("trims"),
                 |mut flight| {
                     let steps = flight.fly(2.0, 5, |_, _, _| true).expect("flies");
                     black_box(steps)

@@ -89,6 +89,9 @@ pub struct SimulationConfig {
     pub body_loads_dt_s: Option<f64>,
     /// How often the body's skin friction is evaluated again, s (0: at every evaluation).
     pub body_friction_dt_s: Option<f64>,
+    /// How often the lifting surfaces' aero is evaluated, s (0, the default: at every
+    /// Runge-Kutta stage).
+    pub surface_loads_dt_s: Option<f64>,
     /// `exponential-rk4` (the default) or `rk4`.
     pub integrator: Option<String>,
 }

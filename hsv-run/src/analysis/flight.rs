@@ -16,11 +16,11 @@ use crate::control::{ControlLoop, DesignFrom, DesignRecord};
 use crate::disturbance::{DisturbanceSettings, Disturbances};
 use crate::dynamics::EarthModel;
 use crate::dynamics::VehicleState;
-use crate::vehicle::body_rate::{BodyLoadRate, DEFAULT_BODY_FRICTION_DT_S};
 use crate::vehicle::flexible_vehicle_with;
 use crate::vehicle::partitioned::{
     ElevonCommand, FlightControls, HeatingRates, PartitionedVehicle, SurfaceModel, VehicleError,
 };
+use crate::vehicle::region_rate::{DEFAULT_BODY_FRICTION_DT_S, RegionLoadRate};
 
 /// The heating rates: `[simulation]` keys `heat_transfer_dt_s`, `aerothermal_dt_s`,
 /// `stiffness_interval_s`, `initial_temperature_k` over the paper's Table 3 defaults.
@@ -63,24 +63,37 @@ pub fn heating_rates(loaded: &LoadedConfig) -> Result<HeatingRates> {
 
 /// How often the main body region is evaluated: `[simulation] body_loads_dt_s` (s; default
 /// the paper's 1 ms aeroelastic rate; 0 evaluates it at every Runge-Kutta stage).
-pub fn body_load_rate(loaded: &LoadedConfig) -> Result<BodyLoadRate> {
+pub fn body_load_rate(loaded: &LoadedConfig) -> Result<RegionLoadRate> {
     rate_setting(
         loaded,
         "body_loads_dt_s",
         loaded.config.simulation.body_loads_dt_s,
-        BodyLoadRate::default(),
+        RegionLoadRate::default(),
+        "0: at every Runge-Kutta stage",
+    )
+}
+
+/// How often the lifting surfaces' aero is evaluated: `[simulation] surface_loads_dt_s` (s;
+/// default 0, at every Runge-Kutta stage; the paper's 1 ms recalculates it once per aeroelastic
+/// step and extrapolates in between: module [`crate::vehicle::region_rate`]).
+pub fn surface_load_rate(loaded: &LoadedConfig) -> Result<RegionLoadRate> {
+    rate_setting(
+        loaded,
+        "surface_loads_dt_s",
+        loaded.config.simulation.surface_loads_dt_s,
+        RegionLoadRate::EveryStage,
         "0: at every Runge-Kutta stage",
     )
 }
 
 /// How often the body's skin friction is evaluated again: `[simulation] body_friction_dt_s`
 /// (s; default the paper's 10 ms aerothermal rate; 0 at every body evaluation).
-pub fn body_friction_rate(loaded: &LoadedConfig) -> Result<BodyLoadRate> {
+pub fn body_friction_rate(loaded: &LoadedConfig) -> Result<RegionLoadRate> {
     rate_setting(
         loaded,
         "body_friction_dt_s",
         loaded.config.simulation.body_friction_dt_s,
-        BodyLoadRate::Interval(DEFAULT_BODY_FRICTION_DT_S),
+        RegionLoadRate::Interval(DEFAULT_BODY_FRICTION_DT_S),
         "0: at every evaluation of the body",
     )
 }
@@ -91,13 +104,13 @@ fn rate_setting(
     loaded: &LoadedConfig,
     key: &str,
     value: Option<f64>,
-    default: BodyLoadRate,
+    default: RegionLoadRate,
     zero_means: &str,
-) -> Result<BodyLoadRate> {
+) -> Result<RegionLoadRate> {
     let Some(value) = value else {
         return Ok(default);
     };
-    BodyLoadRate::from_interval_s(value).with_context(|| {
+    RegionLoadRate::from_interval_s(value).with_context(|| {
         format!(
             "{}: key `simulation.{key}` is {value}; expected a number of seconds >= 0 \
              ({zero_means})",
@@ -107,10 +120,10 @@ fn rate_setting(
 }
 
 /// A rate as the `[simulation]` key writes it: seconds, 0 for every evaluation.
-pub fn rate_seconds(rate: BodyLoadRate) -> f64 {
+pub fn rate_seconds(rate: RegionLoadRate) -> f64 {
     match rate {
-        BodyLoadRate::EveryStage => 0.0,
-        BodyLoadRate::Interval(s) => s,
+        RegionLoadRate::EveryStage => 0.0,
+        RegionLoadRate::Interval(s) => s,
     }
 }
 
@@ -169,8 +182,9 @@ pub fn inputs(loaded: &LoadedConfig) -> Result<Inputs> {
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct FlightSettings {
     pub rates: HeatingRates,
-    pub body_loads: BodyLoadRate,
-    pub body_friction: BodyLoadRate,
+    pub body_loads: RegionLoadRate,
+    pub body_friction: RegionLoadRate,
+    pub surface_loads: RegionLoadRate,
     pub integrator: Integrator,
     pub earth: EarthModel,
 }
@@ -184,6 +198,7 @@ impl FlightSettings {
             rates: heating_rates(loaded)?,
             body_loads: body_load_rate(loaded)?,
             body_friction: body_friction_rate(loaded)?,
+            surface_loads: surface_load_rate(loaded)?,
             integrator: integrator(loaded)?,
             earth: earth(loaded)?,
         })
@@ -283,6 +298,7 @@ pub fn flight_vehicle(
     )?;
     vehicle.set_body_load_rate(settings.body_loads);
     vehicle.set_body_friction_rate(settings.body_friction);
+    vehicle.set_surface_load_rate(settings.surface_loads);
     vehicle.set_earth(settings.earth);
     Ok(vehicle)
 }

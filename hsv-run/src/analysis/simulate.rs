@@ -1,7 +1,7 @@
 //! Time simulation of the partitioned vehicle from trim (paper §IV.C): control inputs from time
 //! tables, the coupled state derivative marched by fourth-order (exponential) Runge-Kutta at
 //! the aeroelastic step (paper Table 3: 1 ms) with the main body region evaluated at the vehicle's
-//! [`BodyLoadRate`](crate::vehicle::body_rate::BodyLoadRate), and a sample of every recorded
+//! [`RegionLoadRate`](crate::vehicle::region_rate::RegionLoadRate), and a sample of every recorded
 //! quantity handed to an observer.
 //! The loop allocates nothing per step.
 

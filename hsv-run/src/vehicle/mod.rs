@@ -5,10 +5,10 @@
 //! A [`Region`] owns its models and state and talks to other regions only through topics it
 //! declares at assembly ([`wire`] fails when a subscribed topic has no publisher).
 
-pub mod body_rate;
 pub mod check;
 pub mod friction;
 pub mod partitioned;
+pub mod region_rate;
 pub mod rigid;
 pub mod staggered;
 

@@ -45,8 +45,8 @@ use hsv_core::vehicle::{LiftingSurfaceConfig, Side, pivot_point};
 use nalgebra::{DVector, Point3, Vector3};
 use rayon::prelude::*;
 
-use super::body_rate::{BodyLoadHistory, BodyLoadRate, DEFAULT_BODY_FRICTION_DT_S};
 use super::friction::RegionFriction;
+use super::region_rate::{DEFAULT_BODY_FRICTION_DT_S, RegionLoadHistory, RegionLoadRate};
 use super::{AnalysisNeeds, AssemblyError, RegionModelSet, RegionNeeds};
 use crate::disturbance::Disturbances;
 use crate::dynamics::vehicle::pivot_motion;
@@ -197,7 +197,11 @@ pub struct VehicleRestart {
     /// The body region's last publications (absent in restart files of runs that evaluated the
     /// body at every stage).
     #[serde(default)]
-    pub body_loads: BodyLoadHistory,
+    pub body_loads: RegionLoadHistory,
+    /// Each lifting surface's last publications (empty in restart files of runs that evaluated
+    /// the surfaces at every stage).
+    #[serde(default)]
+    pub surface_loads: Vec<RegionLoadHistory>,
     /// The last coupling iteration's report (the first sample of a continued run shows it;
     /// absent in older restart files).
     #[serde(default)]
@@ -397,7 +401,7 @@ struct Body {
     friction: Option<RegionFriction>,
     /// Skin friction about the centre of mass of the last body evaluation, and the value the
     /// next evaluation takes instead of evaluating the friction law (set by `begin_step` between
-    /// the friction's evaluations: module [`super::body_rate`]), as the surfaces' `held_friction`.
+    /// the friction's evaluations: module [`super::region_rate`]), as the surfaces' `held_friction`.
     friction_loads: Loads,
     held_friction: Option<Loads>,
     base: PanelMesh,
@@ -493,11 +497,15 @@ pub struct PartitionedVehicle {
     /// How often the body region is evaluated within a step, its publications, and whether a
     /// step is open (between [`PartitionedVehicle::begin_step`] and `commit_step`): only then
     /// do derivatives read the published body loads.
-    body_rate: BodyLoadRate,
+    body_rate: RegionLoadRate,
     /// How often the body's skin friction is re-evaluated among the body's publications in a
-    /// run (module [`super::body_rate`]); outside a run, at every evaluation.
-    body_friction_rate: BodyLoadRate,
-    body_history: BodyLoadHistory,
+    /// run (module [`super::region_rate`]); outside a run, at every evaluation.
+    body_friction_rate: RegionLoadRate,
+    body_history: RegionLoadHistory,
+    /// How often the lifting surfaces are evaluated within a step, and each one's publications
+    /// (module [`super::region_rate`]).
+    surface_rate: RegionLoadRate,
+    surface_histories: Vec<RegionLoadHistory>,
     in_step: bool,
     /// The wind field the regions fly through (calm unless a flight sets one).
     disturbances: Disturbances,
@@ -693,8 +701,7 @@ fn surface_aero(
     let deflection = elevon.deflection_rad(s.side);
     // Elastic displacement, then the elevon's rotation about the torque tube (what
     // `deflect_lifting_surface` does), with the panel geometry computed once at the end.
-    let rotation = rotation_about_axis(&pivot_axis(), elevon_rotation_angle_rad(deflection))
-        .map_err(|e| err(ModelError::inconsistent("elevon", e.to_string())))?;
+    let rotation = elevon_rotation(&s.name, deflection)?;
     s.shapes.displace_with_velocities(
         &s.base,
         &modes.q,
@@ -818,6 +825,13 @@ fn surface_region_loads(
     };
     s.applied_about_pivot = applied;
     s.elevon_rotation = rotation;
+    add_thermal_generalized_forces(s, out);
+    Ok(())
+}
+
+/// The surface's generalized forces: the aero ones of its last evaluation plus the thermal
+/// ones of its heated stiffness.
+fn add_thermal_generalized_forces(s: &Surface, out: &mut DVector<f64>) {
     let thermal = s
         .structure
         .thermal_stiffness()
@@ -825,7 +839,15 @@ fn surface_region_loads(
     for (k, q) in out.iter_mut().enumerate() {
         *q = s.generalized[k] + thermal.map_or(0.0, |t| t[k]);
     }
-    Ok(())
+}
+
+/// The elevon's rotation of a surface about its torque tube for a deflection, rad.
+fn elevon_rotation(
+    surface: &str,
+    deflection_rad: f64,
+) -> Result<nalgebra::Rotation3<f64>, VehicleError> {
+    rotation_about_axis(&pivot_axis(), elevon_rotation_angle_rad(deflection_rad))
+        .map_err(|e| model_error(surface)(ModelError::inconsistent("elevon", e.to_string())))
 }
 
 /// Whether a heated surface's heat flux is due again at `time_s` (every heat-flux interval).
@@ -1265,9 +1287,11 @@ impl PartitionedVehicle {
             aero_with_surfaces: Loads::default(),
             body_mode_names: body_modal_names,
             trim_modes: Vec::new(),
-            body_rate: BodyLoadRate::default(),
-            body_friction_rate: BodyLoadRate::Interval(DEFAULT_BODY_FRICTION_DT_S),
-            body_history: BodyLoadHistory::default(),
+            body_rate: RegionLoadRate::default(),
+            body_friction_rate: RegionLoadRate::Interval(DEFAULT_BODY_FRICTION_DT_S),
+            body_history: RegionLoadHistory::default(),
+            surface_rate: RegionLoadRate::EveryStage,
+            surface_histories: Vec::new(),
             in_step: false,
             disturbances: Disturbances::default(),
             surface_flights: Vec::new(),
@@ -1319,27 +1343,45 @@ impl PartitionedVehicle {
         self.dynamics.set_earth(earth);
     }
 
-    /// How often the body region is evaluated within a time step ([`BodyLoadRate`]).
-    pub fn set_body_load_rate(&mut self, rate: BodyLoadRate) {
+    /// How often the body region is evaluated within a time step ([`RegionLoadRate`]).
+    pub fn set_body_load_rate(&mut self, rate: RegionLoadRate) {
         self.body_rate = rate;
         self.body_history.clear();
     }
 
-    pub fn body_load_rate(&self) -> BodyLoadRate {
+    pub fn body_load_rate(&self) -> RegionLoadRate {
         self.body_rate
     }
 
     /// How often, among the body region's publications, its skin friction is evaluated again
     /// (`EveryStage`: at every publication); default the aerothermal rate
     /// [`DEFAULT_BODY_FRICTION_DT_S`].
-    pub fn set_body_friction_rate(&mut self, rate: BodyLoadRate) {
+    pub fn set_body_friction_rate(&mut self, rate: RegionLoadRate) {
         self.body_friction_rate = rate;
         self.body_history.forget_friction();
     }
 
-    /// Forgets the body region's publications (a run starting afresh).
+    /// How often the lifting surfaces are evaluated within a time step ([`RegionLoadRate`];
+    /// `EveryStage` by default).
+    pub fn set_surface_load_rate(&mut self, rate: RegionLoadRate) {
+        self.surface_rate = rate;
+        self.forget_surface_loads();
+    }
+
+    pub fn surface_load_rate(&self) -> RegionLoadRate {
+        self.surface_rate
+    }
+
+    /// Forgets the regions' publications (a run starting afresh).
     pub fn forget_body_loads(&mut self) {
         self.body_history.clear();
+        self.forget_surface_loads();
+    }
+
+    fn forget_surface_loads(&mut self) {
+        self.surface_histories.clear();
+        self.surface_histories
+            .resize_with(self.surfaces.len(), RegionLoadHistory::default);
     }
 
     /// Opens the step starting at `time_s` from the accepted `state`: unless the body region
@@ -1356,24 +1398,105 @@ impl PartitionedVehicle {
         self.disturbances
             .extend_to(time_s + DISTURBANCE_LOOKAHEAD_S, self.region_lead_max_m());
         self.refresh_heat_fluxes(state, controls, time_s)?;
-        if self.body_rate == BodyLoadRate::EveryStage {
+        if self.body_rate == RegionLoadRate::EveryStage
+            && self.surface_rate == RegionLoadRate::EveryStage
+        {
             return Ok(());
         }
         for s in &mut self.surfaces {
             s.held_friction = None;
         }
-        if self
-            .body_rate
-            .is_due(time_s, self.body_history.latest_time_s())
-        {
-            let flight = self.flight(state)?;
-            self.time_s = time_s;
+        let body_due = self.body_rate != RegionLoadRate::EveryStage
+            && self
+                .body_rate
+                .is_due(time_s, self.body_history.latest_time_s());
+        let surfaces_due = self.surface_rate != RegionLoadRate::EveryStage
+            && !self.surfaces.is_empty()
+            && self.surface_rate.is_due(
+                time_s,
+                self.surface_histories
+                    .first()
+                    .and_then(RegionLoadHistory::latest_time_s),
+            );
+        if body_due || surfaces_due {
+            self.publish_regions(state, controls, time_s, body_due, surfaces_due)?;
+        }
+        self.in_step = true;
+        Ok(())
+    }
+
+    /// The regions due at the step starting at `time_s` evaluated at the accepted `state`, side
+    /// by side, and published (module [`super::region_rate`]).
+    fn publish_regions(
+        &mut self,
+        state: &VehicleState,
+        controls: &FlightControls,
+        time_s: f64,
+        body_due: bool,
+        surfaces_due: bool,
+    ) -> Result<(), VehicleError> {
+        let flight = self.flight(state)?;
+        self.time_s = time_s;
+        if surfaces_due {
+            self.update_surface_flights(state, &flight)?;
+        }
+        if body_due {
             self.body.held_friction = self
                 .body_history
                 .friction_at(time_s, &self.body_friction_rate);
-            let evaluated = self.body_loads_now(state, controls, &flight);
-            let held = self.body.held_friction.take();
-            evaluated?;
+        }
+        let cg = self.mass.center_of_mass_m;
+        let reference_point_m = self.reference_point_m;
+        let body = &mut self.body;
+        let engine = self.engine.as_mut();
+        let engine_solution = &mut self.engine_solution;
+        let surfaces = &mut self.surfaces;
+        let surface_flights = &self.surface_flights;
+        let surface_forces = &mut self.loads.surface_generalized_forces;
+        let (body_loads, surfaces_done) = join(
+            || {
+                body_due.then(|| {
+                    body_region_loads(
+                        body,
+                        engine,
+                        engine_solution,
+                        state,
+                        controls,
+                        &flight,
+                        &cg,
+                        &reference_point_m,
+                    )
+                })
+            },
+            || {
+                surfaces_due.then(|| {
+                    surfaces_loads(
+                        surfaces,
+                        surface_forces,
+                        state,
+                        &controls.elevon,
+                        surface_flights,
+                        time_s,
+                        true,
+                    )
+                })
+            },
+        );
+        let held = self.body.held_friction.take();
+        if let Some(done) = surfaces_done {
+            done?;
+            for (s, history) in self.surfaces.iter().zip(&mut self.surface_histories) {
+                history.publish(
+                    time_s,
+                    &s.applied_surface_frame,
+                    &Loads::default(),
+                    &s.generalized,
+                );
+            }
+        }
+        if let Some(loads) = body_loads {
+            self.set_body_loads(loads?);
+            self.follower_loads(state, controls, &flight)?;
             if held.is_none() && self.body.friction.is_some() {
                 self.body_history
                     .publish_friction(time_s, &self.body.friction_loads);
@@ -1382,10 +1505,9 @@ impl PartitionedVehicle {
                 time_s,
                 &self.loads.body,
                 &self.aero_loads,
-                &self.loads.body_generalized_force,
+                self.loads.body_generalized_force.as_slice(),
             );
         }
-        self.in_step = true;
         Ok(())
     }
 
@@ -1521,24 +1643,30 @@ impl PartitionedVehicle {
         controls: &FlightControls,
         flight: &FlightCondition,
     ) -> Result<(), VehicleError> {
-        self.update_surface_flights(state, flight)?;
-        if self.in_step
+        let surfaces_read = self.in_step && self.read_surface_loads(&controls.elevon)?;
+        let body_read = self.in_step
             && self.body_history.read(
                 self.time_s,
                 &mut self.loads.body,
                 &mut self.aero_loads,
-                &mut self.loads.body_generalized_force,
-            )
-        {
-            return surfaces_loads(
-                &mut self.surfaces,
-                &mut self.loads.surface_generalized_forces,
-                state,
-                &controls.elevon,
-                &self.surface_flights,
-                self.time_s,
-                true,
+                self.loads.body_generalized_force.as_mut_slice(),
             );
+        match (body_read, surfaces_read) {
+            (true, true) => return Ok(()),
+            (false, true) => return self.body_loads_now(state, controls, flight),
+            (true, false) => {
+                self.update_surface_flights(state, flight)?;
+                return surfaces_loads(
+                    &mut self.surfaces,
+                    &mut self.loads.surface_generalized_forces,
+                    state,
+                    &controls.elevon,
+                    &self.surface_flights,
+                    self.time_s,
+                    true,
+                );
+            }
+            (false, false) => self.update_surface_flights(state, flight)?,
         }
         let cg = self.mass.center_of_mass_m;
         let reference_point_m = self.reference_point_m;
@@ -1600,6 +1728,39 @@ impl PartitionedVehicle {
         )?;
         self.set_body_loads(loads);
         self.follower_loads(state, controls, flight)
+    }
+
+    /// Each surface's loads at the stage time from its publications (module
+    /// [`super::region_rate`]) with the stage's elevon rotation and thermal generalized forces;
+    /// false when the surfaces are evaluated at every stage or nothing is published yet.
+    fn read_surface_loads(&mut self, elevon: &ElevonCommand) -> Result<bool, VehicleError> {
+        if self.surface_rate == RegionLoadRate::EveryStage || self.surfaces.is_empty() {
+            return Ok(false);
+        }
+        let mut unused = Loads::default();
+        for ((s, history), out) in self
+            .surfaces
+            .iter_mut()
+            .zip(&self.surface_histories)
+            .zip(self.loads.surface_generalized_forces.iter_mut())
+        {
+            if !history.read(
+                self.time_s,
+                &mut s.applied_surface_frame,
+                &mut unused,
+                &mut s.generalized,
+            ) {
+                return Ok(false);
+            }
+            let rotation = elevon_rotation(&s.name, elevon.deflection_rad(s.side))?;
+            s.applied_about_pivot = Loads {
+                force_n: rotation * s.applied_surface_frame.force_n,
+                moment_nm: rotation * s.applied_surface_frame.moment_nm,
+            };
+            s.elevon_rotation = rotation;
+            add_thermal_generalized_forces(s, out);
+        }
+        Ok(true)
     }
 
     /// The body's aero and engine loads and generalized forces into the vehicle loads.
@@ -1971,6 +2132,7 @@ impl PartitionedVehicle {
             heating_stiffness_s: self.heating.stiffness_s,
             heating_initial_k: self.heating.initial_k,
             body_loads: self.body_history.clone(),
+            surface_loads: self.surface_histories.clone(),
             body_q_ddot: self.body_q_ddot.clone(),
             coupling: self.report,
         }
@@ -2015,6 +2177,16 @@ impl PartitionedVehicle {
         self.time_s = r.time_s;
         self.report = r.coupling;
         self.body_history.clone_from(&r.body_loads);
+        match r.surface_loads.len() {
+            0 => self.forget_surface_loads(),
+            len if len == n => self.surface_histories.clone_from(&r.surface_loads),
+            len => {
+                return Err(VehicleError::Input(format!(
+                    "restart file: {len} surface load histories for a vehicle of {n} lifting \
+                     surfaces"
+                )));
+            }
+        }
         self.in_step = false;
         self.q_ddot.clone_from(&r.q_ddot);
         if r.body_q_ddot.is_empty() {

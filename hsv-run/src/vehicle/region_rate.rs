@@ -1,18 +1,27 @@
-//! The main body region evaluated at the aeroelastic rate rather than at every Runge-Kutta stage:
-//! its loads (aero and skin friction on the deformed OML, the engine, and the monolithic model's
-//! surfaces) are published at an accepted state every `body_loads_dt_s` (default 1 ms: every
-//! step at the paper's 1 ms) and read by every stage in between by linear extrapolation in
-//! time from the last two publications.
+//! Regions evaluated at the aeroelastic rate rather than at every Runge-Kutta stage: a region's
+//! loads are published at an accepted state every interval (default 1 ms: every step at the
+//! paper's 1 ms) and read by every stage in between by linear extrapolation in time from the
+//! last two publications.
 //!
 //! This is the paper's partitioned exchange of region data at the aeroelastic rate (Klock &
-//! Cesnik §III.A, Table 3: 1 ms) applied to the one region whose evaluation is expensive and
-//! whose dynamics are slow (rigid body, beam modes up to 27 Hz): three of the four body
-//! evaluations of a Runge-Kutta step are spared. The lifting surfaces, whose Ritz vectors reach
-//! hundreds of Hz, are still evaluated at every stage. The extrapolation is the second-order
-//! Adams-Bashforth-type predictor of explicit partitioned schemes (Farhat & Lesoinne 2000,
-//! Comput. Methods Appl. Mech. Engrg. 182: the "predictor" of the conventional serial
-//! staggered procedure), so the scheme stays second order in the body loads; over the first
-//! step, with one publication, the loads are held.
+//! Cesnik §III.A, Table 3: 1 ms; §III.C: "the OML pressure distribution is recalculated at
+//! discrete aeroelastic time steps"). The extrapolation is the second-order Adams-Bashforth-type
+//! predictor of explicit partitioned schemes (Farhat & Lesoinne 2000, Comput. Methods Appl.
+//! Mech. Engrg. 182: the "predictor" of the conventional serial staggered procedure), so the
+//! scheme stays second order in the region's loads; over the first step, with one publication,
+//! the loads are held.
+//!
+//! - **The main body** (`[simulation] body_loads_dt_s`, default 1 ms): aero and skin friction
+//!   on the deformed OML, the engine, and the monolithic model's surfaces. Its evaluation is
+//!   expensive and its dynamics slow (rigid body, beam modes up to 27 Hz): three of the four body
+//!   evaluations of a Runge-Kutta step are spared.
+//! - **The lifting surfaces** (`[simulation] surface_loads_dt_s`, default 0: at every stage, the
+//!   reference): each surface's applied aero and friction loads about its pivot in its own frame
+//!   and its aero generalized forces. Their Ritz vectors reach hundreds of Hz, so a held or
+//!   extrapolated pressure lags their fastest motion (ω Δt = 1.9 for a 300 Hz vector at 1 ms);
+//!   the rigid flight, which the elevon and the surfaces' mean loads drive, keeps its accuracy
+//!   (test in `hsv-run/tests/simulate.rs`). The elevon's rotation and the thermal generalized
+//!   forces are taken at each stage.
 //!
 //! The body's skin friction, which comes from the aerothermal model (Eckert's reference
 //! temperature), is evaluated again only every `body_friction_dt_s` among these publications
@@ -30,7 +39,7 @@ pub const DEFAULT_BODY_FRICTION_DT_S: f64 = 0.01;
 
 /// How often the main body's region is evaluated.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
-pub enum BodyLoadRate {
+pub enum RegionLoadRate {
     /// At every state derivative (every Runge-Kutta stage): the reference.
     EveryStage,
     /// At the accepted state of the first step at least this long (s) after the last
@@ -38,14 +47,14 @@ pub enum BodyLoadRate {
     Interval(f64),
 }
 
-impl Default for BodyLoadRate {
+impl Default for RegionLoadRate {
     /// The paper's aeroelastic rate (Table 3: 1 ms).
     fn default() -> Self {
         Self::Interval(1e-3)
     }
 }
 
-impl BodyLoadRate {
+impl RegionLoadRate {
     /// The rate of `[simulation] body_loads_dt_s`: 0 for every stage, else the interval, s.
     pub fn from_interval_s(interval_s: f64) -> Option<Self> {
         if interval_s == 0.0 {
@@ -68,9 +77,11 @@ impl BodyLoadRate {
     }
 }
 
-/// One publication of the body region: plain data, part of a restart file.
+/// One publication of a region (the body's, or a lifting surface's with its applied loads about
+/// the pivot in the surface's frame as the total and no separate aero part): plain data, part
+/// of a restart file.
 #[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize)]
-pub struct BodyRegionLoads {
+pub struct PublishedLoads {
     pub time_s: f64,
     /// Aero, skin friction, engine (and the monolithic model's surfaces) about the centre of
     /// mass, body axes, N and N m.
@@ -109,11 +120,11 @@ impl PublishedFriction {
     }
 }
 
-/// The last two publications of the body region, and its held skin friction.
+/// The last two publications of a region, and the body's held skin friction.
 #[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize)]
-pub struct BodyLoadHistory {
-    pub latest: Option<BodyRegionLoads>,
-    pub before: Option<BodyRegionLoads>,
+pub struct RegionLoadHistory {
+    pub latest: Option<PublishedLoads>,
+    pub before: Option<PublishedLoads>,
     /// The last two evaluations of the body's skin friction (absent in restart files written
     /// before the friction had its own rate).
     #[serde(default)]
@@ -122,7 +133,7 @@ pub struct BodyLoadHistory {
     pub friction_before: Option<PublishedFriction>,
 }
 
-impl BodyLoadHistory {
+impl RegionLoadHistory {
     /// The time of the latest publication, s.
     pub fn latest_time_s(&self) -> Option<f64> {
         self.latest.as_ref().map(|l| l.time_s)
@@ -149,7 +160,7 @@ impl BodyLoadHistory {
 
     /// The skin friction at `time_s`, extrapolated linearly from its last two evaluations (held
     /// with one), when `rate` says it is not due; None when it is.
-    pub fn friction_at(&self, time_s: f64, rate: &BodyLoadRate) -> Option<Loads> {
+    pub fn friction_at(&self, time_s: f64, rate: &RegionLoadRate) -> Option<Loads> {
         let f1 = self
             .friction
             .filter(|f| !rate.is_due(time_s, Some(f.time_s)))?;
@@ -165,24 +176,18 @@ impl BodyLoadHistory {
 
     /// Publishes the loads at `time_s`; the latest becomes the one before. Reuses the buffers
     /// of the oldest publication, so after two publications nothing is allocated.
-    pub fn publish(
-        &mut self,
-        time_s: f64,
-        total: &Loads,
-        aero: &Loads,
-        generalized: &DVector<f64>,
-    ) {
+    pub fn publish(&mut self, time_s: f64, total: &Loads, aero: &Loads, generalized: &[f64]) {
         std::mem::swap(&mut self.latest, &mut self.before);
-        let slot = self.latest.get_or_insert_with(BodyRegionLoads::default);
+        let slot = self.latest.get_or_insert_with(PublishedLoads::default);
         slot.time_s = time_s;
         slot.force_n = total.force_n;
         slot.moment_nm = total.moment_nm;
         slot.aero_force_n = aero.force_n;
         slot.aero_moment_nm = aero.moment_nm;
         if slot.generalized.len() == generalized.len() {
-            slot.generalized.copy_from(generalized);
+            slot.generalized.copy_from_slice(generalized);
         } else {
-            slot.generalized.clone_from(generalized);
+            slot.generalized = DVector::from_column_slice(generalized);
         }
     }
 
@@ -193,7 +198,7 @@ impl BodyLoadHistory {
         time_s: f64,
         total: &mut Loads,
         aero: &mut Loads,
-        generalized: &mut DVector<f64>,
+        generalized: &mut [f64],
     ) -> bool {
         let Some(l1) = self
             .latest
@@ -250,17 +255,12 @@ mod tests {
     /// for polynomials of degree one (second-order local error).
     #[test]
     fn a_load_linear_in_time_is_extrapolated_exactly() {
-        let mut h = BodyLoadHistory::default();
+        let mut h = RegionLoadHistory::default();
         let f = |t: f64| 3.0 - 7.0 * t;
         for t in [0.0, 1e-3] {
-            h.publish(
-                t,
-                &loads(f(t)),
-                &loads(0.5 * f(t)),
-                &DVector::from_element(2, f(t)),
-            );
+            h.publish(t, &loads(f(t)), &loads(0.5 * f(t)), &[f(t); 2]);
         }
-        let (mut total, mut aero, mut q) = (Loads::default(), Loads::default(), DVector::zeros(2));
+        let (mut total, mut aero, mut q) = (Loads::default(), Loads::default(), [0.0; 2]);
         for t in [1e-3, 1.5e-3, 2e-3] {
             assert!(h.read(t, &mut total, &mut aero, &mut q));
             assert!((total.force_n.x - f(t)).abs() < 1e-12);
@@ -274,8 +274,8 @@ mod tests {
     /// when the friction is due again.
     #[test]
     fn friction_linear_in_time_is_extrapolated_until_it_is_due() {
-        let mut h = BodyLoadHistory::default();
-        let rate = BodyLoadRate::Interval(0.01);
+        let mut h = RegionLoadHistory::default();
+        let rate = RegionLoadRate::Interval(0.01);
         let f = |t: f64| 2.0 + 5.0 * t;
         assert!(h.friction_at(0.0, &rate).is_none(), "nothing published");
         h.publish_friction(0.0, &loads(f(0.0)));
@@ -295,15 +295,10 @@ mod tests {
 
     #[test]
     fn one_publication_is_held_and_none_is_refused() {
-        let mut h = BodyLoadHistory::default();
-        let (mut total, mut aero, mut q) = (Loads::default(), Loads::default(), DVector::zeros(1));
+        let mut h = RegionLoadHistory::default();
+        let (mut total, mut aero, mut q) = (Loads::default(), Loads::default(), [0.0; 1]);
         assert!(!h.read(0.0, &mut total, &mut aero, &mut q));
-        h.publish(
-            0.0,
-            &loads(4.0),
-            &loads(1.0),
-            &DVector::from_element(1, 4.0),
-        );
+        h.publish(0.0, &loads(4.0), &loads(1.0), &[4.0]);
         assert!(h.read(5e-4, &mut total, &mut aero, &mut q));
         assert_eq!(total.force_n.x, 4.0);
         assert_eq!(q[0], 4.0);
@@ -314,11 +309,11 @@ mod tests {
 
 #[cfg(test)]
 mod rate_tests {
-    use super::BodyLoadRate;
+    use super::RegionLoadRate;
 
     #[test]
     fn an_interval_of_two_steps_evaluates_every_other_step() {
-        let rate = BodyLoadRate::Interval(1e-3);
+        let rate = RegionLoadRate::Interval(1e-3);
         let dt = 5e-4;
         let mut last = None;
         let due: Vec<bool> = (0..6)
@@ -333,10 +328,10 @@ mod rate_tests {
             .collect();
         assert_eq!(due, [true, false, true, false, true, false]);
         assert_eq!(
-            BodyLoadRate::from_interval_s(0.0),
-            Some(BodyLoadRate::EveryStage)
+            RegionLoadRate::from_interval_s(0.0),
+            Some(RegionLoadRate::EveryStage)
         );
-        assert_eq!(BodyLoadRate::from_interval_s(-1.0), None);
-        assert_eq!(BodyLoadRate::from_interval_s(f64::NAN), None);
+        assert_eq!(RegionLoadRate::from_interval_s(-1.0), None);
+        assert_eq!(RegionLoadRate::from_interval_s(f64::NAN), None);
     }
 }

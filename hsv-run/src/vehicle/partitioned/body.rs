@@ -1,0 +1,213 @@
+//! The main-body region: aero and skin friction on the beam-deformed OML, the engine on its
+//! underside, the body's generalized forces, and the monolithic model's follower surfaces.
+
+use super::*;
+
+/// The main body's aero (pressure and friction) and engine loads about the centre of mass, and
+/// its generalized forces, on the OML deformed by the beam modes.
+#[allow(clippy::too_many_arguments)]
+pub(super) fn body_region_loads(
+    b: &mut Body,
+    engine: &mut dyn PropulsionModel,
+    engine_solution: &mut PropulsionSolution,
+    state: &VehicleState,
+    controls: &FlightControls,
+    flight: &FlightCondition,
+    cg: &Point3<f64>,
+    reference_point_m: &Point3<f64>,
+) -> Result<(Loads, Loads), VehicleError> {
+    let p_inf = flight.freestream.pressure_pa;
+    let body_err = model_error("main_body");
+    let modes = &state.body_modes;
+    b.shapes.displace_with_velocities(
+        &b.base,
+        &modes.q,
+        &modes.q_dot,
+        &mut b.mesh.vertices,
+        &mut b.velocities,
+    );
+    b.mesh.update_geometry();
+    // The body's aero and its engine both read the deformed OML and nothing of each other:
+    // side by side.
+    let Body {
+        friction,
+        friction_loads,
+        held_friction,
+        mesh,
+        shapes,
+        aero,
+        velocities,
+        solution,
+        generalized,
+        engine_generalized,
+        ..
+    } = b;
+    let (mesh, shapes) = (&*mesh, &*shapes);
+    let (body_aero, engine_loads) = join(
+        || -> Result<Loads, VehicleError> {
+            let motion = PanelMotion {
+                elastic_velocity_m_s: Some(velocities),
+            };
+            aero.evaluate(mesh, flight, &motion, solution)
+                .map_err(&body_err)?;
+            let main_body = |r: RegionKind| r == RegionKind::MainBody;
+            let mut body_aero =
+                integrate_pressure(mesh, &solution.pressure_pa, p_inf, cg, main_body);
+            if let Some(f) = friction {
+                *friction_loads = match held_friction {
+                    Some(held) => *held,
+                    None => f
+                        .loads(mesh, flight, solution, &motion, cg, main_body)
+                        .map_err(&body_err)?,
+                };
+                body_aero = body_aero + *friction_loads;
+            }
+            generalized_forces(
+                mesh,
+                shapes,
+                &solution.pressure_pa,
+                p_inf,
+                main_body,
+                generalized,
+            )
+            .map_err(|e| body_err(ModelError::inconsistent("coupling", e.to_string())))?;
+            Ok(body_aero)
+        },
+        || -> Result<Loads, VehicleError> {
+            // Engine on the deformed underside; its moment comes about the reference point.
+            let engine_err = model_error("propulsion");
+            engine
+                .evaluate(
+                    &EngineInputs {
+                        flight,
+                        body: mesh,
+                        fuel_equivalence_ratio: controls.fuel_equivalence_ratio,
+                    },
+                    engine_solution,
+                )
+                .map_err(&engine_err)?;
+            let e = engine_solution.loads;
+            if engine_solution.panel_pressure_pa.len() == mesh.panels.len() {
+                generalized_forces(
+                    mesh,
+                    shapes,
+                    &engine_solution.panel_pressure_pa,
+                    p_inf,
+                    |r| r == RegionKind::Propulsion,
+                    engine_generalized,
+                )
+                .map_err(|e| engine_err(ModelError::inconsistent("coupling", e.to_string())))?;
+            } else {
+                engine_generalized.iter_mut().for_each(|q| *q = 0.0);
+            }
+            Ok(Loads {
+                force_n: e.force_n,
+                moment_nm: e.moment_nm + (reference_point_m - cg).cross(&e.force_n),
+            })
+        },
+    );
+    Ok((body_aero?, engine_loads?))
+}
+
+impl PartitionedVehicle {
+    /// The body region alone (body, engine, the monolithic model's surfaces) into the loads.
+    pub(super) fn body_loads_now(
+        &mut self,
+        state: &VehicleState,
+        controls: &FlightControls,
+        flight: &FlightCondition,
+    ) -> Result<(), VehicleError> {
+        let loads = body_region_loads(
+            &mut self.body,
+            self.engine.as_mut(),
+            &mut self.engine_solution,
+            state,
+            controls,
+            flight,
+            &self.mass.center_of_mass_m,
+            &self.reference_point_m,
+        )?;
+        self.set_body_loads(loads);
+        self.follower_loads(state, controls, flight)
+    }
+
+    /// The body's aero and engine loads and generalized forces into the vehicle loads.
+    pub(super) fn set_body_loads(&mut self, (body_aero, engine_loads): (Loads, Loads)) {
+        self.loads.body = body_aero + engine_loads;
+        self.aero_loads = body_aero;
+        let b = &self.body;
+        for (k, q) in self.loads.body_generalized_force.iter_mut().enumerate() {
+            *q = b.generalized[k] + b.engine_generalized[k];
+        }
+    }
+
+    /// The monolithic model's surfaces: OML following the body's modes, rotated by the elevon;
+    /// their aero loads go straight to the body and to its generalized forces.
+    pub(super) fn follower_loads(
+        &mut self,
+        state: &VehicleState,
+        controls: &FlightControls,
+        flight: &FlightCondition,
+    ) -> Result<(), VehicleError> {
+        let cg = self.mass.center_of_mass_m;
+        let p_inf = flight.freestream.pressure_pa;
+        let elevon = controls.elevon;
+        let surface = |r: RegionKind| r == RegionKind::LiftingSurface;
+        for f in &mut self.followers {
+            let err = model_error(&f.name);
+            let deflection = elevon.deflection_rad(f.side);
+            f.shapes
+                .deform(&f.base, &state.body_modes.q, &mut f.deformed);
+            deflect_lifting_surface(
+                &f.deformed,
+                &f.planform,
+                f.side,
+                deflection,
+                &mut f.deflected,
+            )
+            .map_err(|e| err(ModelError::inconsistent("elevon", e.to_string())))?;
+            let rotation =
+                rotation_about_axis(&pivot_axis(), elevon_rotation_angle_rad(deflection))
+                    .map_err(|e| err(ModelError::inconsistent("elevon", e.to_string())))?;
+            f.shapes
+                .panel_velocities(&f.base, &state.body_modes.q_dot, &mut f.velocities);
+            for v in &mut f.velocities {
+                *v = rotation * *v;
+            }
+            let motion = PanelMotion {
+                elastic_velocity_m_s: Some(&f.velocities),
+            };
+            f.aero
+                .evaluate(&f.deflected, flight, &motion, &mut f.solution)
+                .map_err(&err)?;
+            let mut loads =
+                integrate_pressure(&f.deflected, &f.solution.pressure_pa, p_inf, &cg, surface);
+            if let Some(friction) = &mut f.friction {
+                loads = loads
+                    + friction
+                        .loads(&f.deflected, flight, &f.solution, &motion, &cg, surface)
+                        .map_err(&err)?;
+            }
+            generalized_forces(
+                &f.deflected,
+                &f.shapes,
+                &f.solution.pressure_pa,
+                p_inf,
+                surface,
+                &mut f.generalized,
+            )
+            .map_err(|e| err(ModelError::inconsistent("coupling", e.to_string())))?;
+            self.loads.body = self.loads.body + loads;
+            self.aero_loads = self.aero_loads + loads;
+            for (q, g) in self
+                .loads
+                .body_generalized_force
+                .iter_mut()
+                .zip(&f.generalized)
+            {
+                *q += g;
+            }
+        }
+        Ok(())
+    }
+}

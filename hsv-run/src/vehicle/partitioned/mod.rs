@@ -1,0 +1,568 @@
+//! The partitioned flexible vehicle (paper §III): the types its regions share and, in the
+//! submodules, one file per job — `build` (assembly), `step` (the step's protocol and the
+//! regions' rates), `body` and `surface` (the regions' loads), `interface` (the coupled
+//! derivative), `heating`, `restart` and `steady` (equilibrium, trim's interface). The
+//! partitioned and monolithic models, in-flight heating and restart share the regions' buffers:
+//! the loads every region computes from the vehicle state, and the state derivative with the
+//! body-surface coupling closed by a fixed-point iteration with Aitken relaxation.
+//!
+//! Per derivative evaluation:
+//! 1. flight condition from the rigid state (airspeed, α, β, rates about the centre of mass);
+//! 2. main body: OML deformed by the beam modes, aero on its panels with their elastic
+//!    velocities, engine on the deformed underside, generalized forces on the deformed geometry;
+//! 3. each lifting surface: Ritz-deformed mesh rotated about its pivot by its elevon, aero,
+//!    generalized forces by the reference-geometry projection (exact under the common rotation),
+//!    thermal-moment forces, and the applied load about the pivot;
+//! 4. coupling: the surfaces' root loads by force summation need their modal accelerations,
+//!    which need the body's acceleration at the pivots, which needs the root loads: iterate
+//!    q̈_surfaces with Aitken's Δ² relaxation until the root loads change by less than the
+//!    tolerance (relative), recording iterations and the residual.
+//!
+//! The elastic interface is two-way (paper §II.B): the body's modes move each surface's root
+//! (its mesh and the boundary velocities its aero sees, by the pivot's translation and the
+//! rotation of the body's section there), drive the surface's root acceleration, and take the
+//! surface's wrench at the pivot into their generalized forces; the iteration's unknowns are the
+//! surfaces' q̈ and the body's η̈ (mass bookkeeping: [`crate::dynamics::vehicle`]).
+//!
+//! That is the implicit scheme, the default. The staggered scheme of `[coupling]` evaluates
+//! steps 1-3 and each region once per stage with the interface of the previous sub-iteration
+//! ([`PartitionedVehicle::staggered_derivative`]) and sub-iterates the whole step instead
+//! ([`super::staggered`]).
+
+use hsv_core::ModelError;
+use hsv_core::acceleration::Acceleration;
+use hsv_core::aero::{AeroModel, AeroSolution, Loads, PanelMotion, integrate_pressure};
+use hsv_core::config::CouplingConfig;
+pub use hsv_core::coupling::ElevonCommand;
+use hsv_core::coupling::{
+    ModalProjection, deflect_lifting_surface, elevon_rotation_angle_rad, generalized_forces,
+    pivot_axis, rotate_points, rotation_about_axis,
+};
+use hsv_core::flow::{FlightCondition, Freestream};
+use hsv_core::gas::PerfectGas;
+use hsv_core::mesh::{ModeShapes, PanelMesh, RegionKind};
+use hsv_core::propulsion::{EngineInputs, PropulsionModel, PropulsionSolution};
+use hsv_core::region::RegionGeometry;
+use hsv_core::structure::{Capability, MassProperties, StructureModel};
+use hsv_core::vehicle::{LiftingSurfaceConfig, Side, pivot_point};
+use nalgebra::{DVector, Point3, Vector3};
+use rayon::prelude::*;
+
+use super::friction::RegionFriction;
+use super::region_rate::{DEFAULT_BODY_FRICTION_DT_S, RegionLoadHistory, RegionLoadRate};
+use super::{AnalysisNeeds, AssemblyError, RegionModelSet, RegionNeeds};
+use crate::disturbance::Disturbances;
+use crate::dynamics::vehicle::pivot_motion;
+use crate::dynamics::{
+    GravityModel, RigidBody, SurfaceAttachment, VehicleDerivative, VehicleDynamics, VehicleLoads,
+    VehicleState,
+};
+use hsv_core::registry::Role;
+
+mod body;
+mod build;
+mod heating;
+mod interface;
+mod restart;
+mod steady;
+mod step;
+mod surface;
+
+use body::*;
+use surface::*;
+
+/// What the partitioned vehicle needs of its regions.
+pub fn partitioned_needs(analysis: &str) -> AnalysisNeeds {
+    let surface = RegionNeeds {
+        roles: vec![Role::Aero, Role::Structure],
+        structure: vec![
+            Capability::RootLoads,
+            Capability::MassProperties,
+            Capability::RigidBodyCoupling,
+        ],
+        friction: true,
+    };
+    AnalysisNeeds {
+        analysis: analysis.to_owned(),
+        regions: vec![
+            (
+                "main_body",
+                RegionNeeds {
+                    roles: vec![Role::Aero, Role::Structure],
+                    structure: vec![Capability::MassProperties],
+                    friction: true,
+                },
+            ),
+            ("left_surface", surface.clone()),
+            ("right_surface", surface),
+            (
+                "propulsion",
+                RegionNeeds {
+                    roles: vec![Role::Propulsion],
+                    structure: Vec::new(),
+                    friction: false,
+                },
+            ),
+        ],
+    }
+}
+
+/// How the lifting surfaces are modelled.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum SurfaceModel {
+    /// Paper §III: each surface has its own Ritz modes, driven at its root and coupled to the
+    /// body by root loads.
+    Partitioned,
+    /// Paper §IV's monolithic comparison model: the whole vehicle is one flexible body; the
+    /// surfaces are OML that follow the fuselage's beam modes (their loads go straight to the
+    /// body). With `lumped_mass` the surfaces' mass and inertia join the body's, the
+    /// correction the paper proposes for its response mismatch; without it the body has the
+    /// beam's mass alone (paper Table 1).
+    Monolithic { lumped_mass: bool },
+}
+
+/// The partitioned vehicle with its surfaces heating in flight: also a heat-flux model, a
+/// conduction model and temperature-dependent stiffness on each surface.
+pub fn heated_needs(analysis: &str) -> AnalysisNeeds {
+    let mut needs = partitioned_needs(analysis);
+    for (name, need) in &mut needs.regions {
+        if name.ends_with("_surface") {
+            need.roles.extend([Role::HeatFlux, Role::Conduction]);
+            need.structure.push(Capability::ThermalStiffness);
+        }
+    }
+    needs
+}
+
+/// Rates of the in-flight heating (paper Table 3).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct HeatingRates {
+    /// Conduction step, s (paper: heat transfer 1 ms).
+    pub conduction_s: f64,
+    /// Interval between heat-flux updates, s (paper: aerothermal 10 ms); the flux is refreshed
+    /// at the start of the step where it falls due, from the accepted state.
+    pub heat_flux_s: f64,
+    /// Interval between stiffness updates from the temperature field, s (our choice).
+    pub stiffness_s: f64,
+    /// Initial uniform temperature, K (paper: 293 K).
+    pub initial_k: f64,
+}
+
+impl Default for HeatingRates {
+    fn default() -> Self {
+        Self {
+            conduction_s: 1e-3,
+            heat_flux_s: 1e-2,
+            stiffness_s: 0.1,
+            initial_k: 293.0,
+        }
+    }
+}
+
+/// One surface's thermal model and state: heat flux from its latest aero solution, conduction,
+/// and the structure's stiffness updated from the temperature field.
+struct SurfaceThermal {
+    heat_flux: Box<dyn hsv_core::thermal::HeatFluxModel>,
+    conduction: Box<dyn hsv_core::thermal::ConductionModel>,
+    /// The conduction state: simulation state of the region.
+    state: DVector<f64>,
+    trial: DVector<f64>,
+    wall_k: Vec<f64>,
+    flux_w_m2: Vec<f64>,
+    node_k: Vec<f64>,
+    node_difference_k: Vec<f64>,
+    structure_k: Vec<f64>,
+    structure_difference_k: Vec<f64>,
+    transfer: Option<hsv_core::coupling::GridTransfer>,
+    /// Time up to which conduction has been stepped, and of the last flux and stiffness update.
+    conduction_time_s: f64,
+    flux_time_s: f64,
+    stiffness_time_s: f64,
+    /// Set when the stiffness was updated and the vehicle's modal matrices must follow.
+    stiffness_changed: bool,
+}
+
+/// One heated surface's thermal state for a restart file.
+#[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
+pub struct ThermalRestart {
+    pub state: DVector<f64>,
+    pub flux_w_m2: Vec<f64>,
+    pub structure_k: Vec<f64>,
+    pub structure_difference_k: Vec<f64>,
+    pub conduction_time_s: f64,
+    pub flux_time_s: f64,
+    pub stiffness_time_s: f64,
+}
+
+/// Everything of the vehicle, beyond its [`VehicleState`], that the next step depends on: the
+/// coupling iteration's guesses, the surfaces' thermal states and modal histories. With it a
+/// run continues bit for bit.
+#[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
+pub struct VehicleRestart {
+    pub time_s: f64,
+    pub q_ddot: Vec<DVector<f64>>,
+    pub root_force_n: Vec<Vector3<f64>>,
+    pub thermal: Vec<Option<ThermalRestart>>,
+    pub histories: Vec<Option<hsv_core::aero::ModalHistory>>,
+    pub heating_conduction_s: f64,
+    pub heating_heat_flux_s: f64,
+    pub heating_stiffness_s: f64,
+    pub heating_initial_k: f64,
+    /// The body region's last publications (absent in restart files of runs that evaluated the
+    /// body at every stage).
+    #[serde(default)]
+    pub body_loads: RegionLoadHistory,
+    /// Each lifting surface's last publications (empty in restart files of runs that evaluated
+    /// the surfaces at every stage).
+    #[serde(default)]
+    pub surface_loads: Vec<RegionLoadHistory>,
+    /// The last coupling iteration's report (the first sample of a continued run shows it;
+    /// absent in older restart files).
+    #[serde(default)]
+    pub coupling: CouplingReport,
+    /// The body's η̈ guess of the elastic interface (absent in restart files from before the
+    /// two-way interface: zeros).
+    #[serde(default)]
+    pub body_q_ddot: DVector<f64>,
+}
+
+/// Temperatures of one heated surface, K.
+#[derive(Debug, Clone, Copy, PartialEq, Default, serde::Serialize)]
+pub struct SurfaceTemperatures {
+    pub min_k: f64,
+    pub max_k: f64,
+    pub mean_k: f64,
+}
+
+/// What the monolithic vehicle needs: aero and mass on the body and surfaces, an engine.
+pub fn monolithic_needs(analysis: &str) -> AnalysisNeeds {
+    let surface = RegionNeeds {
+        roles: vec![Role::Aero, Role::Structure],
+        structure: vec![Capability::MassProperties],
+        friction: true,
+    };
+    let mut needs = partitioned_needs(analysis);
+    for (name, need) in &mut needs.regions {
+        if name.ends_with("_surface") {
+            *need = surface.clone();
+        }
+    }
+    needs
+}
+
+/// A lifting surface of the monolithic model: OML that follows the body's modes.
+struct FollowerSurface {
+    name: String,
+    base: PanelMesh,
+    deformed: PanelMesh,
+    deflected: PanelMesh,
+    /// The body's beam modes on this surface's vertices.
+    shapes: ModeShapes,
+    aero: Box<dyn AeroModel>,
+    friction: Option<RegionFriction>,
+    planform: LiftingSurfaceConfig,
+    side: Side,
+    velocities: Vec<Vector3<f64>>,
+    solution: AeroSolution,
+    generalized: Vec<f64>,
+}
+
+/// The controls at one instant.
+#[derive(Debug, Clone, Copy, PartialEq, Default, serde::Serialize, serde::Deserialize)]
+pub struct FlightControls {
+    pub elevon: ElevonCommand,
+    /// Fuel equivalence ratio φ.
+    pub fuel_equivalence_ratio: f64,
+}
+
+/// Body-surface coupling settings.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct CouplingSettings {
+    /// Relative change of the root loads (and of the body's modal accelerations, against the η̈
+    /// that moves a pivot by 1 g) below which the iteration has converged.
+    pub tolerance: f64,
+    pub max_iterations: usize,
+}
+
+impl Default for CouplingSettings {
+    fn default() -> Self {
+        Self {
+            tolerance: 1e-8,
+            max_iterations: 50,
+        }
+    }
+}
+
+/// Where a coupling iteration starts: each surface's q̈ guess and the body's η̈.
+#[derive(Debug, Clone, PartialEq)]
+pub struct CouplingGuess {
+    q_ddot: Vec<DVector<f64>>,
+    body_q_ddot: DVector<f64>,
+}
+
+/// One in-vacuo mode of the assembled structure ([`PartitionedVehicle::in_vacuo_modes`]).
+#[derive(Debug, Clone, PartialEq, serde::Serialize)]
+pub struct InVacuoMode {
+    pub frequency_hz: f64,
+    /// Share of the mode's strain energy in each region ([`InVacuoModes::regions`]), summing
+    /// to 1: where the mode deforms.
+    pub strain_energy_shares: Vec<f64>,
+}
+
+/// The assembled structure's in-vacuo modes, ascending.
+#[derive(Debug, Clone, PartialEq, serde::Serialize)]
+pub struct InVacuoModes {
+    /// The main body, then each lifting surface.
+    pub regions: Vec<String>,
+    pub modes: Vec<InVacuoMode>,
+    /// max |M̃ − M̃ᵀ| / max |M̃| of the condensed mass from the partitioned equations: zero
+    /// for an energy-consistent interface (a check, not a validation).
+    pub mass_asymmetry: f64,
+}
+
+/// The coupling tolerance of analyses that difference the derivative (linearization, in-vacuo
+/// modes).
+pub const LINEARIZATION_TOLERANCE: f64 = 1e-12;
+
+/// Elastic coordinate `j` of the stacked (body η, then each surface's ξ) vector.
+fn set_elastic_coordinate(state: &mut VehicleState, j: usize, value: f64) {
+    let n_body = state.body_modes.n_modes();
+    if j < n_body {
+        state.body_modes.q[j] = value;
+        return;
+    }
+    let mut k = j - n_body;
+    for m in &mut state.surface_modes {
+        if k < m.n_modes() {
+            m.q[k] = value;
+            return;
+        }
+        k -= m.n_modes();
+    }
+}
+
+/// `parts` end to end into `flat` (the interface vector's layout: each surface's q̈, then the
+/// body's η̈).
+fn gather<'a>(flat: &mut [f64], parts: impl Iterator<Item = &'a DVector<f64>>) {
+    let mut k = 0;
+    for v in parts {
+        flat[k..k + v.len()].copy_from_slice(v.as_slice());
+        k += v.len();
+    }
+}
+
+/// `flat` back into `parts` ([`gather`]'s inverse).
+fn scatter<'a>(flat: &[f64], parts: impl Iterator<Item = &'a mut DVector<f64>>) {
+    let mut k = 0;
+    for v in parts {
+        let n = v.len();
+        v.as_mut_slice().copy_from_slice(&flat[k..k + n]);
+        k += n;
+    }
+}
+
+/// The modal acceleration of stacked elastic coordinate `i`.
+fn elastic_acceleration(out: &VehicleDerivative, n_body: usize, i: usize) -> f64 {
+    if i < n_body {
+        return out.body_modes.q_ddot[i];
+    }
+    let mut k = i - n_body;
+    for m in &out.surface_modes {
+        if k < m.q_ddot.len() {
+            return m.q_ddot[k];
+        }
+        k -= m.q_ddot.len();
+    }
+    0.0
+}
+
+/// Iterations and final residual of the last coupling iteration.
+#[derive(Debug, Clone, Copy, PartialEq, Default, serde::Serialize, serde::Deserialize)]
+pub struct CouplingReport {
+    pub iterations: usize,
+    /// Largest relative change of a surface's root force, or of the body's η̈ (relative to the
+    /// η̈ that accelerates a pivot by 1 g), in the last iteration.
+    pub residual: f64,
+}
+
+/// Why a derivative could not be computed: the region and quantity.
+#[derive(Debug, thiserror::Error)]
+pub enum VehicleError {
+    #[error("region `{region}`: {source}")]
+    Model {
+        region: String,
+        #[source]
+        source: ModelError,
+    },
+    #[error(transparent)]
+    Dynamics(#[from] crate::dynamics::DynamicsError),
+    /// A run's inputs are refused (its steps, its tables).
+    #[error("{0}")]
+    Input(String),
+    #[error(
+        "body-surface coupling did not converge in {iterations} iterations at the pivots of \
+         {interfaces}: last relative root-load changes {residuals:?} (tolerance {tolerance})"
+    )]
+    Coupling {
+        iterations: usize,
+        interfaces: String,
+        residuals: Vec<f64>,
+        tolerance: f64,
+    },
+}
+
+struct Body {
+    friction: Option<RegionFriction>,
+    /// Skin friction about the centre of mass of the last body evaluation, and the value the
+    /// next evaluation takes instead of evaluating the friction law (set by `begin_step` between
+    /// the friction's evaluations: module [`super::region_rate`]), as the surfaces' `held_friction`.
+    friction_loads: Loads,
+    held_friction: Option<Loads>,
+    base: PanelMesh,
+    mesh: PanelMesh,
+    shapes: ModeShapes,
+    aero: Box<dyn AeroModel>,
+    velocities: Vec<Vector3<f64>>,
+    solution: AeroSolution,
+    generalized: Vec<f64>,
+    engine_generalized: Vec<f64>,
+}
+
+struct Surface {
+    thermal: Option<SurfaceThermal>,
+    friction: Option<RegionFriction>,
+    /// Skin friction about the pivot (body frame) evaluated at the open step's first stage, the
+    /// accepted state, and held by its other stages (see [`surface_region_loads`]).
+    held_friction: Option<Loads>,
+    /// Pressure and friction loads about the pivot in the surface's own (undeflected) frame, from
+    /// the last region evaluation: the applied load of force summation, fixed while the coupling
+    /// iterates on q̈.
+    applied_surface_frame: Loads,
+    /// The same loads in the body frame.
+    applied_about_pivot: Loads,
+    /// The elevon's rotation of the surface at the last region evaluation.
+    elevon_rotation: nalgebra::Rotation3<f64>,
+    name: String,
+    base: PanelMesh,
+    /// The base vertices displaced by the modes, before the elevon's rotation, m.
+    displaced_m: Vec<Point3<f64>>,
+    deflected: PanelMesh,
+    shapes: ModeShapes,
+    projection: ModalProjection,
+    structure: Box<dyn StructureModel>,
+    aero: Box<dyn AeroModel>,
+    planform: LiftingSurfaceConfig,
+    side: Side,
+    pivot_m: Point3<f64>,
+    /// The base mesh rotated rigidly by the elevon (what a model with memory evaluates on).
+    rigid: PanelMesh,
+    /// The modal history of an aero model with memory: simulation state of this region.
+    history: Option<hsv_core::aero::ModalHistory>,
+    velocities: Vec<Vector3<f64>>,
+    solution: AeroSolution,
+    generalized: Vec<f64>,
+    root_force_n: Vector3<f64>,
+    /// The body's mode shapes at the pivot (6 × n_body: translation m, section rotation rad).
+    body_modes_at_pivot: nalgebra::DMatrix<f64>,
+}
+
+/// The partitioned vehicle (module docs).
+pub struct PartitionedVehicle {
+    dynamics: VehicleDynamics,
+    body: Body,
+    surfaces: Vec<Surface>,
+    /// The monolithic model's surfaces (empty for the partitioned vehicle).
+    followers: Vec<FollowerSurface>,
+    surface_model: SurfaceModel,
+    engine: Box<dyn PropulsionModel>,
+    engine_solution: PropulsionSolution,
+    mass: MassProperties,
+    reference_point_m: Point3<f64>,
+    gas: PerfectGas,
+    settings: CouplingSettings,
+    loads: VehicleLoads,
+    /// Surface modal accelerations: the coupling's unknown, kept from the last derivative as
+    /// the next guess.
+    q_ddot: Vec<DVector<f64>>,
+    /// The body's η̈, the interface's other unknown.
+    body_q_ddot: DVector<f64>,
+    /// The fixed point's acceleration (`[coupling] acceleration`) and the flat interface
+    /// vectors it works on (scratch).
+    acceleration: Box<dyn Acceleration>,
+    acceleration_config: CouplingConfig,
+    iterate: Vec<f64>,
+    produced: Vec<f64>,
+    /// The η̈ that accelerates the most-moving pivot by 1 g (the scale of its residual).
+    body_q_ddot_scale: f64,
+    /// The staggered scheme's settings, or None for the implicit scheme (module
+    /// [`super::staggered`]).
+    staggered: Option<super::staggered::StaggeredSettings>,
+    report: CouplingReport,
+    warm_start: Option<VehicleState>,
+    heating: HeatingRates,
+    /// Simulation time of the next derivative, s (for models with memory).
+    time_s: f64,
+    /// Aero loads of the body panels, and with the surfaces' applied loads, about the CG.
+    aero_loads: Loads,
+    aero_with_surfaces: Loads,
+    body_mode_names: Vec<String>,
+    /// Body modal amplitudes of the last steady evaluation.
+    trim_modes: Vec<f64>,
+    /// How often the body region is evaluated within a step, its publications, and whether a
+    /// step is open (between [`PartitionedVehicle::begin_step`] and `commit_step`): only then
+    /// do derivatives read the published body loads.
+    body_rate: RegionLoadRate,
+    /// How often the body's skin friction is re-evaluated among the body's publications in a
+    /// run (module [`super::region_rate`]); outside a run, at every evaluation.
+    body_friction_rate: RegionLoadRate,
+    body_history: RegionLoadHistory,
+    /// How often the lifting surfaces are evaluated within a step, and each one's publications
+    /// (module [`super::region_rate`]).
+    surface_rate: RegionLoadRate,
+    surface_histories: Vec<RegionLoadHistory>,
+    in_step: bool,
+    /// The wind field the regions fly through (calm unless a flight sets one).
+    disturbances: Disturbances,
+    /// Each surface's flight condition in that field at the last evaluation (scratch).
+    surface_flights: Vec<FlightCondition>,
+}
+
+/// How far past a step's start the wind field is generated when it opens: the step's stages and
+/// the regions ahead of the centre of mass read no further, s.
+const DISTURBANCE_LOOKAHEAD_S: f64 = 0.1;
+
+fn model_error(region: &str) -> impl Fn(ModelError) -> VehicleError + '_ {
+    move |source| VehicleError::Model {
+        region: region.to_owned(),
+        source,
+    }
+}
+
+fn assembly_error(region: &str, message: String) -> AssemblyError {
+    AssemblyError::Model {
+        file: String::new(),
+        region: region.to_owned(),
+        cause: message.into(),
+    }
+}
+
+/// Whether regions are evaluated side by side: only on a rayon worker thread (the simulation
+/// loop runs on one). Called from outside the pool (trim, linearization, flutter), every
+/// parallel section would hand its work to the pool and sleep on a latch, which cost 12 % of a
+/// one-core run for two surface evaluations of about 70 µs each.
+fn side_by_side() -> bool {
+    rayon::current_thread_index().is_some()
+}
+
+/// `a` and `b` side by side when [`side_by_side`], one after the other otherwise.
+fn join<RA: Send, RB: Send>(
+    a: impl FnOnce() -> RA + Send,
+    b: impl FnOnce() -> RB + Send,
+) -> (RA, RB) {
+    if side_by_side() {
+        rayon::join(a, b)
+    } else {
+        (a(), b())
+    }
+}

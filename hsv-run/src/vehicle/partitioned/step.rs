@@ -1,0 +1,398 @@
+//! One time step of the partitioned vehicle: the step's protocol (begin, the stages'
+//! derivatives, commit), the regions' rates and publications, the flight condition each region
+//! flies in, and the regions' loads at a stage.
+
+use super::*;
+
+impl PartitionedVehicle {
+    pub fn dynamics(&self) -> &VehicleDynamics {
+        &self.dynamics
+    }
+
+    pub fn mass_properties(&self) -> &MassProperties {
+        &self.mass
+    }
+
+    /// Sets the time the next derivatives are evaluated at (models with memory read their
+    /// history up to it).
+    pub fn set_time(&mut self, time_s: f64) {
+        self.time_s = time_s;
+    }
+
+    /// Commits an accepted step ending at `time_s` with `state` into the surfaces' modal
+    /// histories (aero models with memory; nothing for the others).
+    pub fn commit_step(&mut self, state: &VehicleState, time_s: f64) -> Result<(), VehicleError> {
+        self.time_s = time_s;
+        let flight = self.flight(state)?;
+        self.update_surface_flights(state, &flight)?;
+        for (i, s) in self.surfaces.iter_mut().enumerate() {
+            if let (Some(rom), Some(history)) = (s.aero.modal_history(), s.history.as_mut()) {
+                let dt = time_s - history.time_s;
+                let modes = &state.surface_modes[i];
+                rom.commit(
+                    history,
+                    &self.surface_flights[i],
+                    dt,
+                    &modes.q,
+                    &modes.q_dot,
+                )
+                .map_err(model_error(&s.name))?;
+            }
+        }
+        self.advance_heating(time_s)?;
+        self.time_s = time_s;
+        self.in_step = false;
+        Ok(())
+    }
+
+    /// The Earth the vehicle flies over (`[simulation] earth`; flat by default).
+    pub fn set_earth(&mut self, earth: crate::dynamics::EarthModel) {
+        self.dynamics.set_earth(earth);
+    }
+
+    /// How often the body region is evaluated within a time step ([`RegionLoadRate`]).
+    pub fn set_body_load_rate(&mut self, rate: RegionLoadRate) {
+        self.body_rate = rate;
+        self.body_history.clear();
+    }
+
+    pub fn body_load_rate(&self) -> RegionLoadRate {
+        self.body_rate
+    }
+
+    /// How often, among the body region's publications, its skin friction is evaluated again
+    /// (`EveryStage`: at every publication); default the aerothermal rate
+    /// [`DEFAULT_BODY_FRICTION_DT_S`].
+    pub fn set_body_friction_rate(&mut self, rate: RegionLoadRate) {
+        self.body_friction_rate = rate;
+        self.body_history.forget_friction();
+    }
+
+    /// How often the lifting surfaces are evaluated within a time step ([`RegionLoadRate`];
+    /// `EveryStage` by default).
+    pub fn set_surface_load_rate(&mut self, rate: RegionLoadRate) {
+        self.surface_rate = rate;
+        self.forget_surface_loads();
+    }
+
+    pub fn surface_load_rate(&self) -> RegionLoadRate {
+        self.surface_rate
+    }
+
+    /// Forgets the regions' publications (a run starting afresh).
+    pub fn forget_body_loads(&mut self) {
+        self.body_history.clear();
+        self.forget_surface_loads();
+    }
+
+    pub(super) fn forget_surface_loads(&mut self) {
+        self.surface_histories.clear();
+        self.surface_histories
+            .resize_with(self.surfaces.len(), RegionLoadHistory::default);
+    }
+
+    /// Opens the step starting at `time_s` from the accepted `state`: unless the body region
+    /// runs at every stage, it is evaluated and published here when its rate says so, and the
+    /// step's derivatives read its publications (extrapolated) until [`Self::commit_step`].
+    pub fn begin_step(
+        &mut self,
+        state: &VehicleState,
+        controls: &FlightControls,
+        time_s: f64,
+    ) -> Result<(), VehicleError> {
+        self.in_step = false;
+        // The field a step reads (its stages and every region ahead of the centre of mass).
+        self.disturbances
+            .extend_to(time_s + DISTURBANCE_LOOKAHEAD_S, self.region_lead_max_m());
+        self.refresh_heat_fluxes(state, controls, time_s)?;
+        if self.body_rate == RegionLoadRate::EveryStage
+            && self.surface_rate == RegionLoadRate::EveryStage
+        {
+            return Ok(());
+        }
+        for s in &mut self.surfaces {
+            s.held_friction = None;
+        }
+        let body_due = self.body_rate != RegionLoadRate::EveryStage
+            && self
+                .body_rate
+                .is_due(time_s, self.body_history.latest_time_s());
+        let surfaces_due = self.surface_rate != RegionLoadRate::EveryStage
+            && !self.surfaces.is_empty()
+            && self.surface_rate.is_due(
+                time_s,
+                self.surface_histories
+                    .first()
+                    .and_then(RegionLoadHistory::latest_time_s),
+            );
+        if body_due || surfaces_due {
+            self.publish_regions(state, controls, time_s, body_due, surfaces_due)?;
+        }
+        self.in_step = true;
+        Ok(())
+    }
+
+    /// The regions due at the step starting at `time_s` evaluated at the accepted `state`, side
+    /// by side, and published (module [`crate::vehicle::region_rate`]).
+    pub(super) fn publish_regions(
+        &mut self,
+        state: &VehicleState,
+        controls: &FlightControls,
+        time_s: f64,
+        body_due: bool,
+        surfaces_due: bool,
+    ) -> Result<(), VehicleError> {
+        let flight = self.flight(state)?;
+        self.time_s = time_s;
+        if surfaces_due {
+            self.update_surface_flights(state, &flight)?;
+        }
+        if body_due {
+            self.body.held_friction = self
+                .body_history
+                .friction_at(time_s, &self.body_friction_rate);
+        }
+        let cg = self.mass.center_of_mass_m;
+        let reference_point_m = self.reference_point_m;
+        let body = &mut self.body;
+        let engine = self.engine.as_mut();
+        let engine_solution = &mut self.engine_solution;
+        let surfaces = &mut self.surfaces;
+        let surface_flights = &self.surface_flights;
+        let surface_forces = &mut self.loads.surface_generalized_forces;
+        let (body_loads, surfaces_done) = join(
+            || {
+                body_due.then(|| {
+                    body_region_loads(
+                        body,
+                        engine,
+                        engine_solution,
+                        state,
+                        controls,
+                        &flight,
+                        &cg,
+                        &reference_point_m,
+                    )
+                })
+            },
+            || {
+                surfaces_due.then(|| {
+                    surfaces_loads(
+                        surfaces,
+                        surface_forces,
+                        state,
+                        &controls.elevon,
+                        surface_flights,
+                        time_s,
+                        true,
+                    )
+                })
+            },
+        );
+        let held = self.body.held_friction.take();
+        if let Some(done) = surfaces_done {
+            done?;
+            for (s, history) in self.surfaces.iter().zip(&mut self.surface_histories) {
+                history.publish(
+                    time_s,
+                    &s.applied_surface_frame,
+                    &Loads::default(),
+                    &s.generalized,
+                );
+            }
+        }
+        if let Some(loads) = body_loads {
+            self.set_body_loads(loads?);
+            self.follower_loads(state, controls, &flight)?;
+            if held.is_none() && self.body.friction.is_some() {
+                self.body_history
+                    .publish_friction(time_s, &self.body.friction_loads);
+            }
+            self.body_history.publish(
+                time_s,
+                &self.loads.body,
+                &self.aero_loads,
+                self.loads.body_generalized_force.as_slice(),
+            );
+        }
+        Ok(())
+    }
+
+    /// The last derivative's coupling iterations and residual.
+    pub fn coupling_report(&self) -> CouplingReport {
+        self.report
+    }
+
+    /// The flight condition of a rigid state at the centre of mass: airspeed, α, β relative
+    /// to the air (the disturbances' wind there) and rates about it.
+    pub fn flight(&self, state: &VehicleState) -> Result<FlightCondition, VehicleError> {
+        self.flight_at(state, 0.0)
+    }
+
+    /// Sets the wind field the regions fly through from the next evaluation on.
+    pub fn set_disturbances(&mut self, disturbances: Disturbances) {
+        self.disturbances = disturbances;
+    }
+
+    pub fn disturbances(&self) -> &Disturbances {
+        &self.disturbances
+    }
+
+    /// The gust velocity at the centre of mass now, body axes, m/s.
+    pub fn gust_body_m_s(&self) -> Vector3<f64> {
+        if self.disturbances.is_calm() {
+            return Vector3::zeros();
+        }
+        self.disturbances.velocity_at(self.time_s, 0.0)
+    }
+
+    /// How far ahead of the centre of mass the foremost region flies, m (at least zero).
+    pub(super) fn region_lead_max_m(&self) -> f64 {
+        let cg_x = self.mass.center_of_mass_m.x;
+        self.surfaces
+            .iter()
+            .map(|s| s.pivot_m.x - cg_x)
+            .fold(0.0, f64::max)
+    }
+
+    /// The flight condition `lead_m` ahead of the centre of mass along the body x axis: the
+    /// airspeed and wind angles of the centre of mass's velocity relative to the gust there.
+    pub(super) fn flight_at(
+        &self,
+        state: &VehicleState,
+        lead_m: f64,
+    ) -> Result<FlightCondition, VehicleError> {
+        let rigid = &state.rigid;
+        let wind_ned = if self.disturbances.is_calm() {
+            Vector3::zeros()
+        } else {
+            rigid.attitude * self.disturbances.velocity_at(self.time_s, lead_m)
+        };
+        let (airspeed, alpha, beta) = rigid.air_data(&wind_ned);
+        let altitude = rigid.altitude_m();
+        let freestream = Freestream::at_airspeed(airspeed, altitude, self.gas)
+            .map_err(model_error("main_body"))?;
+        let mut flight = FlightCondition::steady(freestream, alpha, beta);
+        flight.angular_velocity_rad_s = rigid.angular_velocity_body_rad_s;
+        flight.rotation_center_m = self.mass.center_of_mass_m;
+        Ok(flight)
+    }
+
+    /// Loads of every region except the root loads' inertia term (which waits for q̈): the
+    /// main body with its engine, and each lifting surface, run side by side (rayon). Inside a
+    /// step (unless the body runs at every stage) the body's loads are its published ones.
+    pub(super) fn region_loads(
+        &mut self,
+        state: &VehicleState,
+        controls: &FlightControls,
+        flight: &FlightCondition,
+    ) -> Result<(), VehicleError> {
+        let surfaces_read = self.in_step && self.read_surface_loads(&controls.elevon)?;
+        let body_read = self.in_step
+            && self.body_history.read(
+                self.time_s,
+                &mut self.loads.body,
+                &mut self.aero_loads,
+                self.loads.body_generalized_force.as_mut_slice(),
+            );
+        match (body_read, surfaces_read) {
+            (true, true) => return Ok(()),
+            (false, true) => return self.body_loads_now(state, controls, flight),
+            (true, false) => {
+                self.update_surface_flights(state, flight)?;
+                return surfaces_loads(
+                    &mut self.surfaces,
+                    &mut self.loads.surface_generalized_forces,
+                    state,
+                    &controls.elevon,
+                    &self.surface_flights,
+                    self.time_s,
+                    true,
+                );
+            }
+            (false, false) => self.update_surface_flights(state, flight)?,
+        }
+        let cg = self.mass.center_of_mass_m;
+        let reference_point_m = self.reference_point_m;
+        let elevon = controls.elevon;
+        let time_s = self.time_s;
+        let hold_friction = self.in_step;
+        let body = &mut self.body;
+        let engine = self.engine.as_mut();
+        let engine_solution = &mut self.engine_solution;
+        let surfaces = &mut self.surfaces;
+        let surface_flights = &self.surface_flights;
+        let surface_forces = &mut self.loads.surface_generalized_forces;
+        let (body_loads, surfaces_done) = join(
+            || {
+                body_region_loads(
+                    body,
+                    engine,
+                    engine_solution,
+                    state,
+                    controls,
+                    flight,
+                    &cg,
+                    &reference_point_m,
+                )
+            },
+            || {
+                surfaces_loads(
+                    surfaces,
+                    surface_forces,
+                    state,
+                    &elevon,
+                    surface_flights,
+                    time_s,
+                    hold_friction,
+                )
+            },
+        );
+        surfaces_done?;
+        self.set_body_loads(body_loads?);
+        self.follower_loads(state, controls, flight)
+    }
+
+    /// Whether any surface's stiffness has been updated from its temperature field.
+    pub fn stiffness_heated(&self) -> bool {
+        self.surfaces
+            .iter()
+            .filter_map(|s| s.thermal.as_ref())
+            .any(|t| t.stiffness_time_s > 0.0)
+    }
+
+    /// Force (N) and moment about the centre of mass (N m) of every load but gravity at the
+    /// latest derivative evaluation: aero, engine and the surfaces' root loads, body axes.
+    pub fn body_loads(&self) -> Loads {
+        self.loads.body
+    }
+
+    /// Each region's aero model and the validity diagnostics of its latest evaluation.
+    pub fn aero_diagnostics(&self) -> Vec<(String, String, hsv_core::aero::AeroDiagnostics)> {
+        let mut out = vec![(
+            "main_body".to_owned(),
+            self.body.aero.name().to_owned(),
+            self.body.solution.diagnostics,
+        )];
+        for s in &self.surfaces {
+            out.push((
+                s.name.clone(),
+                s.aero.name().to_owned(),
+                s.solution.diagnostics,
+            ));
+        }
+        for f in &self.followers {
+            out.push((
+                f.name.clone(),
+                f.aero.name().to_owned(),
+                f.solution.diagnostics,
+            ));
+        }
+        out
+    }
+
+    /// How the surfaces are modelled.
+    pub fn surface_model(&self) -> SurfaceModel {
+        self.surface_model
+    }
+}

@@ -1,0 +1,467 @@
+//! The lifting-surface regions: each surface's aero on its Ritz-deformed, elevon-rotated mesh,
+//! its generalized forces and applied loads about the pivot, its heat flux and conduction, and
+//! the surfaces evaluated side by side.
+
+use super::*;
+
+/// A surface's thermal model, with the transfer of its conduction nodes onto the structure's
+/// temperature grid (mirrored when the structure keeps the other side's grid).
+pub(super) fn surface_thermal(
+    name: &str,
+    heat_flux: Box<dyn hsv_core::thermal::HeatFluxModel>,
+    conduction: Box<dyn hsv_core::thermal::ConductionModel>,
+    structure: &dyn StructureModel,
+    n_panels: usize,
+) -> Result<SurfaceThermal, AssemblyError> {
+    let thermal = structure
+        .thermal_stiffness()
+        .ok_or_else(|| assembly_error(name, "temperature-dependent stiffness".into()))?;
+    let n_structure = thermal.temperature_nodes();
+    let transfer = hsv_core::coupling::GridTransfer::conduction_to_structure(
+        (conduction.node_grid(), conduction.n_nodes()),
+        (thermal.temperature_grid(), n_structure),
+    )
+    .map_err(|e| assembly_error(name, format!("conduction `{}`: {e}", conduction.name())))?;
+    if conduction.n_surface_panels() != n_panels {
+        return Err(assembly_error(
+            name,
+            format!(
+                "conduction `{}` takes {} surface panels, the region's mesh has {n_panels}",
+                conduction.name(),
+                conduction.n_surface_panels()
+            ),
+        ));
+    }
+    let n_nodes = conduction.n_nodes();
+    Ok(SurfaceThermal {
+        state: DVector::zeros(conduction.n_states()),
+        trial: DVector::zeros(conduction.n_states()),
+        heat_flux,
+        conduction,
+        wall_k: vec![0.0; n_panels],
+        flux_w_m2: vec![0.0; n_panels],
+        node_k: vec![0.0; n_nodes],
+        node_difference_k: vec![0.0; n_nodes],
+        structure_k: vec![0.0; n_structure],
+        structure_difference_k: vec![0.0; n_structure],
+        transfer,
+        conduction_time_s: 0.0,
+        flux_time_s: f64::NEG_INFINITY,
+        stiffness_time_s: 0.0,
+        stiffness_changed: false,
+    })
+}
+
+/// One lifting surface's aero on its Ritz-deformed mesh rotated by its elevon (the mesh moves
+/// with its own modes and the body's at the pivot, the modal states given): the panel solution
+/// and, for a model with memory (convolution ROM), the generalized forces from its modal
+/// history (`true`). Returns the elevon's rotation.
+pub(super) fn surface_aero(
+    s: &mut Surface,
+    (modes, body_modes): (&crate::dynamics::ModalState, &crate::dynamics::ModalState),
+    elevon: &ElevonCommand,
+    flight: &FlightCondition,
+    time_s: f64,
+) -> Result<(nalgebra::Rotation3<f64>, bool), VehicleError> {
+    let err = model_error(&s.name);
+    let deflection = elevon.deflection_rad(s.side);
+    // Elastic displacement, then the elevon's rotation about the torque tube (what
+    // `deflect_lifting_surface` does), with the panel geometry computed once at the end.
+    let rotation = elevon_rotation(&s.name, deflection)?;
+    s.shapes.displace_with_velocities(
+        &s.base,
+        &modes.q,
+        &modes.q_dot,
+        &mut s.displaced_m,
+        &mut s.velocities,
+    );
+    rotate_points(
+        &s.displaced_m,
+        &pivot_point(&s.planform, s.side),
+        &rotation,
+        &mut s.deflected.vertices,
+    )
+    .map_err(|e| err(ModelError::inconsistent("elevon", e.to_string())))?;
+    for v in &mut s.velocities {
+        *v = rotation * *v;
+    }
+    // The body's elastic motion at the pivot carries the root: translation d and the section's
+    // small rotation θ, r ← r + d + θ × (r − P), and their rates in the boundary velocity.
+    // (Panel velocities: at the panels' centroids.)
+    let carried = s.body_modes_at_pivot.ncols() > 0;
+    if carried {
+        let (d, theta) = pivot_motion(&s.body_modes_at_pivot, &body_modes.q);
+        for r in &mut s.deflected.vertices {
+            *r += d + theta.cross(&(*r - s.pivot_m));
+        }
+    }
+    s.deflected.update_geometry();
+    if carried {
+        let (d_dot, theta_dot) = pivot_motion(&s.body_modes_at_pivot, &body_modes.q_dot);
+        for (panel, v) in s.deflected.panels.iter().zip(s.velocities.iter_mut()) {
+            *v += d_dot + theta_dot.cross(&(panel.centroid - s.pivot_m));
+        }
+    }
+    let motion = PanelMotion {
+        elastic_velocity_m_s: Some(&s.velocities),
+    };
+    let dt_since_commit = time_s - s.history.as_ref().map_or(0.0, |h| h.time_s);
+    match (s.aero.modal_history(), s.history.as_ref()) {
+        // A model with memory (convolution ROM): generalized forces from the modal history on
+        // the rigidly deflected mesh.
+        (Some(rom), Some(history)) => {
+            deflect_lifting_surface(&s.base, &s.planform, s.side, deflection, &mut s.rigid)
+                .map_err(|e| err(ModelError::inconsistent("elevon", e.to_string())))?;
+            rom.evaluate_modal(
+                &s.rigid,
+                flight,
+                history,
+                dt_since_commit.max(0.0),
+                &modes.q,
+                &modes.q_dot,
+                &mut s.generalized,
+                Some(&mut s.solution),
+            )
+            .map_err(&err)?;
+            Ok((rotation, true))
+        }
+        _ => {
+            s.aero
+                .evaluate(&s.deflected, flight, &motion, &mut s.solution)
+                .map_err(&err)?;
+            Ok((rotation, false))
+        }
+    }
+}
+
+/// One lifting surface's aero ([`surface_aero`]), its generalized forces (aero and thermal)
+/// into `out`, and its skin friction about the pivot.
+///
+/// Inside an open step (`hold_friction`), the skin friction is evaluated at the step's first
+/// stage, the accepted state, and held by the others: friction reaches only the root loads, and
+/// it changes on the flight's time scale (the elevon ramps over 0.5 s), so holding it over one
+/// 1 ms step moves the state by O(Δt · dF/dt) while sparing three of its four evaluations.
+/// Outside a step (trim, linearization, flutter) and with `body_loads_dt_s = 0` (the every-stage
+/// reference) it is evaluated every time.
+pub(super) fn surface_region_loads(
+    s: &mut Surface,
+    modes: (&crate::dynamics::ModalState, &crate::dynamics::ModalState),
+    elevon: &ElevonCommand,
+    flight: &FlightCondition,
+    time_s: f64,
+    hold_friction: bool,
+    out: &mut DVector<f64>,
+) -> Result<(), VehicleError> {
+    let p_inf = flight.freestream.pressure_pa;
+    let (rotation, from_history) = surface_aero(s, modes, elevon, flight, time_s)?;
+    let err = model_error(&s.name);
+    if !from_history {
+        // The modes turn with the surface, so A n·φ is that of the reference geometry.
+        s.projection
+            .generalized_forces(&s.solution.pressure_pa, p_inf, &mut s.generalized)
+            .map_err(|e| err(ModelError::inconsistent("coupling", e.to_string())))?;
+    }
+    // Pressure and skin friction on the deflected surface, about the pivot: the applied load of
+    // the root loads' force summation, which works in the surface's own frame.
+    let friction = match (&mut s.friction, s.held_friction.filter(|_| hold_friction)) {
+        (Some(_), Some(held)) => held,
+        (Some(f), _) => f
+            .loads(
+                &s.deflected,
+                flight,
+                &s.solution,
+                &PanelMotion::default(),
+                &s.pivot_m,
+                |r| r == RegionKind::LiftingSurface,
+            )
+            .map_err(&err)?,
+        (None, _) => Loads::default(),
+    };
+    s.held_friction = hold_friction.then_some(friction);
+    let applied = integrate_pressure(
+        &s.deflected,
+        &s.solution.pressure_pa,
+        p_inf,
+        &s.pivot_m,
+        |r| r == RegionKind::LiftingSurface,
+    ) + friction;
+    s.applied_surface_frame = Loads {
+        force_n: rotation.inverse_transform_vector(&applied.force_n),
+        moment_nm: rotation.inverse_transform_vector(&applied.moment_nm),
+    };
+    s.applied_about_pivot = applied;
+    s.elevon_rotation = rotation;
+    add_thermal_generalized_forces(s, out);
+    Ok(())
+}
+
+/// The surface's generalized forces: the aero ones of its last evaluation plus the thermal
+/// ones of its heated stiffness.
+pub(super) fn add_thermal_generalized_forces(s: &Surface, out: &mut DVector<f64>) {
+    let thermal = s
+        .structure
+        .thermal_stiffness()
+        .and_then(|t| t.thermal_generalized_forces());
+    for (k, q) in out.iter_mut().enumerate() {
+        *q = s.generalized[k] + thermal.map_or(0.0, |t| t[k]);
+    }
+}
+
+/// The elevon's rotation of a surface about its torque tube for a deflection, rad.
+pub(super) fn elevon_rotation(
+    surface: &str,
+    deflection_rad: f64,
+) -> Result<nalgebra::Rotation3<f64>, VehicleError> {
+    rotation_about_axis(&pivot_axis(), elevon_rotation_angle_rad(deflection_rad))
+        .map_err(|e| model_error(surface)(ModelError::inconsistent("elevon", e.to_string())))
+}
+
+/// Whether a heated surface's heat flux is due again at `time_s` (every heat-flux interval).
+pub(super) fn heat_flux_due(t: &SurfaceThermal, time_s: f64, rates: &HeatingRates) -> bool {
+    time_s - t.flux_time_s >= rates.heat_flux_s - 1e-12
+}
+
+/// One surface's heat flux at `time_s` from its aero at the accepted state (the surface's
+/// modes, the body's, the elevon and its flight condition), held until it is due again. The
+/// aero is evaluated here, not read from the last derivative: inside a step that is the last
+/// Runge-Kutta stage's predictor, not a state the flight passes through.
+pub(super) fn refresh_heat_flux(
+    s: &mut Surface,
+    modes: (&crate::dynamics::ModalState, &crate::dynamics::ModalState),
+    elevon: &ElevonCommand,
+    flight: &FlightCondition,
+    time_s: f64,
+    rates: &HeatingRates,
+) -> Result<(), VehicleError> {
+    if !s
+        .thermal
+        .as_ref()
+        .is_some_and(|t| heat_flux_due(t, time_s, rates))
+    {
+        return Ok(());
+    }
+    // The panel solution only: the step's first stage evaluates the loads at this state.
+    surface_aero(s, modes, elevon, flight, time_s)?;
+    let err = model_error(&s.name);
+    let Some(t) = &mut s.thermal else {
+        return Ok(());
+    };
+    t.conduction.surface_temperatures(&t.state, &mut t.wall_k);
+    t.heat_flux
+        .heat_flux(
+            &s.deflected,
+            flight,
+            &s.solution,
+            &t.wall_k,
+            &mut t.flux_w_m2,
+        )
+        .map_err(&err)?;
+    t.flux_time_s = time_s;
+    Ok(())
+}
+
+/// One surface's heating up to `time_s`: conduction steps under the heat flux last refreshed
+/// ([`refresh_heat_flux`], at the steps' starts), and the stiffness from the temperature field
+/// at its rate (flagged for the vehicle's modal matrices).
+pub(super) fn heat_surface(
+    s: &mut Surface,
+    time_s: f64,
+    rates: &HeatingRates,
+) -> Result<(), VehicleError> {
+    let Some(t) = &mut s.thermal else {
+        return Ok(());
+    };
+    let err = model_error(&s.name);
+    let mut stepped = false;
+    while time_s - t.conduction_time_s > 1e-9 * rates.conduction_s {
+        let dt = rates.conduction_s.min(time_s - t.conduction_time_s);
+        t.trial.copy_from(&t.state);
+        t.conduction
+            .step(&mut t.trial, &t.flux_w_m2, dt)
+            .map_err(&err)?;
+        std::mem::swap(&mut t.state, &mut t.trial);
+        t.conduction_time_s += dt;
+        stepped = true;
+    }
+    if stepped && time_s - t.stiffness_time_s >= rates.stiffness_s - 1e-12 {
+        t.conduction.node_temperatures(&t.state, &mut t.node_k);
+        t.conduction
+            .node_temperature_differences(&t.state, &mut t.node_difference_k);
+        match &t.transfer {
+            Some(transfer) => {
+                let to_err = |e: hsv_core::coupling::CouplingError| {
+                    err(ModelError::inconsistent(
+                        "temperature transfer",
+                        e.to_string(),
+                    ))
+                };
+                transfer
+                    .apply(&t.node_k, &mut t.structure_k)
+                    .map_err(to_err)?;
+                transfer
+                    .apply(&t.node_difference_k, &mut t.structure_difference_k)
+                    .map_err(to_err)?;
+            }
+            None => {
+                t.structure_k.copy_from_slice(&t.node_k);
+                t.structure_difference_k
+                    .copy_from_slice(&t.node_difference_k);
+            }
+        }
+        if let Some(thermal) = s.structure.thermal_stiffness_mut() {
+            thermal
+                .set_temperature_field(&t.structure_k, &t.structure_difference_k)
+                .map_err(&err)?;
+        }
+        t.stiffness_changed = true;
+        t.stiffness_time_s = time_s;
+    }
+    Ok(())
+}
+
+/// Every lifting surface's region loads, side by side (rayon).
+/// Each surface's loads in its own flight condition (`flights`, one per surface: the wind
+/// where it flies).
+pub(super) fn surfaces_loads(
+    surfaces: &mut [Surface],
+    forces: &mut [DVector<f64>],
+    state: &VehicleState,
+    elevon: &ElevonCommand,
+    flights: &[FlightCondition],
+    time_s: f64,
+    hold_friction: bool,
+) -> Result<(), VehicleError> {
+    let each = |(((s, out), modes), flight): (
+        (
+            (&mut Surface, &mut DVector<f64>),
+            &crate::dynamics::ModalState,
+        ),
+        &FlightCondition,
+    )| {
+        surface_region_loads(
+            s,
+            (modes, &state.body_modes),
+            elevon,
+            flight,
+            time_s,
+            hold_friction,
+            out,
+        )
+    };
+    if side_by_side() {
+        surfaces
+            .par_iter_mut()
+            .zip(forces.par_iter_mut())
+            .zip(state.surface_modes.par_iter())
+            .zip(flights.par_iter())
+            .try_for_each(each)
+    } else {
+        surfaces
+            .iter_mut()
+            .zip(forces.iter_mut())
+            .zip(state.surface_modes.iter())
+            .zip(flights.iter())
+            .try_for_each(each)
+    }
+}
+
+impl PartitionedVehicle {
+    /// The heated surfaces' heat flux, where due, from their aero at the accepted `state`
+    /// (each in its own flight condition, side by side).
+    pub(super) fn refresh_heat_fluxes(
+        &mut self,
+        state: &VehicleState,
+        controls: &FlightControls,
+        time_s: f64,
+    ) -> Result<(), VehicleError> {
+        let rates = self.heating;
+        let due = |s: &Surface| {
+            s.thermal
+                .as_ref()
+                .is_some_and(|t| heat_flux_due(t, time_s, &rates))
+        };
+        if !self.surfaces.iter().any(due) {
+            return Ok(());
+        }
+        let flight = self.flight(state)?;
+        self.update_surface_flights(state, &flight)?;
+        let elevon = controls.elevon;
+        let body_modes = &state.body_modes;
+        let refresh = |((s, modes), flight): (
+            (&mut Surface, &crate::dynamics::ModalState),
+            &FlightCondition,
+        )| {
+            refresh_heat_flux(s, (modes, body_modes), &elevon, flight, time_s, &rates)
+        };
+        if side_by_side() {
+            self.surfaces
+                .par_iter_mut()
+                .zip(state.surface_modes.par_iter())
+                .zip(self.surface_flights.par_iter())
+                .try_for_each(refresh)
+        } else {
+            self.surfaces
+                .iter_mut()
+                .zip(state.surface_modes.iter())
+                .zip(self.surface_flights.iter())
+                .try_for_each(refresh)
+        }
+    }
+
+    /// Each surface's flight condition into `surface_flights`: the wind at its pivot, `lead`
+    /// ahead of the centre of mass along the body axis (`flight`, the centre of mass's, when the
+    /// air is calm).
+    pub(super) fn update_surface_flights(
+        &mut self,
+        state: &VehicleState,
+        flight: &FlightCondition,
+    ) -> Result<(), VehicleError> {
+        self.surface_flights.clear();
+        let cg_x = self.mass.center_of_mass_m.x;
+        for i in 0..self.surfaces.len() {
+            let f = if self.disturbances.is_calm() {
+                *flight
+            } else {
+                self.flight_at(state, self.surfaces[i].pivot_m.x - cg_x)?
+            };
+            self.surface_flights.push(f);
+        }
+        Ok(())
+    }
+
+    /// Each surface's loads at the stage time from its publications (module
+    /// [`crate::vehicle::region_rate`]) with the stage's elevon rotation and thermal generalized forces;
+    /// false when the surfaces are evaluated at every stage or nothing is published yet.
+    pub(super) fn read_surface_loads(
+        &mut self,
+        elevon: &ElevonCommand,
+    ) -> Result<bool, VehicleError> {
+        if self.surface_rate == RegionLoadRate::EveryStage || self.surfaces.is_empty() {
+            return Ok(false);
+        }
+        let mut unused = Loads::default();
+        for ((s, history), out) in self
+            .surfaces
+            .iter_mut()
+            .zip(&self.surface_histories)
+            .zip(self.loads.surface_generalized_forces.iter_mut())
+        {
+            if !history.read(
+                self.time_s,
+                &mut s.applied_surface_frame,
+                &mut unused,
+                &mut s.generalized,
+            ) {
+                return Ok(false);
+            }
+            let rotation = elevon_rotation(&s.name, elevon.deflection_rad(s.side))?;
+            s.applied_about_pivot = Loads {
+                force_n: rotation * s.applied_surface_frame.force_n,
+                moment_nm: rotation * s.applied_surface_frame.moment_nm,
+            };
+            s.elevon_rotation = rotation;
+            add_thermal_generalized_forces(s, out);
+        }
+        Ok(true)
+    }
+}

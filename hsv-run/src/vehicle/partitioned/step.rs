@@ -152,41 +152,14 @@ impl PartitionedVehicle {
                 .body_history
                 .friction_at(time_s, &self.body_friction_rate);
         }
-        let cg = self.mass.center_of_mass_m;
-        let reference_point_m = self.reference_point_m;
-        let body = &mut self.body;
-        let engine = self.engine.as_mut();
-        let engine_solution = &mut self.engine_solution;
-        let surfaces = &mut self.surfaces;
-        let surface_flights = &self.surface_flights;
-        let surface_forces = &mut self.loads.surface_generalized_forces;
-        let (body_loads, surfaces_done) = join(
-            || {
-                body_due.then(|| {
-                    body_region_loads(
-                        body,
-                        engine,
-                        engine_solution,
-                        state,
-                        controls,
-                        &flight,
-                        &cg,
-                        &reference_point_m,
-                    )
-                })
-            },
-            || {
-                surfaces_due.then(|| {
-                    surfaces_loads(
-                        surfaces,
-                        surface_forces,
-                        state,
-                        &controls.elevon,
-                        surface_flights,
-                        time_s,
-                        true,
-                    )
-                })
+        let (body_loads, surfaces_done) = self.regions_side_by_side(
+            state,
+            controls,
+            &flight,
+            RegionsWanted {
+                body: body_due,
+                surfaces: surfaces_due,
+                hold_friction: true,
             },
         );
         let held = self.body.held_friction.take();
@@ -312,45 +285,73 @@ impl PartitionedVehicle {
             }
             (false, false) => self.update_surface_flights(state, flight)?,
         }
+        let (body_loads, surfaces_done) = self.regions_side_by_side(
+            state,
+            controls,
+            flight,
+            RegionsWanted {
+                body: true,
+                surfaces: true,
+                hold_friction: self.in_step,
+            },
+        );
+        if let Some(done) = surfaces_done {
+            done?;
+        }
+        if let Some(loads) = body_loads {
+            self.set_body_loads(loads?);
+        }
+        self.follower_loads(state, controls, flight)
+    }
+
+    /// The wanted regions evaluated side by side at `state` (the body: its aero and engine
+    /// loads; the surfaces: into their own buffers and the generalized forces), at the vehicle's
+    /// time; `None` for a region not wanted.
+    fn regions_side_by_side(
+        &mut self,
+        state: &VehicleState,
+        controls: &FlightControls,
+        flight: &FlightCondition,
+        wanted: RegionsWanted,
+    ) -> RegionResults {
         let cg = self.mass.center_of_mass_m;
         let reference_point_m = self.reference_point_m;
-        let elevon = controls.elevon;
         let time_s = self.time_s;
-        let hold_friction = self.in_step;
         let body = &mut self.body;
         let engine = self.engine.as_mut();
         let engine_solution = &mut self.engine_solution;
         let surfaces = &mut self.surfaces;
         let surface_flights = &self.surface_flights;
         let surface_forces = &mut self.loads.surface_generalized_forces;
-        let (body_loads, surfaces_done) = join(
+        join(
             || {
-                body_region_loads(
-                    body,
-                    engine,
-                    engine_solution,
-                    state,
-                    controls,
-                    flight,
-                    &cg,
-                    &reference_point_m,
-                )
+                wanted.body.then(|| {
+                    body_region_loads(
+                        body,
+                        engine,
+                        engine_solution,
+                        state,
+                        controls,
+                        flight,
+                        &cg,
+                        &reference_point_m,
+                    )
+                })
             },
             || {
-                surfaces_loads(
-                    surfaces,
-                    surface_forces,
-                    state,
-                    &elevon,
-                    surface_flights,
-                    time_s,
-                    hold_friction,
-                )
+                wanted.surfaces.then(|| {
+                    surfaces_loads(
+                        surfaces,
+                        surface_forces,
+                        state,
+                        &controls.elevon,
+                        surface_flights,
+                        time_s,
+                        wanted.hold_friction,
+                    )
+                })
             },
-        );
-        surfaces_done?;
-        self.set_body_loads(body_loads?);
-        self.follower_loads(state, controls, flight)
+        )
     }
 
     /// Whether any surface's stiffness has been updated from its temperature field.
@@ -395,4 +396,19 @@ impl PartitionedVehicle {
     pub fn surface_model(&self) -> SurfaceModel {
         self.surface_model
     }
+}
+
+/// The body's (aero, engine) loads and the surfaces' completion, each when wanted.
+type RegionResults = (
+    Option<Result<(Loads, Loads), VehicleError>>,
+    Option<Result<(), VehicleError>>,
+);
+
+/// Which regions [`PartitionedVehicle::regions_side_by_side`] evaluates, and whether the
+/// surfaces hold their skin friction over the open step.
+#[derive(Debug, Clone, Copy)]
+struct RegionsWanted {
+    body: bool,
+    surfaces: bool,
+    hold_friction: bool,
 }

@@ -11,10 +11,10 @@ use criterion::{Criterion, criterion_group, criterion_main};
 use hsv_core::aero::{AeroSolution, PanelMotion};
 use hsv_core::config::LoadedConfig;
 use hsv_core::flow::{FlightCondition, Freestream};
+use hsv_core::geometry::{Side, lifting_surface_mesh};
 use hsv_core::registry::ModelContext;
 use hsv_core::surface_grid::SurfaceGrid;
 use hsv_core::thermal::ConductionModel;
-use hsv_core::vehicle::{Side, lifting_surface_mesh};
 use hsv_model_conduction::{
     FullOrder, FullOrderSettings, Pod, PodBasis, PodSettings, collect_snapshots,
 };

@@ -11,8 +11,8 @@ use criterion::{Criterion, Throughput, criterion_group, criterion_main};
 use hsv_core::aero::{AeroSolution, PanelMotion};
 use hsv_core::config::LoadedConfig;
 use hsv_core::flow::{FlightCondition, Freestream};
+use hsv_core::geometry::{Side, lifting_surface_mesh};
 use hsv_core::registry::ModelContext;
-use hsv_core::vehicle::{Side, lifting_surface_mesh};
 
 fn heat_flux(c: &mut Criterion) {
     let loaded = LoadedConfig::sample().expect("embedded config parses");

@@ -14,11 +14,11 @@ use criterion::{Criterion, criterion_group, criterion_main};
 use hsv_core::aero::{AeroModel, AeroSolution, PanelMotion};
 use hsv_core::error::ModelError;
 use hsv_core::flow::{FlightCondition, Freestream};
+use hsv_core::geometry::build_vehicle;
 use hsv_core::propulsion::{EngineInputs, PropulsionModel, PropulsionSolution};
 use hsv_core::region::RegionInfo;
 use hsv_core::registry::{ModelContext, Registry, RoleModel};
 use hsv_core::thermal::HeatFluxModel;
-use hsv_core::vehicle::build_vehicle;
 use hsv_plugin_ackeret as _;
 use hsv_plugin_laminar_plate as _;
 

@@ -9,9 +9,9 @@ use std::hint::black_box;
 use criterion::{Criterion, criterion_group, criterion_main};
 use hsv_core::config::LoadedConfig;
 use hsv_core::flow::{FlightCondition, Freestream};
+use hsv_core::geometry::build_vehicle;
 use hsv_core::propulsion::{EngineInputs, PropulsionSolution};
 use hsv_core::registry::{ModelContext, Role};
-use hsv_core::vehicle::build_vehicle;
 use hsv_model_scramjet as _;
 
 fn propulsion_models(c: &mut Criterion) {

@@ -9,11 +9,11 @@ use std::hint::black_box;
 
 use criterion::{Criterion, criterion_group, criterion_main};
 use hsv_core::config::LoadedConfig;
+use hsv_core::geometry::Side;
 use hsv_core::material::Material;
 use hsv_core::structure::StructureModel;
 use hsv_core::structure::ThermalStiffness;
 use hsv_core::surface_grid::SurfaceGrid;
-use hsv_core::vehicle::Side;
 use hsv_model_ritz_plate::{RitzPlate, Settings};
 
 fn ritz_plate(c: &mut Criterion) {

@@ -8,12 +8,12 @@ use std::path::{Path, PathBuf};
 
 use crate::aero::ReferenceValues;
 use crate::gas::PerfectGas;
-use crate::mesh::{PanelMesh, RegionKind};
-use crate::region::{ModelSettings, RegionGeometry, RegionInfo, merge_tables};
-use crate::vehicle::{
+use crate::geometry::{
     GeometryConfig, LiftingSurfaceConfig, Side, VehicleGeometry, body_mesh, build_vehicle,
     lifting_surface_mesh,
 };
+use crate::mesh::{PanelMesh, RegionKind};
+use crate::region::{ModelSettings, RegionGeometry, RegionInfo, merge_tables};
 
 /// The sample vehicle config, embedded in every binary.
 pub const SAMPLE_CONFIG_TOML: &str = include_str!("../../configs/sample-hsv.toml");
@@ -367,7 +367,7 @@ impl LoadedConfig {
                 ),
             });
         };
-        let mesh_error = |e: crate::vehicle::VehicleError| ConfigError {
+        let mesh_error = |e: crate::geometry::VehicleError| ConfigError {
             file: self.file.clone(),
             key_path: String::new(),
             message: format!("building the {name} mesh: {e}"),

@@ -46,9 +46,9 @@
 use nalgebra::{DMatrix, Point3, Rotation3, Unit, Vector3};
 
 use crate::aero::{Loads, integrate_pressure};
+use crate::geometry::{LiftingSurfaceConfig, Side, pivot_point};
 use crate::mesh::{MeshError, ModeShapes, Panel, PanelMesh, RegionKind};
 use crate::surface_grid::{GridError, GridPoint, SurfaceGrid};
-use crate::vehicle::{LiftingSurfaceConfig, Side, pivot_point};
 
 /// Why a coupling quantity could not be computed.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
@@ -401,7 +401,7 @@ pub fn elevon_rotation_angle_rad(deflection_rad: f64) -> f64 {
 }
 
 /// The `side` lifting-surface mesh (undeflected, from
-/// [`crate::vehicle::lifting_surface_mesh`]) deflected by `deflection_rad` (positive trailing
+/// [`crate::geometry::lifting_surface_mesh`]) deflected by `deflection_rad` (positive trailing
 /// edge up) about its torque tube through [`pivot_point`]`(cfg, side)`, into `out`.
 pub fn deflect_lifting_surface(
     mesh: &PanelMesh,

@@ -11,6 +11,7 @@ pub mod cache;
 pub mod coupling;
 pub mod frames;
 pub mod gas;
+pub mod geometry;
 pub mod linalg;
 pub mod material;
 pub mod mesh;
@@ -18,7 +19,6 @@ pub mod region;
 pub mod stl;
 pub mod surface_grid;
 pub mod testing;
-pub mod vehicle;
 
 pub mod aero;
 pub mod control;

@@ -10,8 +10,8 @@ use std::collections::BTreeMap;
 use crate::aero::ReferenceValues;
 use crate::error::ModelError;
 use crate::gas::PerfectGas;
+use crate::geometry::{GeometryConfig, LiftingSurfaceConfig, Side};
 use crate::mesh::{PanelMesh, RegionKind};
-use crate::vehicle::{GeometryConfig, LiftingSurfaceConfig, Side};
 
 /// The parametric geometry a region was built from, for models that build their own grids.
 #[derive(Debug, Clone, PartialEq)]

@@ -10,7 +10,7 @@
 //! Element nodes are listed counter-clockwise in the body x-y plane (positive signed area with
 //! x and y as drawn), whichever side.
 //!
-//! **Frame.** Body axes, the same as [`crate::vehicle::lifting_surface_mesh`]: the mid-plane is
+//! **Frame.** Body axes, the same as [`crate::geometry::lifting_surface_mesh`]: the mid-plane is
 //! the plane z = `pivot_z_m`, the root at |y| = `root_y_m`, the left surface the mirror image
 //! (y < 0) of the right. Thickness at a node is the double-wedge thickness
 //! t = (t/c) c(η) shape(u), zero at the leading and trailing edges.
@@ -26,8 +26,8 @@
 
 use nalgebra::Point3;
 
+use crate::geometry::{LiftingSurfaceConfig, Side};
 use crate::mesh::PanelMesh;
-use crate::vehicle::{LiftingSurfaceConfig, Side};
 
 /// Why a grid could not be built or a point mapped.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
@@ -309,7 +309,7 @@ impl SurfaceGrid {
             };
             tc * c * shape.max(0.0)
         };
-        let pivot = crate::vehicle::pivot_point(cfg, side);
+        let pivot = crate::geometry::pivot_point(cfg, side);
         Ok(Self::build(
             shape,
             us,
@@ -642,8 +642,8 @@ impl SurfaceGrid {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::geometry::lifting_surface_mesh;
     use crate::mesh::RegionKind;
-    use crate::vehicle::lifting_surface_mesh;
     use approx::assert_relative_eq;
 
     fn sample() -> LiftingSurfaceConfig {
@@ -688,7 +688,7 @@ mod tests {
                 assert_relative_eq!(g.positions_m[n].y.abs(), l.root_y_m, epsilon = 1e-12);
                 assert_relative_eq!(g.positions_m[n].z, l.pivot_z_m, epsilon = 1e-12);
             }
-            assert_eq!(g.pivot_m, crate::vehicle::pivot_point(&l, side));
+            assert_eq!(g.pivot_m, crate::geometry::pivot_point(&l, side));
         }
     }
 

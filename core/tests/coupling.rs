@@ -14,9 +14,9 @@ use hsv_core::coupling::{
     deflect_lifting_surface, generalized_forces, pivot_axis, pressure_loads, rotate_about_axis,
     rotate_grid_positions, rotate_points, rotation_about_axis,
 };
+use hsv_core::geometry::{LiftingSurfaceConfig, Side, lifting_surface_mesh, pivot_point};
 use hsv_core::mesh::{ModeShapes, PanelMesh, PanelSpec, RegionKind, Surface};
 use hsv_core::surface_grid::SurfaceGrid;
-use hsv_core::vehicle::{LiftingSurfaceConfig, Side, lifting_surface_mesh, pivot_point};
 use nalgebra::{DMatrix, Point3, Rotation3, Vector3};
 
 const P_INF_PA: f64 = 2188.0;

@@ -9,11 +9,11 @@ use hsv_core::aero::{
 };
 use hsv_core::config::LoadedConfig;
 use hsv_core::flow::{FlightCondition, Freestream};
+use hsv_core::geometry::build_vehicle;
 use hsv_core::mesh::{PanelMesh, RegionKind};
 use hsv_core::region::RegionInfo;
 use hsv_core::registry::{ModelContext, Registry, Role};
 use hsv_core::thermal::HeatFluxModel;
-use hsv_core::vehicle::build_vehicle;
 
 /// A mesh to evaluate and what it is, for reports.
 #[derive(Debug, Clone)]

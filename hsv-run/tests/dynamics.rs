@@ -14,8 +14,8 @@ use hsv_core::testing::{CountingAllocator, allocations};
 use hsv_core::aero::Loads;
 use hsv_core::atmosphere::{EARTH_RADIUS_M, STANDARD_GRAVITY_M_S2};
 use hsv_core::structure::{MassProperties, ModalModel, RigidDof};
+use hsv_run::dynamics::equations_of_motion::{angular_momentum_ned, rotational_energy};
 use hsv_run::dynamics::linearize::{FORWARD_DIFFERENCE_6, forward_difference_derivative};
-use hsv_run::dynamics::vehicle::{angular_momentum_ned, rotational_energy};
 use hsv_run::dynamics::{
     AttitudeCoordinates, DynamicsError, GravityModel, LinearModel, ModalDynamics, ModalRate,
     ModalState, ModeName, ModeScales, PerturbationRule, RigidBody, RigidBodyState, Rk4,

@@ -10,9 +10,9 @@ use std::path::{Path, PathBuf};
 use common::cli::{hsv_run_in, json, scratch_dir, stderr};
 
 use hsv_core::config::LoadedConfig;
+use hsv_core::geometry::{Side, lifting_surface_mesh};
 use hsv_core::surface_grid::SurfaceGrid;
 use hsv_core::thermal::ConductionModel;
-use hsv_core::vehicle::{Side, lifting_surface_mesh};
 use hsv_model_conduction::{
     FullOrder, FullOrderSettings, Pod, PodBasis, PodSettings, collect_snapshots,
 };

@@ -11,9 +11,9 @@ use crate::aero::{EdgeState, ReferenceValues};
 use crate::control::{LinearDesignModel, StateFeedback, matrix_rows};
 use crate::flow::{FlightCondition, Freestream};
 use crate::gas::PerfectGas;
+use crate::geometry::Side;
 use crate::mesh::{Panel, PanelMesh, RegionKind, Strip, Surface};
 use crate::region::{ModelSettings, RegionGeometry, RegionInfo};
-use crate::vehicle::Side;
 
 pub(crate) fn region_code(kind: RegionKind) -> u32 {
     match kind {
@@ -201,13 +201,13 @@ fn geometry_from_json(text: &str) -> Result<RegionGeometry, String> {
     #[derive(serde::Deserialize)]
     #[serde(deny_unknown_fields)]
     struct Surface {
-        lifting_surface: crate::vehicle::LiftingSurfaceConfig,
+        lifting_surface: crate::geometry::LiftingSurfaceConfig,
         side: Side,
     }
     #[derive(serde::Deserialize)]
     #[serde(deny_unknown_fields)]
     struct Body {
-        body: crate::vehicle::GeometryConfig,
+        body: crate::geometry::GeometryConfig,
     }
     let value: serde_json::Value =
         serde_json::from_str(text).map_err(|e| format!("region geometry is not JSON: {e}"))?;

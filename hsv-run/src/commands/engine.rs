@@ -10,10 +10,10 @@ use anyhow::{Context, Result, bail};
 use clap::Args;
 use hsv_core::config::LoadedConfig;
 use hsv_core::flow::{FlightCondition, Freestream};
+use hsv_core::geometry::build_vehicle;
 use hsv_core::mesh::PanelMesh;
 use hsv_core::propulsion::{EngineInputs, EngineStatus, PropulsionModel, PropulsionSolution};
 use hsv_core::registry::{ModelContext, Registry, Role};
-use hsv_core::vehicle::build_vehicle;
 
 use super::{ConfigArg, JsonFlag, OutArgs, load_config};
 use crate::output::{self, LinePlot, RunFolder, RunStatus, Series};

@@ -20,11 +20,11 @@ use std::path::{Path, PathBuf};
 use anyhow::{Context, Result, bail};
 use clap::Args;
 use hsv_core::config::LoadedConfig;
+use hsv_core::geometry::Side;
 use hsv_core::mesh::{ModeShapes, PanelMesh};
 use hsv_core::region::RegionInfo;
 use hsv_core::registry::{ModelContext, Registry};
 use hsv_core::structure::StructureModel;
-use hsv_core::vehicle::Side;
 use nalgebra::{DVector, Vector3};
 
 use super::{ConfigArg, JsonFlag, OutArgs, load_config};

@@ -26,7 +26,7 @@ pub struct VehicleArgs {
 struct RegionSummary {
     region: String,
     kind: hsv_core::mesh::RegionKind,
-    side: Option<hsv_core::vehicle::Side>,
+    side: Option<hsv_core::geometry::Side>,
     panels: usize,
     models: hsv_core::config::RegionModels,
     mass_properties: Option<MassProperties>,

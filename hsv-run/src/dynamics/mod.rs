@@ -10,7 +10,7 @@
 //!   quaternion attitude, altitude-dependent gravity).
 //! - [`modal`]: modal equations M q̈ + C q̇ + K q = Q − C_rb a for the free-free body (mean axes)
 //!   and for each lifting surface driven by the motion of its root.
-//! - [`vehicle`]: the assembled vehicle state, loads and derivative, and the flat state-vector
+//! - [`equations_of_motion`]: the assembled vehicle state, loads and derivative, and the flat state-vector
 //!   layout (quaternion or 3-2-1 Euler attitude) the integrator and linearization work on.
 //! - [`integrate`]: classical fourth-order Runge-Kutta on a preallocated workspace.
 //! - [`linearize`]: A, B, C, D by central differences with the paper's perturbation rule, and
@@ -18,13 +18,17 @@
 //! - [`flight_modes`]: eigenvalues with frequency and damping, named by eigenvector content
 //!   (short period, phugoid, roll, Dutch roll, spiral, structural modes).
 
+pub mod equations_of_motion;
 pub mod flight_modes;
 pub mod integrate;
 pub mod linearize;
 pub mod modal;
 pub mod rigid_body;
-pub mod vehicle;
 
+pub use equations_of_motion::{
+    AttitudeCoordinates, StateLayout, VehicleDerivative, VehicleDynamics, VehicleLoads,
+    VehicleState,
+};
 pub use flight_modes::{FlightMode, ModeName, ModeScales, StateRole, flight_modes};
 pub use integrate::{ExponentialRk4, LinearBlock, Rk4};
 pub use linearize::{LinearModel, PerturbationRule, linearize, linearize_outputs};
@@ -32,10 +36,6 @@ pub use modal::{
     ModalDynamics, ModalRate, ModalState, RootMotion, SurfaceAttachment, mean_axes_cosine,
 };
 pub use rigid_body::{EarthModel, GravityModel, RigidBody, RigidBodyDerivative, RigidBodyState};
-pub use vehicle::{
-    AttitudeCoordinates, StateLayout, VehicleDerivative, VehicleDynamics, VehicleLoads,
-    VehicleState,
-};
 
 use hsv_core::linalg::EigenError;
 

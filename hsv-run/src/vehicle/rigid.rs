@@ -14,11 +14,11 @@ use hsv_core::coupling::{ElevonCommand, deflect_lifting_surface};
 use hsv_core::flow::{FlightCondition, Freestream};
 use hsv_core::frames;
 use hsv_core::gas::PerfectGas;
+use hsv_core::geometry::{LiftingSurfaceConfig, Side};
 use hsv_core::mesh::{PanelMesh, RegionKind};
 use hsv_core::propulsion::{EngineInputs, EngineStatus, PropulsionModel, PropulsionSolution};
 use hsv_core::region::RegionGeometry;
 use hsv_core::structure::{Capability, MassProperties};
-use hsv_core::vehicle::{LiftingSurfaceConfig, Side};
 use nalgebra::{Point3, Vector3};
 
 use super::friction::RegionFriction;

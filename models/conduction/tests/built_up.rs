@@ -313,8 +313,8 @@ fn registered_built_up_model_heats_the_sample_surface() {
     }
     let loaded = hsv_core::config::LoadedConfig::sample().unwrap();
     let cfg = &loaded.config.lifting_surface;
-    let side = hsv_core::vehicle::Side::Right;
-    let mesh = hsv_core::vehicle::lifting_surface_mesh(cfg, side).unwrap();
+    let side = hsv_core::geometry::Side::Right;
+    let mesh = hsv_core::geometry::lifting_surface_mesh(cfg, side).unwrap();
     let grid = SurfaceGrid::lifting_surface(cfg, side, 16, 8).unwrap();
     let direct = FullOrder::new(
         &grid,

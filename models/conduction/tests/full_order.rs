@@ -304,7 +304,7 @@ fn registered_model_heats_the_sample_lifting_surface() {
     let n = model.n_surface_panels();
     let cfg = &loaded.config.lifting_surface;
     let mesh =
-        hsv_core::vehicle::lifting_surface_mesh(cfg, hsv_core::vehicle::Side::Right).unwrap();
+        hsv_core::geometry::lifting_surface_mesh(cfg, hsv_core::geometry::Side::Right).unwrap();
     assert_eq!(n, mesh.panels.len());
     let q = vec![5.0e4; n];
     let dt = 0.5;
@@ -318,7 +318,7 @@ fn registered_model_heats_the_sample_lifting_surface() {
         .map(|p| p.area_m2)
         .sum();
     // Energy check through a fresh full-order model with the same settings.
-    let grid = SurfaceGrid::lifting_surface(cfg, hsv_core::vehicle::Side::Right, 16, 8).unwrap();
+    let grid = SurfaceGrid::lifting_surface(cfg, hsv_core::geometry::Side::Right, 16, 8).unwrap();
     let direct = FullOrder::new(&grid, &mesh, FullOrderSettings::default()).unwrap();
     let stored = direct.stored_energy_j(&state, 293.0).unwrap();
     assert_relative_eq!(stored, 5.0e4 * wetted * dt * 4.0, max_relative = 1e-5);

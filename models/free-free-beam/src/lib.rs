@@ -22,13 +22,13 @@ pub mod fe;
 pub mod modes;
 
 use hsv_core::error::ModelError;
+use hsv_core::geometry::{BodyProfile, GeometryConfig, body_profile};
 use hsv_core::mesh::{ModeShapes, PanelMesh};
 use hsv_core::region::RegionGeometry;
 use hsv_core::registry::{Constructor, ModelContext, ModelDescriptor};
 use hsv_core::structure::{
     MassDistribution, MassProperties, ModalModel, RigidBodyCoupling, RigidDof, StructureModel,
 };
-use hsv_core::vehicle::{BodyProfile, GeometryConfig, body_profile};
 use nalgebra::{DMatrix, DVector, Matrix3, Point3, Vector3};
 
 pub use fe::{BeamMesh, ModeKind, Section, SectionMotion};

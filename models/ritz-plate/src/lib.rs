@@ -57,6 +57,7 @@ pub mod plate;
 
 use hsv_core::aero::Loads;
 use hsv_core::error::ModelError;
+use hsv_core::geometry::Side;
 use hsv_core::linalg::{BandedMatrix, SymmetricEigenSolver, generalized_symmetric_eigen};
 use hsv_core::material::{Material, MaterialSetting};
 use hsv_core::mesh::{ModeShapes, PanelMesh};
@@ -66,7 +67,6 @@ use hsv_core::structure::{
     StructureModel, ThermalStiffness,
 };
 use hsv_core::surface_grid::{GridEdge, GridPoint, SurfaceGrid};
-use hsv_core::vehicle::Side;
 use nalgebra::{DMatrix, DVector, Matrix3, Point3, Vector3};
 
 use crate::plate::{ElementState, PlateError, PlateModel, Supports};

@@ -40,7 +40,7 @@ fn sample_ritz(settings: &Settings) -> RitzPlate {
         .lifting_surface;
     let grid = SurfaceGrid::lifting_surface(
         &surface,
-        hsv_core::vehicle::Side::Right,
+        hsv_core::geometry::Side::Right,
         settings.elements_chordwise,
         settings.elements_spanwise,
     )
@@ -266,7 +266,7 @@ fn left_side_force_summation_mirrors_the_right() {
         elements_spanwise: 6,
         ..Settings::default()
     });
-    let left = right.clone().with_side(hsv_core::vehicle::Side::Left);
+    let left = right.clone().with_side(hsv_core::geometry::Side::Left);
     let pr = right.root_reference_m();
     let pl = left.root_reference_m();
     assert_eq!(pl, Point3::new(pr.x, -pr.y, pr.z));

@@ -5,9 +5,9 @@ use common::{build, descriptor};
 
 use approx::assert_relative_eq;
 use hsv_core::config::LoadedConfig;
+use hsv_core::geometry::{Side, lifting_surface_mesh};
 use hsv_core::registry::{Constructor, ModelContext};
 use hsv_core::surface_grid::SurfaceGrid;
-use hsv_core::vehicle::{Side, lifting_surface_mesh};
 use hsv_model_ritz_plate::NAME;
 use nalgebra::DVector;
 

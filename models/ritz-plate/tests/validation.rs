@@ -118,7 +118,7 @@ fn cantilever_square_plate_matches_leissa_within_one_percent() {
     }
 }
 
-fn sample_surface() -> hsv_core::vehicle::LiftingSurfaceConfig {
+fn sample_surface() -> hsv_core::geometry::LiftingSurfaceConfig {
     hsv_core::config::LoadedConfig::sample()
         .expect("sample")
         .config
@@ -129,10 +129,10 @@ fn sample_ritz(settings: &Settings) -> RitzPlate {
     ritz_on(&sample_surface(), settings)
 }
 
-fn ritz_on(surface: &hsv_core::vehicle::LiftingSurfaceConfig, settings: &Settings) -> RitzPlate {
+fn ritz_on(surface: &hsv_core::geometry::LiftingSurfaceConfig, settings: &Settings) -> RitzPlate {
     let grid = SurfaceGrid::lifting_surface(
         surface,
-        hsv_core::vehicle::Side::Right,
+        hsv_core::geometry::Side::Right,
         settings.elements_chordwise,
         settings.elements_spanwise,
     )
@@ -204,7 +204,7 @@ fn uniformly_heated_restrained_plate_buckles_near_the_classical_temperature() {
 #[test]
 fn free_expansion_scales_frequencies_with_the_square_root_of_the_modulus() {
     let grid =
-        SurfaceGrid::lifting_surface(&sample_surface(), hsv_core::vehicle::Side::Right, 12, 8)
+        SurfaceGrid::lifting_surface(&sample_surface(), hsv_core::geometry::Side::Right, 12, 8)
             .expect("grid");
     let root = grid.edge_nodes(GridEdge::Root);
     let mut supports = Supports::free(grid.n_nodes());
@@ -252,7 +252,7 @@ fn ritz_basis_reproduces_the_free_modes_and_static_shapes_improve_the_heated_res
     };
     // A 5 % section: the sample's 2.8 % buckles under this 700 K leading edge, and the test is
     // about the Ritz basis, not the sample.
-    let surface = hsv_core::vehicle::LiftingSurfaceConfig {
+    let surface = hsv_core::geometry::LiftingSurfaceConfig {
         thickness_to_chord: 0.05,
         ..sample_surface()
     };

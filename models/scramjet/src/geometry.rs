@@ -7,11 +7,11 @@
 //! point `i` and `i + 1` bound panel `i` of the strip.
 
 use hsv_core::error::ModelError;
+use hsv_core::geometry::BodyProfile;
 use hsv_core::mesh::{Panel, PanelMesh};
-use hsv_core::vehicle::BodyProfile;
 use nalgebra::{Point2, Vector2};
 
-/// Surface names of the vehicle body mesh the engine reads (see `hsv_core::vehicle`).
+/// Surface names of the vehicle body mesh the engine reads (see `hsv_core::geometry`).
 pub const RAMP_SURFACE: &str = "inlet-ramp";
 /// The engine's outer underside (main body); its first point is the cowl lip.
 pub const COWL_SURFACE: &str = "cowl";

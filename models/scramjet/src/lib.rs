@@ -122,9 +122,9 @@ mod settings;
 mod span;
 
 use hsv_core::error::ModelError;
+use hsv_core::geometry::GeometryConfig;
 use hsv_core::propulsion::PropulsionModel;
 use hsv_core::registry::{Constructor, ModelContext, ModelDescriptor};
-use hsv_core::vehicle::GeometryConfig;
 use nalgebra::Point3;
 
 pub use flow::{

@@ -4,7 +4,7 @@
 //! are errors naming the key path. Area ratios left out follow the `[geometry]` table.
 
 use hsv_core::error::ModelError;
-use hsv_core::vehicle::GeometryConfig;
+use hsv_core::geometry::GeometryConfig;
 
 use crate::section::Fuel;
 

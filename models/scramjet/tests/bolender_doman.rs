@@ -14,9 +14,9 @@
 use hsv_core::config::LoadedConfig;
 use hsv_core::flow::{FlightCondition, Freestream};
 use hsv_core::gas::PerfectGas;
+use hsv_core::geometry::build_vehicle;
 use hsv_core::mesh::PanelMesh;
 use hsv_core::propulsion::{EngineInputs, PropulsionModel, PropulsionSolution};
-use hsv_core::vehicle::build_vehicle;
 use hsv_model_scramjet::{Checker, OneDSettings, QuasiOneDSettings, Scramjet};
 use nalgebra::Point3;
 

@@ -34,7 +34,7 @@ type Solver = Box<dyn Fn(&SectionGeometry, &SectionConditions<'_>) -> SectionSol
 fn setup(friction: Option<f64>) -> (SectionGeometry, Vec<(&'static str, Solver)>) {
     let loaded = LoadedConfig::sample().expect("embedded config");
     let geometry = loaded.config.geometry;
-    let profile = hsv_core::vehicle::body_profile(&geometry).expect("profile");
+    let profile = hsv_core::geometry::body_profile(&geometry).expect("profile");
     let section = SectionGeometry::from_profile(&profile, 0.0, 29, 12, 19);
     let check = Checker {
         file: "test",

@@ -17,7 +17,7 @@ const GAMMA: f64 = 1.4;
 
 fn section() -> SectionGeometry {
     let loaded = LoadedConfig::sample().expect("embedded config");
-    let profile = hsv_core::vehicle::body_profile(&loaded.config.geometry).expect("profile");
+    let profile = hsv_core::geometry::body_profile(&loaded.config.geometry).expect("profile");
     SectionGeometry::from_profile(&profile, 0.0, 29, 12, 19)
 }
 

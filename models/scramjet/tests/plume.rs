@@ -64,7 +64,7 @@ fn shear_layer_angle_matches_pressure_across_the_free_boundary() {
 fn aftbody_pressure_is_the_quasi_one_dimensional_plume_expansion() {
     let loaded = LoadedConfig::sample().expect("embedded config");
     let geometry = loaded.config.geometry;
-    let profile = hsv_core::vehicle::body_profile(&geometry).expect("profile");
+    let profile = hsv_core::geometry::body_profile(&geometry).expect("profile");
     let section = SectionGeometry::from_profile(&profile, 0.0, 29, 12, 19);
     let check = Checker {
         file: "test",

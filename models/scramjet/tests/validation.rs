@@ -13,10 +13,10 @@ use hsv_core::config::LoadedConfig;
 use hsv_core::error::ModelError;
 use hsv_core::flow::{FlightCondition, Freestream};
 use hsv_core::gas::PerfectGas;
+use hsv_core::geometry::{BodyProfile, build_vehicle};
 use hsv_core::mesh::{PanelMesh, RegionKind};
 use hsv_core::propulsion::{EngineInputs, EngineStatus, PropulsionModel, PropulsionSolution};
 use hsv_core::registry::{ModelContext, Registry, RegistryError, Role};
-use hsv_core::vehicle::{BodyProfile, build_vehicle};
 use hsv_model_scramjet::{
     Burner, COMBUSTOR_ENTRY, COMBUSTOR_EXIT, Checker, FlowState, INLET, NOZZLE_EXIT, OneDEngine,
     OneDSettings, QuasiOneDEngine, QuasiOneDSettings, SCRAMJET_1D, SCRAMJET_Q1D, SectionConditions,
@@ -39,7 +39,7 @@ fn body() -> PanelMesh {
 }
 
 fn profile() -> BodyProfile {
-    hsv_core::vehicle::body_profile(&sample().config.geometry).expect("profile")
+    hsv_core::geometry::body_profile(&sample().config.geometry).expect("profile")
 }
 
 fn model(name: &str) -> Box<dyn PropulsionModel> {

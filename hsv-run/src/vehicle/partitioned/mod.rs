@@ -22,7 +22,7 @@
 //! (its mesh and the boundary velocities its aero sees, by the pivot's translation and the
 //! rotation of the body's section there), drive the surface's root acceleration, and take the
 //! surface's wrench at the pivot into their generalized forces; the iteration's unknowns are the
-//! surfaces' q̈ and the body's η̈ (mass bookkeeping: [`crate::dynamics::vehicle`]).
+//! surfaces' q̈ and the body's η̈ (mass bookkeeping: [`crate::dynamics::equations_of_motion`]).
 //!
 //! That is the implicit scheme, the default. The staggered scheme of `[coupling]` evaluates
 //! steps 1-3 and each region once per stage with the interface of the previous sub-iteration
@@ -40,11 +40,11 @@ use hsv_core::coupling::{
 };
 use hsv_core::flow::{FlightCondition, Freestream};
 use hsv_core::gas::PerfectGas;
+use hsv_core::geometry::{LiftingSurfaceConfig, Side, pivot_point};
 use hsv_core::mesh::{ModeShapes, PanelMesh, RegionKind};
 use hsv_core::propulsion::{EngineInputs, PropulsionModel, PropulsionSolution};
 use hsv_core::region::RegionGeometry;
 use hsv_core::structure::{Capability, MassProperties, StructureModel};
-use hsv_core::vehicle::{LiftingSurfaceConfig, Side, pivot_point};
 use nalgebra::{DVector, Point3, Vector3};
 use rayon::prelude::*;
 
@@ -52,7 +52,7 @@ use super::friction::RegionFriction;
 use super::region_rate::{DEFAULT_BODY_FRICTION_DT_S, RegionLoadHistory, RegionLoadRate};
 use super::{AnalysisNeeds, AssemblyError, RegionModelSet, RegionNeeds};
 use crate::disturbance::Disturbances;
-use crate::dynamics::vehicle::pivot_motion;
+use crate::dynamics::equations_of_motion::pivot_motion;
 use crate::dynamics::{
     GravityModel, RigidBody, SurfaceAttachment, VehicleDerivative, VehicleDynamics, VehicleLoads,
     VehicleState,

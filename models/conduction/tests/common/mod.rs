@@ -5,9 +5,9 @@
 #![allow(dead_code)]
 
 use hsv_core::config::LoadedConfig;
+use hsv_core::geometry::{LiftingSurfaceConfig, Side, lifting_surface_mesh};
 use hsv_core::mesh::{PanelMesh, PanelSpec, RegionKind, Surface};
 use hsv_core::surface_grid::SurfaceGrid;
-use hsv_core::vehicle::{LiftingSurfaceConfig, Side, lifting_surface_mesh};
 use hsv_model_conduction::{FullOrder, FullOrderSettings};
 
 /// Stefan-Boltzmann constant, W/(m² K⁴).

@@ -1,5 +1,6 @@
 //! The flexible-vehicle equations of motion, integrator and linearization against closed forms
-//! and published models: free fall under inverse-square gravity (energy integral), torque-free
+//! and published models (one file: one test binary shares the vehicles, loads and integration
+//! helpers every check below uses): free fall under inverse-square gravity (energy integral), torque-free
 //! rotation of an asymmetric body (Euler's equations: conserved angular momentum and energy,
 //! intermediate-axis instability at its linearized rate), damped modal oscillation (log
 //! decrement), a lifting surface's response to its root motion (step response, equivalence

@@ -331,4 +331,3 @@ pub(super) fn linear_topic<T: TopicValue + Interpolate>(depth: usize) -> Box<dyn
 pub(super) fn clone_into<T: Clone>(value: &T, out: &mut T) {
     out.clone_from(value);
 }
-

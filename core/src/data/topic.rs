@@ -354,4 +354,3 @@ impl<T: TopicValue> ErasedTopic for Topic<T> {
         }
     }
 }
-

@@ -43,7 +43,7 @@ use super::rigid_body::{RigidBody, RigidBodyDerivative, RigidBodyState};
 use super::{DynamicsError, check_finite, check_len};
 
 /// The whole vehicle's dynamic state: plain data.
-#[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize)]
+#[derive(Debug, PartialEq, Default, Serialize, Deserialize)]
 pub struct VehicleState {
     pub rigid: RigidBodyState,
     /// The free-free body's modal coordinates (mean axes).
@@ -51,6 +51,23 @@ pub struct VehicleState {
     /// Each lifting surface's Ritz coordinates, in the order of the surfaces given to
     /// [`VehicleDynamics::new`].
     pub surface_modes: Vec<ModalState>,
+}
+
+impl Clone for VehicleState {
+    fn clone(&self) -> Self {
+        Self {
+            rigid: self.rigid,
+            body_modes: self.body_modes.clone(),
+            surface_modes: self.surface_modes.clone(),
+        }
+    }
+
+    /// Copies into the existing buffers when the shapes agree (no allocation in the time loop).
+    fn clone_from(&mut self, source: &Self) {
+        self.rigid = source.rigid;
+        self.body_modes.clone_from(&source.body_modes);
+        self.surface_modes.clone_from(&source.surface_modes);
+    }
 }
 
 /// What the coordinator computes from a state: body-axis loads about the centre of mass

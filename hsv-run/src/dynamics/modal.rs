@@ -43,12 +43,37 @@ use super::{DynamicsError, check_finite, check_len};
 
 /// Modal coordinates and their rates (the body's flexible modes, or one surface's Ritz
 /// coordinates): plain data.
-#[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize)]
+#[derive(Debug, PartialEq, Default, Serialize, Deserialize)]
 pub struct ModalState {
     /// Generalized coordinates (units of the mode shapes' normalization).
     pub q: DVector<f64>,
     /// Their time derivatives, 1/s.
     pub q_dot: DVector<f64>,
+}
+
+impl Clone for ModalState {
+    fn clone(&self) -> Self {
+        Self {
+            q: self.q.clone(),
+            q_dot: self.q_dot.clone(),
+        }
+    }
+
+    /// Copies into the existing buffers when the lengths agree: the time loop copies states
+    /// without allocating.
+    fn clone_from(&mut self, source: &Self) {
+        copy_vector(&mut self.q, &source.q);
+        copy_vector(&mut self.q_dot, &source.q_dot);
+    }
+}
+
+/// `to ← from`, in place when the lengths agree.
+fn copy_vector(to: &mut DVector<f64>, from: &DVector<f64>) {
+    if to.len() == from.len() {
+        to.copy_from(from);
+    } else {
+        *to = from.clone();
+    }
 }
 
 impl ModalState {

@@ -280,6 +280,8 @@ impl PartitionedVehicle {
             body_history: RegionLoadHistory::default(),
             surface_rate: RegionLoadRate::EveryStage,
             surface_histories: Vec::new(),
+            stage_one: None,
+            stage_one_state: VehicleState::default(),
             in_step: false,
             disturbances: Disturbances::default(),
             surface_flights: Vec::new(),

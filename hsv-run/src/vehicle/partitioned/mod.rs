@@ -521,6 +521,11 @@ pub struct PartitionedVehicle {
     /// (module [`super::region_rate`]).
     surface_rate: RegionLoadRate,
     surface_histories: Vec<RegionLoadHistory>,
+    /// The surfaces evaluated beside the body at the accepted state by `begin_step` (when they
+    /// run at every stage): the time and controls, and the state, that the step's first stage
+    /// must match to use them instead of evaluating them again.
+    stage_one: Option<(f64, FlightControls)>,
+    stage_one_state: VehicleState,
     in_step: bool,
     /// The wind field the regions fly through (calm unless a flight sets one).
     disturbances: Disturbances,

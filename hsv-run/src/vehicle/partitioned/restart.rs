@@ -86,6 +86,7 @@ impl PartitionedVehicle {
             }
         }
         self.in_step = false;
+        self.stage_one = None;
         self.q_ddot.clone_from(&r.q_ddot);
         if r.body_q_ddot.is_empty() {
             self.body_q_ddot.fill(0.0);

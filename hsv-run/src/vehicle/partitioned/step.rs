@@ -42,6 +42,7 @@ impl PartitionedVehicle {
         self.advance_heating(time_s)?;
         self.time_s = time_s;
         self.in_step = false;
+        self.stage_one = None;
         Ok(())
     }
 
@@ -101,6 +102,7 @@ impl PartitionedVehicle {
         time_s: f64,
     ) -> Result<(), VehicleError> {
         self.in_step = false;
+        self.stage_one = None;
         // The field a step reads (its stages and every region ahead of the centre of mass).
         self.disturbances
             .extend_to(time_s + DISTURBANCE_LOOKAHEAD_S, self.region_lead_max_m());
@@ -125,26 +127,45 @@ impl PartitionedVehicle {
                     .first()
                     .and_then(RegionLoadHistory::latest_time_s),
             );
+        // Surfaces evaluated at every stage meet the body here on the first stage's state, so
+        // two threads take them side by side; that stage then reads what they gave
+        // (`stage_one_surfaces`). The staggered scheme moves their roots between sub-iterations.
+        let surfaces_beside_body = body_due
+            && !surfaces_due
+            && self.surface_rate == RegionLoadRate::EveryStage
+            && self.staggered.is_none()
+            && !self.surfaces.is_empty();
         if body_due || surfaces_due {
-            self.publish_regions(state, controls, time_s, body_due, surfaces_due)?;
+            self.publish_regions(
+                state,
+                controls,
+                time_s,
+                body_due,
+                surfaces_due || surfaces_beside_body,
+            )?;
+            if surfaces_beside_body {
+                self.stage_one_state.clone_from(state);
+                self.stage_one = Some((time_s, *controls));
+            }
         }
         self.in_step = true;
         Ok(())
     }
 
-    /// The regions due at the step starting at `time_s` evaluated at the accepted `state`, side
-    /// by side, and published (module [`crate::vehicle::region_rate`]).
+    /// The body (when due) and the surfaces (when wanted) at the step starting at `time_s`,
+    /// evaluated at the accepted `state` side by side; the body, and the surfaces when they run
+    /// at their own rate, published (module [`crate::vehicle::region_rate`]).
     pub(super) fn publish_regions(
         &mut self,
         state: &VehicleState,
         controls: &FlightControls,
         time_s: f64,
         body_due: bool,
-        surfaces_due: bool,
+        surfaces: bool,
     ) -> Result<(), VehicleError> {
         let flight = self.flight(state)?;
         self.time_s = time_s;
-        if surfaces_due {
+        if surfaces {
             self.update_surface_flights(state, &flight)?;
         }
         if body_due {
@@ -158,14 +179,20 @@ impl PartitionedVehicle {
             &flight,
             RegionsWanted {
                 body: body_due,
-                surfaces: surfaces_due,
+                surfaces,
                 hold_friction: true,
             },
         );
         let held = self.body.held_friction.take();
         if let Some(done) = surfaces_done {
             done?;
-            for (s, history) in self.surfaces.iter().zip(&mut self.surface_histories) {
+            let publishing = self.surface_rate != RegionLoadRate::EveryStage;
+            for (s, history) in self
+                .surfaces
+                .iter()
+                .zip(&mut self.surface_histories)
+                .filter(|_| publishing)
+            {
                 history.publish(
                     time_s,
                     &s.applied_surface_frame,
@@ -260,7 +287,9 @@ impl PartitionedVehicle {
         controls: &FlightControls,
         flight: &FlightCondition,
     ) -> Result<(), VehicleError> {
-        let surfaces_read = self.in_step && self.read_surface_loads(&controls.elevon)?;
+        let surfaces_read = self.in_step
+            && (self.read_surface_loads(&controls.elevon)?
+                || self.stage_one_surfaces(state, controls));
         let body_read = self.in_step
             && self.body_history.read(
                 self.time_s,
@@ -352,6 +381,14 @@ impl PartitionedVehicle {
                 })
             },
         )
+    }
+
+    /// Whether the surfaces' loads `begin_step` evaluated at the accepted state serve this
+    /// derivative: the step's first stage, at the same time, state and controls (once).
+    fn stage_one_surfaces(&mut self, state: &VehicleState, controls: &FlightControls) -> bool {
+        self.stage_one.take().is_some_and(|(time_s, at)| {
+            time_s == self.time_s && at == *controls && *state == self.stage_one_state
+        })
     }
 
     /// Whether any surface's stiffness has been updated from its temperature field.

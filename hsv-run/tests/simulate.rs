@@ -311,17 +311,22 @@ fn a_duration_that_is_not_a_whole_number_of_steps_ends_exactly_at_it() {
 
 #[test]
 fn a_run_resumed_from_its_restart_file_continues_bit_for_bit() {
+    // The body region runs every other step, so the restart falls between two of its
+    // evaluations and the resumed run must extrapolate from the saved ones; then the surfaces
+    // too (`surface_loads_dt_s`), whose publications the restart file carries as well.
+    resumes_bit_for_bit(RegionLoadRate::EveryStage);
+    resumes_bit_for_bit(RegionLoadRate::Interval(0.004));
+}
+
+/// The heated partitioned vehicle (coarse surfaces), trimmed and flown for 0.2 s in one go, and
+/// again stopped at 0.102 s, written to JSON, read back into a freshly built vehicle and
+/// resumed: the final states must be identical to the last bit.
+fn resumes_bit_for_bit(surface_rate: RegionLoadRate) {
     use hsv_run::vehicle::partitioned::VehicleRestart;
-    // The heated partitioned vehicle (coarse surfaces), trimmed and flown for 0.2 s in one go,
-    // and again stopped at 0.102 s, written to JSON, read back into a freshly built vehicle and
-    // resumed: the final states must be identical to the last bit. The body region runs every
-    // other step, so the restart falls between two of its evaluations and the resumed run must
-    // extrapolate from the saved ones.
     let start = || {
         let (mut vehicle, state, controls) = heated_trimmed();
-        vehicle.set_body_load_rate(hsv_run::vehicle::region_rate::RegionLoadRate::Interval(
-            0.004,
-        ));
+        vehicle.set_body_load_rate(RegionLoadRate::Interval(0.004));
+        vehicle.set_surface_load_rate(surface_rate);
         (vehicle, state, controls)
     };
     let inputs = Inputs {
@@ -385,7 +390,7 @@ fn a_run_resumed_from_its_restart_file_continues_bit_for_bit() {
     .expect("second half");
     assert_eq!(
         resumed_state, whole_state,
-        "resumed run drifted from the whole run"
+        "{surface_rate:?}: resumed run drifted from the whole run"
     );
     assert_eq!(resumed.restart(), whole.restart());
     assert!(

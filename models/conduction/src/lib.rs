@@ -160,6 +160,16 @@ fn check_pod(ctx: &ModelContext<'_>) -> Result<(), ModelError> {
     Ok(())
 }
 
+/// A basis another region saved from the same fingerprint (the mirror lifting surface's: both
+/// train on the same planform, grid and conditions, and their snapshots agree to rounding).
+fn sibling_basis(settings: &PodSettings, region: &str, fingerprint: &str) -> Option<PodBasis> {
+    settings
+        .sibling_basis_paths(region)
+        .iter()
+        .filter_map(|p| PodBasis::load_cache(p).ok())
+        .find(|b| b.fingerprint == fingerprint)
+}
+
 fn construct_pod(ctx: &ModelContext<'_>) -> Result<Box<dyn ConductionModel>, ModelError> {
     let (mut settings, path_buf) = pod_settings(ctx)?;
     let mut full = full_order_for(ctx)?;
@@ -177,7 +187,13 @@ fn construct_pod(ctx: &ModelContext<'_>) -> Result<Box<dyn ConductionModel>, Mod
             }
             match cached {
                 Ok(basis) if basis.fingerprint == fingerprint => basis,
-                // Missing, damaged or built from something else: train and replace it.
+                // Missing, damaged or built from something else: another region's basis built
+                // from the same (the mirror surface: the fingerprint holds the planform and
+                // settings, not the side), else train, and save it as this region's.
+                _ if let Some(basis) = sibling_basis(&settings, &ctx.region.name, &fingerprint) => {
+                    basis.save(path)?;
+                    basis
+                }
                 _ => {
                     reused = false;
                     let mut basis =

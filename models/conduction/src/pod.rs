@@ -404,6 +404,40 @@ impl Settings {
     pub fn basis_path(&self, region: &str) -> std::path::PathBuf {
         std::path::PathBuf::from(self.basis_file.replace("{region}", region))
     }
+
+    /// The other regions' basis files [`Self::basis_file`] names: the files of its folder
+    /// whose names match it with any text for `{region}` (none without the placeholder).
+    pub fn sibling_basis_paths(&self, region: &str) -> Vec<std::path::PathBuf> {
+        let own = self.basis_path(region);
+        let pattern = std::path::Path::new(&self.basis_file);
+        let Some(name) = pattern.file_name().and_then(|n| n.to_str()) else {
+            return Vec::new();
+        };
+        let Some((prefix, suffix)) = name.split_once("{region}") else {
+            return Vec::new();
+        };
+        let folder = pattern
+            .parent()
+            .filter(|p| !p.as_os_str().is_empty())
+            .unwrap_or(std::path::Path::new("."));
+        let Ok(entries) = std::fs::read_dir(folder) else {
+            return Vec::new();
+        };
+        let mut paths: Vec<std::path::PathBuf> = entries
+            .filter_map(Result::ok)
+            .map(|e| e.path())
+            .filter(|p| {
+                p.file_name().and_then(|n| n.to_str()).is_some_and(|n| {
+                    n.len() > prefix.len() + suffix.len()
+                        && n.starts_with(prefix)
+                        && n.ends_with(suffix)
+                })
+            })
+            .filter(|p| p.file_name() != own.file_name())
+            .collect();
+        paths.sort();
+        paths
+    }
 }
 
 impl Default for Settings {

@@ -283,6 +283,72 @@ fn training_registry() -> Registry {
     registry
 }
 
+/// The mirror surface takes the basis its twin trained (same fingerprint: the side is not part
+/// of it) instead of training again, and saves it as its own; a sibling built from other
+/// conditions is not taken. The right surface's own training gives the same basis to rounding
+/// (its snapshots are the left's mirrored), which is why sharing it is sound.
+#[test]
+fn the_mirror_surface_reuses_its_twins_basis() {
+    let dir = std::env::temp_dir().join(format!("hsv-pod-sibling-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    let pattern = dir.join("basis-{region}.json").display().to_string();
+    let settings = |mach: &str| -> toml::Table {
+        toml::from_str(&format!(
+            "basis_file = {pattern:?}\nmodes = 6\n[training]\nheat_flux = \"relaxing-flux\"\n\
+             aero = \"freestream-aero\"\nmach = [{mach}]\nduration_s = 1.0\n\
+             dt_s = 0.1\nsnapshots_per_run = 5\n"
+        ))
+        .unwrap()
+    };
+    let registry = &training_registry();
+    let build = |side: &str, table: &toml::Table| {
+        let region = hsv_core::testing::sample_region(side);
+        let ctx = ModelContext {
+            settings: table,
+            key_path: "models.pod",
+            file: "test.toml",
+            region,
+            registry,
+        };
+        registry
+            .create::<dyn hsv_core::thermal::ConductionModel>("pod", &ctx)
+            .map(|m| m.cache())
+    };
+    let left_file = dir.join("basis-left_surface.json");
+    let right_file = dir.join("basis-right_surface.json");
+    let first = settings("5.0, 6.0");
+    build("left_surface", &first).expect("trains");
+    let left = PodBasis::load(&left_file).expect("left saved");
+    let taken = build("right_surface", &first).expect("takes the twin's");
+    assert!(
+        taken.is_some_and(|c| c.reused),
+        "the right surface trained again"
+    );
+    assert_eq!(PodBasis::load(&right_file).expect("right saved"), left);
+
+    // Its own training would have given the same modes to rounding.
+    std::fs::remove_file(&left_file).unwrap();
+    std::fs::remove_file(&right_file).unwrap();
+    build("right_surface", &first).expect("trains");
+    let own = PodBasis::load(&right_file).unwrap();
+    assert_eq!(own.fingerprint, left.fingerprint);
+    let largest = (&own.modes - &left.modes).amax();
+    assert!(
+        largest < 1e-9,
+        "right's own basis differs from left's by {largest}"
+    );
+
+    // A sibling from other conditions is not taken: the left surface trains its own.
+    let other = settings("6.5, 7.0");
+    build("left_surface", &other).expect("trains");
+    assert_ne!(
+        PodBasis::load(&left_file).unwrap().fingerprint,
+        own.fingerprint
+    );
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
 /// A `pod` with a `[training]` table trains its basis when the file is missing, reuses it when
 /// it was built from the same conditions, and retrains when anything it records changes.
 #[test]

@@ -92,9 +92,10 @@ impl PartitionedVehicle {
             .resize_with(self.surfaces.len(), RegionLoadHistory::default);
     }
 
-    /// Opens the step starting at `time_s` from the accepted `state`: unless the body region
-    /// runs at every stage, it is evaluated and published here when its rate says so, and the
-    /// step's derivatives read its publications (extrapolated) until [`Self::commit_step`].
+    /// Opens the step starting at `time_s` from the accepted `state`: the heat flux where due;
+    /// then each region that runs at its own rate (the body by default, the surfaces with
+    /// `surface_loads_dt_s`) is evaluated and published here when due, and the step's
+    /// derivatives read its publications (extrapolated) until [`Self::commit_step`].
     pub fn begin_step(
         &mut self,
         state: &VehicleState,

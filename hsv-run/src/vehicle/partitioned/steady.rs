@@ -2,6 +2,11 @@
 //! flight condition (`settle`), level flight, and the trim's [`SteadyFlight`] interface.
 
 use super::*;
+use hsv_core::acceleration::{Aitken, ConstantRelaxation};
+
+/// The clamp on Aitken's factor in [`PartitionedVehicle::settle`]: from strong under-relaxation
+/// (aero stiffening) to the over-relaxation a slowly converging equilibrium takes.
+const SETTLE_AITKEN_BOUNDS: (f64, f64) = (0.05, 2.0);
 
 impl crate::vehicle::rigid::SteadyFlight for PartitionedVehicle {
     fn steady_accelerations(
@@ -174,8 +179,10 @@ impl PartitionedVehicle {
     /// `tolerance` (1/s²), which includes aero, engine, gravity and inertial relief through the
     /// root motion. Returns the iterations. Allocates (trim and start-up only).
     ///
-    /// ω = 1 first (the plain fixed point q ← K⁻¹ F(q)); when it fails, again from the same
-    /// start under-relaxed, ω = 1/2 then 1/4. With J = K⁻¹ ∂F/∂q the relaxed iteration's
+    /// First with Aitken's Δ² relaxation from ω = 1 (the plain fixed point q ← K⁻¹ F(q) with the
+    /// secant factor of the last two residuals, Küttler & Wall 2008: the trim's elastic
+    /// equilibria converge in about half the iterations); when that fails, again from the same
+    /// start at constant ω = 1, 1/2 then 1/4. With J = K⁻¹ ∂F/∂q the relaxed iteration's
     /// factors are 1 − ω (1 − λ(J)): aero loads that stiffen the structure strongly (λ < −1)
     /// make the plain iteration overshoot and diverge while a relaxed one converges; λ > 1 is
     /// static divergence, and no relaxation converges (the plain iteration's error is returned).
@@ -188,15 +195,34 @@ impl PartitionedVehicle {
         out: &mut VehicleDerivative,
     ) -> Result<usize, VehicleError> {
         let start = state.clone();
-        let plain = self.settle_relaxed(state, controls, tolerance, max_iterations, 1.0, out);
+        let mut aitken = Aitken::new(1.0, SETTLE_AITKEN_BOUNDS);
+        if let Ok(iterations) =
+            self.settle_relaxed(state, controls, tolerance, max_iterations, &mut aitken, out)
+        {
+            return Ok(iterations);
+        }
+        state.clone_from(&start);
+        let plain = self.settle_relaxed(
+            state,
+            controls,
+            tolerance,
+            max_iterations,
+            &mut ConstantRelaxation { omega: 1.0 },
+            out,
+        );
         let Err(plain_error) = plain else {
             return plain;
         };
-        for relaxation in [0.5, 0.25] {
+        for omega in [0.5, 0.25] {
             state.clone_from(&start);
-            if let Ok(iterations) =
-                self.settle_relaxed(state, controls, tolerance, max_iterations, relaxation, out)
-            {
+            if let Ok(iterations) = self.settle_relaxed(
+                state,
+                controls,
+                tolerance,
+                max_iterations,
+                &mut ConstantRelaxation { omega },
+                out,
+            ) {
                 return Ok(iterations);
             }
         }
@@ -204,14 +230,14 @@ impl PartitionedVehicle {
         Err(plain_error)
     }
 
-    /// [`Self::settle`] at one relaxation factor ω.
+    /// [`Self::settle`] with one relaxation of the update q ← q + ω K⁻¹ M q̈.
     pub(super) fn settle_relaxed(
         &mut self,
         state: &mut VehicleState,
         controls: &FlightControls,
         tolerance: f64,
         max_iterations: usize,
-        relaxation: f64,
+        relaxation: &mut dyn Acceleration,
         out: &mut VehicleDerivative,
     ) -> Result<usize, VehicleError> {
         let body_k_m = {
@@ -230,6 +256,8 @@ impl PartitionedVehicle {
         for m in &mut state.surface_modes {
             m.q_dot.fill(0.0);
         }
+        relaxation.reset();
+        let (mut iterate, mut produced) = (Vec::new(), Vec::new());
         for iteration in 1..=max_iterations.max(1) {
             self.derivative(state, controls, out)?;
             let mut largest: f64 = out.body_modes.q_ddot.amax();
@@ -239,14 +267,33 @@ impl PartitionedVehicle {
             if largest <= tolerance {
                 return Ok(iteration);
             }
-            if let Some(km) = &body_k_m {
-                state.body_modes.q += relaxation * (km * &out.body_modes.q_ddot);
-            }
-            for (i, km) in surface_k_m.iter().enumerate() {
-                if let Some(km) = km {
-                    state.surface_modes[i].q += relaxation * (km * &out.surface_modes[i].q_ddot);
+            // The fixed-point map's output G(q) = q + K⁻¹ M q̈ beside q, both flat, for the
+            // relaxation to combine.
+            iterate.clear();
+            produced.clear();
+            let mut push = |q: &DVector<f64>, step: Option<DVector<f64>>| {
+                iterate.extend(q.iter());
+                match step {
+                    Some(step) => produced.extend(q.iter().zip(step.iter()).map(|(a, b)| a + b)),
+                    None => produced.extend(q.iter()),
                 }
+            };
+            push(
+                &state.body_modes.q,
+                body_k_m.as_ref().map(|km| km * &out.body_modes.q_ddot),
+            );
+            for (i, km) in surface_k_m.iter().enumerate() {
+                push(
+                    &state.surface_modes[i].q,
+                    km.as_ref().map(|km| km * &out.surface_modes[i].q_ddot),
+                );
             }
+            relaxation.update(&mut iterate, &produced);
+            scatter(
+                &iterate,
+                std::iter::once(&mut state.body_modes.q)
+                    .chain(state.surface_modes.iter_mut().map(|m| &mut m.q)),
+            );
         }
         Err(VehicleError::Model {
             region: "vehicle".to_owned(),

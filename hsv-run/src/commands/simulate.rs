@@ -329,7 +329,11 @@ pub fn run(args: SimulateArgs, registry: &Registry) -> Result<()> {
     let controller_name = options.controller.clone().unwrap_or_default();
     let integrator = settings.integrator;
     let earth = settings.earth;
-    let (body_rate, friction_rate) = (settings.body_loads, settings.body_friction);
+    let (body_rate, friction_rate, surface_rate) = (
+        settings.body_loads,
+        settings.body_friction,
+        settings.surface_loads,
+    );
     let design_report = control.controller().design_report();
     let mut folder = RunFolder::create("simulate", args.output.out.as_deref(), args.output.force)?;
     let run_settings = RunSettings {
@@ -462,6 +466,7 @@ pub fn run(args: SimulateArgs, registry: &Registry) -> Result<()> {
         "earth": earth.name(),
         "body_loads_dt_s": rate_seconds(body_rate),
         "body_friction_dt_s": rate_seconds(friction_rate),
+        "surface_loads_dt_s": rate_seconds(surface_rate),
         "warnings": warnings,
         "controller": controller_name,
         "controller_design": design_report,

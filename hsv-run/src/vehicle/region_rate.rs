@@ -37,7 +37,7 @@ use serde::{Deserialize, Serialize};
 /// The body's skin friction rate by default, s: the paper's aerothermal step (Table 3).
 pub const DEFAULT_BODY_FRICTION_DT_S: f64 = 0.01;
 
-/// How often the main body's region is evaluated.
+/// How often a region (the main body, the lifting surfaces) is evaluated.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 pub enum RegionLoadRate {
     /// At every state derivative (every Runge-Kutta stage): the reference.
@@ -55,7 +55,8 @@ impl Default for RegionLoadRate {
 }
 
 impl RegionLoadRate {
-    /// The rate of `[simulation] body_loads_dt_s`: 0 for every stage, else the interval, s.
+    /// The rate of a `[simulation]` interval (`body_loads_dt_s`, `surface_loads_dt_s`): 0 for
+    /// every stage, else the interval, s.
     pub fn from_interval_s(interval_s: f64) -> Option<Self> {
         if interval_s == 0.0 {
             Some(Self::EveryStage)
@@ -66,8 +67,8 @@ impl RegionLoadRate {
         }
     }
 
-    /// Whether a step starting at `time_s` evaluates the body, the last evaluation having been
-    /// at `last_s` (none: always).
+    /// Whether a step starting at `time_s` evaluates the region, the last evaluation having
+    /// been at `last_s` (none: always).
     pub fn is_due(&self, time_s: f64, last_s: Option<f64>) -> bool {
         match (self, last_s) {
             (Self::EveryStage, _) | (_, None) => true,
@@ -83,14 +84,16 @@ impl RegionLoadRate {
 #[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize)]
 pub struct PublishedLoads {
     pub time_s: f64,
-    /// Aero, skin friction, engine (and the monolithic model's surfaces) about the centre of
-    /// mass, body axes, N and N m.
+    /// The body: aero, skin friction, engine (and the monolithic model's surfaces) about the
+    /// centre of mass, body axes; a surface: its pressure and friction about its pivot in its
+    /// own frame. N and N m.
     pub force_n: Vector3<f64>,
     pub moment_nm: Vector3<f64>,
-    /// The aero (pressure and friction) part alone, N and N m.
+    /// The body's aero (pressure and friction) part alone, N and N m (zero for a surface).
     pub aero_force_n: Vector3<f64>,
     pub aero_moment_nm: Vector3<f64>,
-    /// Generalized forces of the body's modes, N (per unit modal coordinate).
+    /// Generalized forces of the region's modes (a surface's: the aero part), N (per unit
+    /// modal coordinate).
     pub generalized: DVector<f64>,
 }
 

@@ -413,7 +413,7 @@ impl Flight {
         };
         vehicle.set_disturbances(disturbances);
         vehicle.start_heating(&settings.rates)?;
-        vehicle.forget_body_loads();
+        vehicle.forget_region_loads();
         let initial = Initial {
             state: trim.state.clone(),
             vehicle: vehicle.restart(),
@@ -447,7 +447,7 @@ impl Flight {
         self.vehicle
             .set_disturbances(self.initial.disturbances.clone());
         self.vehicle.restore(&self.initial.vehicle)?;
-        self.vehicle.forget_body_loads();
+        self.vehicle.forget_region_loads();
         self.control.restore(self.initial.control.clone())?;
         self.state.clone_from(&self.initial.state);
         self.step = 0;

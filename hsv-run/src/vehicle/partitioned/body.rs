@@ -110,27 +110,6 @@ pub(super) fn body_region_loads(
 }
 
 impl PartitionedVehicle {
-    /// The body region alone (body, engine, the monolithic model's surfaces) into the loads.
-    pub(super) fn body_loads_now(
-        &mut self,
-        state: &VehicleState,
-        controls: &FlightControls,
-        flight: &FlightCondition,
-    ) -> Result<(), VehicleError> {
-        let loads = body_region_loads(
-            &mut self.body,
-            self.engine.as_mut(),
-            &mut self.engine_solution,
-            state,
-            controls,
-            flight,
-            &self.mass.center_of_mass_m,
-            &self.reference_point_m,
-        )?;
-        self.set_body_loads(loads);
-        self.follower_loads(state, controls, flight)
-    }
-
     /// The body's aero and engine loads and generalized forces into the vehicle loads.
     pub(super) fn set_body_loads(&mut self, (body_aero, engine_loads): (Loads, Loads)) {
         self.loads.body = body_aero + engine_loads;

@@ -81,7 +81,7 @@ impl PartitionedVehicle {
     }
 
     /// Forgets the regions' publications (a run starting afresh).
-    pub fn forget_body_loads(&mut self) {
+    pub fn forget_region_loads(&mut self) {
         self.body_history.clear();
         self.forget_surface_loads();
     }
@@ -107,11 +107,10 @@ impl PartitionedVehicle {
         // The field a step reads (its stages and every region ahead of the centre of mass).
         self.disturbances
             .extend_to(time_s + DISTURBANCE_LOOKAHEAD_S, self.region_lead_max_m());
-        self.refresh_heat_fluxes(state, controls, time_s)?;
         if self.body_rate == RegionLoadRate::EveryStage
             && self.surface_rate == RegionLoadRate::EveryStage
         {
-            return Ok(());
+            return self.refresh_heat_fluxes(state, controls, time_s, false);
         }
         for s in &mut self.surfaces {
             s.held_friction = None;
@@ -136,19 +135,17 @@ impl PartitionedVehicle {
             && self.surface_rate == RegionLoadRate::EveryStage
             && self.staggered.is_none()
             && !self.surfaces.is_empty();
+        let surfaces_evaluated = surfaces_due || surfaces_beside_body;
         if body_due || surfaces_due {
-            self.publish_regions(
-                state,
-                controls,
-                time_s,
-                body_due,
-                surfaces_due || surfaces_beside_body,
-            )?;
+            self.publish_regions(state, controls, time_s, body_due, surfaces_evaluated)?;
             if surfaces_beside_body {
                 self.stage_one_state.clone_from(state);
                 self.stage_one = Some((time_s, *controls));
             }
         }
+        // The heat flux where due, from the surfaces' aero at this state (just evaluated, or
+        // evaluated for it).
+        self.refresh_heat_fluxes(state, controls, time_s, surfaces_evaluated)?;
         self.in_step = true;
         Ok(())
     }
@@ -281,7 +278,8 @@ impl PartitionedVehicle {
 
     /// Loads of every region except the root loads' inertia term (which waits for q̈): the
     /// main body with its engine, and each lifting surface, run side by side (rayon). Inside a
-    /// step (unless the body runs at every stage) the body's loads are its published ones.
+    /// step a region that runs at its own rate reads its publications instead, and the first
+    /// stage reads the surfaces `begin_step` evaluated at its state.
     pub(super) fn region_loads(
         &mut self,
         state: &VehicleState,
@@ -298,40 +296,28 @@ impl PartitionedVehicle {
                 &mut self.aero_loads,
                 self.loads.body_generalized_force.as_mut_slice(),
             );
-        match (body_read, surfaces_read) {
-            (true, true) => return Ok(()),
-            (false, true) => return self.body_loads_now(state, controls, flight),
-            (true, false) => {
-                self.update_surface_flights(state, flight)?;
-                return surfaces_loads(
-                    &mut self.surfaces,
-                    &mut self.loads.surface_generalized_forces,
-                    state,
-                    &controls.elevon,
-                    &self.surface_flights,
-                    self.time_s,
-                    true,
-                );
-            }
-            (false, false) => self.update_surface_flights(state, flight)?,
+        if !surfaces_read {
+            self.update_surface_flights(state, flight)?;
         }
         let (body_loads, surfaces_done) = self.regions_side_by_side(
             state,
             controls,
             flight,
             RegionsWanted {
-                body: true,
-                surfaces: true,
+                body: !body_read,
+                surfaces: !surfaces_read,
                 hold_friction: self.in_step,
             },
         );
         if let Some(done) = surfaces_done {
             done?;
         }
+        // The monolithic model's surfaces belong to the body region (published with it).
         if let Some(loads) = body_loads {
             self.set_body_loads(loads?);
+            self.follower_loads(state, controls, flight)?;
         }
-        self.follower_loads(state, controls, flight)
+        Ok(())
     }
 
     /// The wanted regions evaluated side by side at `state` (the body: its aero and engine

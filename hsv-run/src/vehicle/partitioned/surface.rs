@@ -223,14 +223,15 @@ pub(super) fn heat_flux_due(t: &SurfaceThermal, time_s: f64, rates: &HeatingRate
 
 /// One surface's heat flux at `time_s` from its aero at the accepted state (the surface's
 /// modes, the body's, the elevon and its flight condition), held until it is due again. The
-/// aero is evaluated here, not read from the last derivative: inside a step that is the last
+/// aero is evaluated here unless `aero_current` (the step's start has just evaluated the
+/// surface at this state), never read from the last derivative: inside a step that is the last
 /// Runge-Kutta stage's predictor, not a state the flight passes through.
 pub(super) fn refresh_heat_flux(
     s: &mut Surface,
     modes: (&crate::dynamics::ModalState, &crate::dynamics::ModalState),
     elevon: &ElevonCommand,
     flight: &FlightCondition,
-    time_s: f64,
+    (time_s, aero_current): (f64, bool),
     rates: &HeatingRates,
 ) -> Result<(), VehicleError> {
     if !s
@@ -240,8 +241,10 @@ pub(super) fn refresh_heat_flux(
     {
         return Ok(());
     }
-    // The panel solution only: the step's first stage evaluates the loads at this state.
-    surface_aero(s, modes, elevon, flight, time_s)?;
+    if !aero_current {
+        // The panel solution only: the step's first stage evaluates the loads at this state.
+        surface_aero(s, modes, elevon, flight, time_s)?;
+    }
     let err = model_error(&s.name);
     let Some(t) = &mut s.thermal else {
         return Ok(());
@@ -373,6 +376,7 @@ impl PartitionedVehicle {
         state: &VehicleState,
         controls: &FlightControls,
         time_s: f64,
+        aero_current: bool,
     ) -> Result<(), VehicleError> {
         let rates = self.heating;
         let due = |s: &Surface| {
@@ -383,15 +387,24 @@ impl PartitionedVehicle {
         if !self.surfaces.iter().any(due) {
             return Ok(());
         }
-        let flight = self.flight(state)?;
-        self.update_surface_flights(state, &flight)?;
+        if !aero_current {
+            let flight = self.flight(state)?;
+            self.update_surface_flights(state, &flight)?;
+        }
         let elevon = controls.elevon;
         let body_modes = &state.body_modes;
         let refresh = |((s, modes), flight): (
             (&mut Surface, &crate::dynamics::ModalState),
             &FlightCondition,
         )| {
-            refresh_heat_flux(s, (modes, body_modes), &elevon, flight, time_s, &rates)
+            refresh_heat_flux(
+                s,
+                (modes, body_modes),
+                &elevon,
+                flight,
+                (time_s, aero_current),
+                &rates,
+            )
         };
         if side_by_side() {
             self.surfaces

@@ -283,6 +283,33 @@ fn training_registry() -> Registry {
     registry
 }
 
+/// `[models.pod]` training a 6-mode basis into `basis_file` from the stand-in models: 1 s at
+/// 0.1 s steps, 5 snapshots per run, at the Mach numbers `mach` (a TOML list body).
+fn training_settings(basis_file: &str, mach: &str) -> toml::Table {
+    toml::from_str(&format!(
+        "basis_file = {basis_file:?}\nmodes = 6\n[training]\nheat_flux = \"relaxing-flux\"\n\
+         aero = \"freestream-aero\"\nmach = [{mach}]\nduration_s = 1.0\n\
+         dt_s = 0.1\nsnapshots_per_run = 5\n"
+    ))
+    .unwrap()
+}
+
+/// The registered `pod` built in the sample vehicle's region `region` with `settings`.
+fn build_pod(
+    registry: &Registry,
+    region: &str,
+    settings: &toml::Table,
+) -> Result<Box<dyn ConductionModel>, hsv_core::registry::RegistryError> {
+    let ctx = ModelContext {
+        settings,
+        key_path: "models.pod",
+        file: "test.toml",
+        region: hsv_core::testing::sample_region(region),
+        registry,
+    };
+    registry.create::<dyn ConductionModel>("pod", &ctx)
+}
+
 /// The mirror surface takes the basis its twin trained (same fingerprint: the side is not part
 /// of it) instead of training again, and saves it as its own; a sibling built from other
 /// conditions is not taken. The right surface's own training gives the same basis to rounding
@@ -293,28 +320,10 @@ fn the_mirror_surface_reuses_its_twins_basis() {
     let _ = std::fs::remove_dir_all(&dir);
     std::fs::create_dir_all(&dir).unwrap();
     let pattern = dir.join("basis-{region}.json").display().to_string();
-    let settings = |mach: &str| -> toml::Table {
-        toml::from_str(&format!(
-            "basis_file = {pattern:?}\nmodes = 6\n[training]\nheat_flux = \"relaxing-flux\"\n\
-             aero = \"freestream-aero\"\nmach = [{mach}]\nduration_s = 1.0\n\
-             dt_s = 0.1\nsnapshots_per_run = 5\n"
-        ))
-        .unwrap()
-    };
+    let settings = |mach: &str| training_settings(&pattern, mach);
     let registry = &training_registry();
-    let build = |side: &str, table: &toml::Table| {
-        let region = hsv_core::testing::sample_region(side);
-        let ctx = ModelContext {
-            settings: table,
-            key_path: "models.pod",
-            file: "test.toml",
-            region,
-            registry,
-        };
-        registry
-            .create::<dyn hsv_core::thermal::ConductionModel>("pod", &ctx)
-            .map(|m| m.cache())
-    };
+    let build =
+        |side: &str, table: &toml::Table| build_pod(registry, side, table).map(|m| m.cache());
     let left_file = dir.join("basis-left_surface.json");
     let right_file = dir.join("basis-right_surface.json");
     let first = settings("5.0, 6.0");
@@ -357,27 +366,10 @@ fn a_training_table_trains_reuses_and_retrains_the_basis() {
     let _ = std::fs::remove_dir_all(&dir);
     std::fs::create_dir_all(&dir).unwrap();
     let path = dir.join("basis.json");
-    let settings = |mach: &str| -> toml::Table {
-        toml::from_str(&format!(
-            "basis_file = {:?}\nmodes = 6\n[training]\nheat_flux = \"relaxing-flux\"\n\
-             aero = \"freestream-aero\"\nmach = [{mach}]\nduration_s = 1.0\n\
-             dt_s = 0.1\nsnapshots_per_run = 5\n",
-            path.display().to_string()
-        ))
-        .unwrap()
-    };
-    let region = hsv_core::testing::sample_region("right_surface");
+    let basis_file = path.display().to_string();
+    let settings = |mach: &str| training_settings(&basis_file, mach);
     let registry = &training_registry();
-    let build = |table: &toml::Table| {
-        let ctx = ModelContext {
-            settings: table,
-            key_path: "models.pod",
-            file: "test.toml",
-            region,
-            registry,
-        };
-        registry.create::<dyn hsv_core::thermal::ConductionModel>("pod", &ctx)
-    };
+    let build = |table: &toml::Table| build_pod(registry, "right_surface", table);
     let first = settings("5.0, 6.0");
     let model = build(&first).expect("trains");
     assert_eq!(model.n_states(), 6);

@@ -204,21 +204,30 @@ pub struct RegionsConfig {
     pub left_surface: RegionModels,
     #[serde(default)]
     pub right_surface: RegionModels,
-    #[serde(default)]
-    pub propulsion: RegionModels,
+    /// Absent (no `[regions.propulsion]` table): the vehicle has no engine and glides; its
+    /// aero models then load the engine's ramp and nozzle as outer surfaces.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub propulsion: Option<RegionModels>,
 }
 
 /// The regions of the vehicle, in assembly order.
 pub const REGION_NAMES: [&str; 4] = ["main_body", "left_surface", "right_surface", "propulsion"];
 
 impl RegionsConfig {
-    /// The models of region `name` (one of [`REGION_NAMES`]), overrides applied.
+    /// Whether the vehicle has region `name`: every region but `propulsion` always; the
+    /// propulsion region when the config has its table.
+    pub fn has(&self, name: &str) -> bool {
+        name != "propulsion" || self.propulsion.is_some()
+    }
+
+    /// The models of region `name` (one of [`REGION_NAMES`]), overrides applied; `None` for
+    /// an unknown name or a region the vehicle does not have.
     pub fn region(&self, name: &str) -> Option<RegionModels> {
         match name {
             "main_body" => Some(self.main_body.clone()),
             "left_surface" => Some(self.lifting_surfaces.overlaid(&self.left_surface)),
             "right_surface" => Some(self.lifting_surfaces.overlaid(&self.right_surface)),
-            "propulsion" => Some(self.propulsion.clone()),
+            "propulsion" => self.propulsion.clone(),
             _ => None,
         }
     }
@@ -230,7 +239,7 @@ impl RegionsConfig {
             "main_body" => &self.main_body,
             "left_surface" => &self.left_surface,
             "right_surface" => &self.right_surface,
-            "propulsion" => &self.propulsion,
+            "propulsion" => self.propulsion.as_ref()?,
             _ => return None,
         };
         if own.models.contains_key(model) {
@@ -358,13 +367,20 @@ impl LoadedConfig {
     pub fn region(&self, name: &str) -> Result<RegionInfo, ConfigError> {
         let c = &self.config;
         let Some(models) = c.regions.region(name) else {
+            let message = if REGION_NAMES.contains(&name) {
+                format!(
+                    "the vehicle has no {name} region (the config has no `[regions.{name}]` table)"
+                )
+            } else {
+                format!(
+                    "unknown region; the regions are {}",
+                    REGION_NAMES.join(", ")
+                )
+            };
             return Err(ConfigError {
                 file: self.file.clone(),
                 key_path: format!("regions.{name}"),
-                message: format!(
-                    "unknown region; the regions are {}",
-                    REGION_NAMES.join(", ")
-                ),
+                message,
             });
         };
         let mesh_error = |e: crate::geometry::VehicleError| ConfigError {
@@ -586,14 +602,15 @@ impl LoadedConfig {
     pub fn model_name_problems(&self, registry: &crate::registry::Registry) -> Vec<ConfigError> {
         let regions = &self.config.regions;
         let tables = [
-            ("main_body", &regions.main_body),
-            ("lifting_surfaces", &regions.lifting_surfaces),
-            ("left_surface", &regions.left_surface),
-            ("right_surface", &regions.right_surface),
-            ("propulsion", &regions.propulsion),
+            ("main_body", Some(&regions.main_body)),
+            ("lifting_surfaces", Some(&regions.lifting_surfaces)),
+            ("left_surface", Some(&regions.left_surface)),
+            ("right_surface", Some(&regions.right_surface)),
+            ("propulsion", regions.propulsion.as_ref()),
         ];
         let mut problems = Vec::new();
         for (region, models) in tables {
+            let Some(models) = models else { continue };
             for (key, wanted, name) in models.named() {
                 let Some(name) = name else { continue };
                 let error = |message: String| ConfigError {

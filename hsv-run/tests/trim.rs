@@ -3,7 +3,7 @@
 
 use hsv_core::config::LoadedConfig;
 use hsv_run::analysis::trim::{
-    SteadyFlight, TRIMMED_ACCELERATION_M_S2, TRIMMED_PITCH_ACCELERATION_RAD_S2, TrimPoint,
+    Balance, SteadyFlight, TRIMMED_ACCELERATION_M_S2, TRIMMED_PITCH_ACCELERATION_RAD_S2, TrimPoint,
     TrimRequest, TrimStatus, trim, trim_status,
 };
 use hsv_run::vehicle::assemble;
@@ -44,6 +44,10 @@ impl SteadyFlight for Linear {
 
     fn gas(&self) -> hsv_core::gas::PerfectGas {
         hsv_core::gas::PerfectGas::AIR
+    }
+
+    fn powered(&self) -> bool {
+        true
     }
 }
 
@@ -104,6 +108,50 @@ fn the_sample_vehicle_trims_at_mach_6_26_km_with_a_physical_fuel_ratio() {
     let l = &t.loads;
     let lift = -(l.body_aero.force_n.z + l.surface_aero.force_n.z + l.engine.force_n.z);
     assert!((lift * t.alpha_deg.to_radians().cos() - weight).abs() < 0.01 * weight);
+}
+
+/// The sample vehicle without its `[regions.propulsion]` table: no engine, a glider.
+fn without_propulsion(text: &str) -> String {
+    let start = text
+        .find("[regions.propulsion]")
+        .expect("the sample has the table");
+    let end = start + text[start..].find("\n\n").expect("a blank line after it");
+    format!("{}{}", &text[..start], &text[end + 2..])
+}
+
+/// Issue 25 item 5: a vehicle without its propulsion region, by configuration alone, trims for a
+/// steady glide. With no thrust, the aero force alone balances the weight: its magnitude is W
+/// and the path descends at tan(−γ) = D/L (Anderson, Introduction to Flight, 8th ed., 2016,
+/// §6.9, gliding flight). Bands: the trim's residual accelerations (1e-3 m/s² against g ≈ 9.7
+/// m/s²) allow 1e-4 of W and 6e-3 deg in γ; the bounds are 1e-3 of W and 0.01 deg.
+#[test]
+fn a_vehicle_without_an_engine_trims_for_the_glide_its_lift_to_drag_ratio_sets() {
+    let registry = hsv_run::registry().expect("registry");
+    let text = without_propulsion(hsv_core::config::SAMPLE_CONFIG_TOML);
+    let loaded = hsv_core::config::parse_config(&text, "glide.toml").expect("config");
+    let sets = assemble(&loaded, &registry, &rigid_needs("trim")).expect("assembles");
+    let mut vehicle = RigidVehicle::new(sets).expect("rigid vehicle");
+    assert!(!vehicle.powered());
+    let result = trim(&mut vehicle, &TrimRequest::default()).expect("trims");
+    let t = &result.trim;
+    assert_eq!(t.balance, Balance::Glide);
+    assert_eq!(result.status, TrimStatus::Converged, "{:?}", result.notes);
+    assert!(result.agreed, "restart disagrees: {result:?}");
+    assert_eq!((t.fuel_equivalence_ratio, t.loads.thrust_n), (0.0, 0.0));
+    let aero = t.loads.body_aero + t.loads.surface_aero;
+    let wind = hsv_core::frames::wind_axis_forces(&aero.force_n, t.alpha_deg.to_radians(), 0.0);
+    let weight = result.mass_kg * hsv_core::atmosphere::gravity(26_000.0);
+    let resultant = wind.lift_n.hypot(wind.drag_n);
+    assert!(
+        (resultant - weight).abs() < 1e-3 * weight,
+        "{resultant} N vs W {weight} N"
+    );
+    let glide_deg = -(wind.drag_n / wind.lift_n).atan().to_degrees();
+    assert!(
+        (t.flight_path_angle_deg - glide_deg).abs() < 0.01,
+        "gamma {} deg vs -atan(D/L) {glide_deg} deg",
+        t.flight_path_angle_deg
+    );
 }
 
 mod common;
@@ -167,6 +215,8 @@ fn point(phi: f64, engine: hsv_core::propulsion::EngineStatus) -> TrimPoint {
         alpha_deg: 1.0,
         elevon_deg: 0.0,
         fuel_equivalence_ratio: phi,
+        flight_path_angle_deg: 0.0,
+        balance: Balance::Thrust,
         cost: 0.0,
         accelerations: Accelerations::default(),
         loads: RigidLoads {

@@ -171,6 +171,14 @@ pub fn inputs(loaded: &LoadedConfig) -> Result<Inputs> {
     let Some(table) = &loaded.config.simulation.inputs else {
         return Ok(Inputs::paper_doublet());
     };
+    if table.contains_key("fuel_equivalence_ratio") && !loaded.config.regions.has("propulsion") {
+        bail!(
+            "{}: key `simulation.inputs.fuel_equivalence_ratio`: the vehicle has no engine (no \
+             `[regions.propulsion]` table), so there is no fuel to command; remove the table or \
+             add the region",
+            loaded.file
+        );
+    }
     Ok(Inputs::from_table(
         table,
         &loaded.file,
@@ -215,8 +223,8 @@ pub struct LevelTrim {
     pub state: VehicleState,
 }
 
-/// Trims `vehicle` for steady level flight at `mach`, `altitude_m` (default search) and puts it
-/// in level flight there.
+/// Trims `vehicle` for steady flight at `mach`, `altitude_m` (default search) and puts it in
+/// that flight: level, or a glide for a vehicle without an engine.
 pub fn trim_level_flight(
     vehicle: &mut PartitionedVehicle,
     mach: f64,
@@ -242,8 +250,13 @@ pub fn trim_level_flight(
         },
         fuel_equivalence_ratio: t.fuel_equivalence_ratio,
     };
-    let (state, _) =
-        vehicle.level_flight_state(mach, altitude_m, t.alpha_deg.to_radians(), &controls)?;
+    let (state, _) = vehicle.steady_flight_state(
+        mach,
+        altitude_m,
+        t.alpha_deg.to_radians(),
+        t.flight_path_angle_deg.to_radians(),
+        &controls,
+    )?;
     Ok(LevelTrim {
         result,
         controls,

@@ -2,6 +2,10 @@
 //! angle of attack, the symmetric elevon and the fuel equivalence ratio, then a restart from a
 //! seeded random perturbation of up to 10 % of each parameter; the trim is accepted when both
 //! minima agree within 1 % (the paper's rule), otherwise both are reported.
+//!
+//! A vehicle without an engine cannot fly level: its steady flight is a glide, where the
+//! weight's component along the descending path balances the drag (tan γ = −D/L). Its third
+//! parameter is then the flight-path angle γ in place of φ ([`Balance::Glide`]).
 
 use std::cell::RefCell;
 use std::time::Instant;
@@ -24,6 +28,67 @@ const REFUSED_COST: f64 = 1e12;
 /// Fuel equivalence ratios the search may try (rich beyond stoichiometric is refused).
 const PHI_RANGE: (f64, f64) = (1e-3, 1.0);
 
+/// Flight-path angles a glide's search may try, deg (steeper is a dive, not a glide).
+const GAMMA_RANGE_DEG: (f64, f64) = (-60.0, 60.0);
+
+/// What balances the drag in steady flight, and so the trim's third parameter.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum Balance {
+    /// Level flight: the engine's thrust; the third parameter is φ.
+    Thrust,
+    /// A vehicle without an engine glides: the weight along the path; the third parameter is
+    /// the flight-path angle γ, deg.
+    Glide,
+}
+
+impl Balance {
+    /// The balance of `vehicle`: thrust with an engine, a glide without.
+    pub fn of(vehicle: &dyn SteadyFlight) -> Self {
+        if vehicle.powered() {
+            Self::Thrust
+        } else {
+            Self::Glide
+        }
+    }
+
+    /// The third trim parameter `value` named for messages: `phi 0.3309` or
+    /// `glide gamma -26.1200 deg`.
+    pub fn named(self, value: f64) -> String {
+        match self {
+            Self::Thrust => format!("phi {value:.4}"),
+            Self::Glide => format!("glide gamma {value:.4} deg"),
+        }
+    }
+
+    /// Whether `third` is a value the search may try.
+    fn allows(self, third: f64) -> bool {
+        match self {
+            Self::Thrust => (PHI_RANGE.0..=PHI_RANGE.1).contains(&third),
+            Self::Glide => (GAMMA_RANGE_DEG.0..=GAMMA_RANGE_DEG.1).contains(&third),
+        }
+    }
+
+    /// How far `third` lies outside the search's range (0 inside).
+    fn outside(self, third: f64) -> f64 {
+        let (lo, hi) = match self {
+            Self::Thrust => PHI_RANGE,
+            Self::Glide => GAMMA_RANGE_DEG,
+        };
+        (lo - third).max(third - hi).max(0.0)
+    }
+}
+
+impl TrimPoint {
+    /// What balances the drag, with its value, for messages (`phi 0.3309`, `glide gamma ...`).
+    pub fn balance_named(&self) -> String {
+        self.balance.named(match self.balance {
+            Balance::Thrust => self.fuel_equivalence_ratio,
+            Balance::Glide => self.flight_path_angle_deg,
+        })
+    }
+}
+
 /// What to trim for.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct TrimRequest {
@@ -33,6 +98,9 @@ pub struct TrimRequest {
     pub start: [f64; 3],
     /// Initial simplex steps: α (deg), δe (deg), φ.
     pub steps: [f64; 3],
+    /// A glide's starting flight-path angle and its simplex step, deg (in place of φ's).
+    pub glide_start_deg: f64,
+    pub glide_step_deg: f64,
     /// Nelder-Mead stops when the standard deviation of J over the simplex is below this
     /// (1e-2 by default: the basin, where the Newton polish takes over).
     pub tolerance: f64,
@@ -51,6 +119,9 @@ impl Default for TrimRequest {
             altitude_m: 26_000.0,
             start: [2.0, 0.0, 0.3],
             steps: [1.0, 2.0, 0.1],
+            // Our choice: a hypersonic lifting body's L/D of 3-6 glides at -10 to -19 deg.
+            glide_start_deg: -10.0,
+            glide_step_deg: 2.0,
             tolerance: 1e-2,
             max_iterations: 3000,
             newton_iterations: 8,
@@ -64,7 +135,12 @@ impl Default for TrimRequest {
 pub struct TrimPoint {
     pub alpha_deg: f64,
     pub elevon_deg: f64,
+    /// φ (0 for a glide).
     pub fuel_equivalence_ratio: f64,
+    /// γ, deg (0 for level flight; a glide's descent, negative).
+    pub flight_path_angle_deg: f64,
+    /// What balances the drag: which of φ and γ the search varied.
+    pub balance: Balance,
     pub cost: f64,
     pub accelerations: Accelerations,
     pub loads: RigidLoads,
@@ -117,7 +193,9 @@ pub fn trim_status(
 ) -> (TrimStatus, Vec<String>) {
     let mut failures = Vec::new();
     let mut warnings = Vec::new();
+    let powered = trim.balance == Balance::Thrust;
     match trim.loads.engine_status {
+        _ if !powered => {}
         EngineStatus::Unstart => failures.push(
             "the engine is unstarted at the trim (the inlet cannot swallow its shocks)".to_owned(),
         ),
@@ -128,10 +206,17 @@ pub fn trim_status(
         EngineStatus::Ok | EngineStatus::Spillage => {}
     }
     let phi = trim.fuel_equivalence_ratio;
-    if phi <= PHI_RANGE.0 * (1.0 + 1e-6) || phi >= PHI_RANGE.1 * (1.0 - 1e-6) {
+    if powered && (phi <= PHI_RANGE.0 * (1.0 + 1e-6) || phi >= PHI_RANGE.1 * (1.0 - 1e-6)) {
         failures.push(format!(
             "the fuel equivalence ratio {phi} is at the search's bound [{}, {}]",
             PHI_RANGE.0, PHI_RANGE.1
+        ));
+    }
+    let gamma = trim.flight_path_angle_deg;
+    let (g_lo, g_hi) = GAMMA_RANGE_DEG;
+    if !powered && (gamma <= g_lo + 1e-6 || gamma >= g_hi - 1e-6) {
+        failures.push(format!(
+            "the glide's flight-path angle {gamma} deg is at the search's bound [{g_lo}, {g_hi}]"
         ));
     }
     let q = freestream.dynamic_pressure_pa;
@@ -199,7 +284,7 @@ pub enum TrimError {
     },
     #[error(
         "no trim at Mach {mach}, {altitude_m} m: the search stalled at alpha {alpha_deg:.3} deg, \
-         elevon {elevon_deg:.3} deg, phi {phi:.4} with residual u_dot {u_dot:.3e} m/s^2, \
+         elevon {elevon_deg:.3} deg, {third} with residual u_dot {u_dot:.3e} m/s^2, \
          w_dot {w_dot:.3e} m/s^2, q_dot {q_dot:.3e} rad/s^2 (J {cost:.3e}){reason}"
     )]
     Untrimmable {
@@ -207,7 +292,8 @@ pub enum TrimError {
         altitude_m: f64,
         alpha_deg: f64,
         elevon_deg: f64,
-        phi: f64,
+        /// φ or the glide's γ, named.
+        third: String,
         u_dot: f64,
         w_dot: f64,
         q_dot: f64,
@@ -223,18 +309,30 @@ pub use crate::vehicle::rigid::SteadyFlight;
 /// argmin's cost takes `&self`.
 struct Problem<'c, 'v> {
     vehicle: &'c RefCell<&'v mut dyn SteadyFlight>,
+    balance: Balance,
     mach: f64,
     altitude_m: f64,
     evaluations: &'c RefCell<u64>,
     last_refusal: &'c RefCell<Option<String>>,
 }
 
-fn controls(p: &[f64]) -> Controls {
+/// The steady-flight controls at search point `p` (α deg, δe deg, then φ or γ deg).
+fn controls(p: &[f64], balance: Balance) -> Controls {
+    let (fuel_equivalence_ratio, flight_path_angle_rad) = match balance {
+        Balance::Thrust => (p[2], 0.0),
+        Balance::Glide => (0.0, p[2].to_radians()),
+    };
     Controls {
         alpha_rad: p[0].to_radians(),
         elevon_rad: p[1].to_radians(),
-        fuel_equivalence_ratio: p[2],
+        fuel_equivalence_ratio,
+        flight_path_angle_rad,
     }
+}
+
+/// The third parameter of `p` named for messages.
+fn third_named(p: &[f64; 3], balance: Balance) -> String {
+    balance.named(p[2])
 }
 
 impl CostFunction for Problem<'_, '_> {
@@ -243,17 +341,15 @@ impl CostFunction for Problem<'_, '_> {
 
     fn cost(&self, p: &Self::Param) -> Result<f64, ArgminError> {
         *self.evaluations.borrow_mut() += 1;
-        let phi = p[2];
-        if !(PHI_RANGE.0..=PHI_RANGE.1).contains(&phi) {
-            // Outside the engine's range: a wall that grows with the distance, so the simplex
-            // turns back.
-            let outside = (PHI_RANGE.0 - phi).max(phi - PHI_RANGE.1);
-            return Ok(REFUSED_COST * (1.0 + outside));
+        if !self.balance.allows(p[2]) {
+            // Outside the engine's (or the glide's) range: a wall that grows with the
+            // distance, so the simplex turns back.
+            return Ok(REFUSED_COST * (1.0 + self.balance.outside(p[2])));
         }
         let result = self.vehicle.borrow_mut().steady_accelerations(
             self.mach,
             self.altitude_m,
-            &controls(p),
+            &controls(p, self.balance),
         );
         match result {
             Ok((acc, _)) => Ok(acc.cost()),
@@ -278,10 +374,15 @@ fn nelder_mead(
         altitude_m: request.altitude_m,
         message,
     };
+    let balance = Balance::of(vehicle);
+    let steps = match balance {
+        Balance::Thrust => request.steps,
+        Balance::Glide => [request.steps[0], request.steps[1], request.glide_step_deg],
+    };
     let mut simplex = vec![start.to_vec()];
     for k in 0..3 {
         let mut vertex = start.to_vec();
-        vertex[k] += request.steps[k];
+        vertex[k] += steps[k];
         simplex.push(vertex);
     }
     let evaluations = RefCell::new(0);
@@ -289,6 +390,7 @@ fn nelder_mead(
     let cell = RefCell::new(vehicle);
     let problem = Problem {
         vehicle: &cell,
+        balance,
         mach: request.mach,
         altitude_m: request.altitude_m,
         evaluations: &evaluations,
@@ -338,11 +440,18 @@ fn minimize(
         at_best = evaluate(vehicle, request, &best);
     }
     let (accelerations, loads) = at_best?;
+    let balance = Balance::of(vehicle);
+    let (fuel_equivalence_ratio, flight_path_angle_deg) = match balance {
+        Balance::Thrust => (best[2], 0.0),
+        Balance::Glide => (0.0, best[2]),
+    };
     Ok((
         TrimPoint {
             alpha_deg: best[0],
             elevon_deg: best[1],
-            fuel_equivalence_ratio: best[2],
+            fuel_equivalence_ratio,
+            flight_path_angle_deg,
+            balance,
             cost: accelerations.cost(),
             accelerations,
             loads,
@@ -360,14 +469,15 @@ fn evaluate(
     request: &TrimRequest,
     best: &[f64; 3],
 ) -> Result<(Accelerations, RigidLoads), TrimError> {
+    let balance = Balance::of(vehicle);
     vehicle
-        .steady_accelerations(request.mach, request.altitude_m, &controls(best))
+        .steady_accelerations(request.mach, request.altitude_m, &controls(best, balance))
         .map_err(|e| TrimError::Untrimmable {
             mach: request.mach,
             altitude_m: request.altitude_m,
             alpha_deg: best[0],
             elevon_deg: best[1],
-            phi: best[2],
+            third: third_named(best, balance),
             u_dot: f64::NAN,
             w_dot: f64::NAN,
             q_dot: f64::NAN,
@@ -376,20 +486,21 @@ fn evaluate(
         })
 }
 
-/// The residual accelerations (u̇, ẇ, q̇) at `p`, or `None` where the search may not go (φ out of
-/// the engine's range, a point the models refuse).
+/// The residual accelerations (u̇, ẇ, q̇) at `p`, or `None` where the search may not go (φ or γ
+/// out of range, a point the models refuse).
 fn residual(
     vehicle: &mut dyn SteadyFlight,
     request: &TrimRequest,
     p: &[f64; 3],
     evaluations: &mut u64,
 ) -> Option<nalgebra::Vector3<f64>> {
-    if !(PHI_RANGE.0..=PHI_RANGE.1).contains(&p[2]) {
+    let balance = Balance::of(vehicle);
+    if !balance.allows(p[2]) {
         return None;
     }
     *evaluations += 1;
     let (a, _) = vehicle
-        .steady_accelerations(request.mach, request.altitude_m, &controls(p))
+        .steady_accelerations(request.mach, request.altitude_m, &controls(p, balance))
         .ok()?;
     Some(nalgebra::Vector3::new(
         a.u_dot_m_s2,
@@ -411,8 +522,13 @@ fn polish(
     evaluations: &mut u64,
 ) -> [f64; 3] {
     // Steps of 1e-4 deg and 1e-5 in φ: the settled residual is smooth there (a step 100 times
-    // larger gives the same Jacobian to 2 %) and r is linear over them.
+    // larger gives the same Jacobian to 2 %) and r is linear over them. A glide's γ, like the
+    // angles, by 1e-4 deg.
     const H: [f64; 3] = [1e-4, 1e-4, 1e-5];
+    let h = match Balance::of(vehicle) {
+        Balance::Thrust => H,
+        Balance::Glide => [H[0], H[1], 1e-4],
+    };
     let mut p = start;
     let Some(mut r) = residual(vehicle, request, &p, evaluations) else {
         return start;
@@ -421,11 +537,11 @@ fn polish(
         let mut jacobian = nalgebra::Matrix3::zeros();
         for k in 0..3 {
             let mut shifted = p;
-            shifted[k] += H[k];
+            shifted[k] += h[k];
             let Some(rk) = residual(vehicle, request, &shifted, evaluations) else {
                 return p;
             };
-            jacobian.set_column(k, &((rk - r) / H[k]));
+            jacobian.set_column(k, &((rk - r) / h[k]));
         }
         let Some(step) = jacobian.lu().solve(&(-r)) else {
             return p;
@@ -466,8 +582,16 @@ fn perturbed(p: &TrimPoint, seed: u64) -> [f64; 3] {
     [
         p.alpha_deg * (1.0 + 0.1 * unit()),
         p.elevon_deg * (1.0 + 0.1 * unit()),
-        p.fuel_equivalence_ratio * (1.0 + 0.1 * unit()),
+        third(p) * (1.0 + 0.1 * unit()),
     ]
+}
+
+/// The search's third parameter at `p`: φ, or a glide's γ (deg).
+fn third(p: &TrimPoint) -> f64 {
+    match p.balance {
+        Balance::Thrust => p.fuel_equivalence_ratio,
+        Balance::Glide => p.flight_path_angle_deg,
+    }
 }
 
 /// Both minima agree within 1 % in each parameter (absolute 1e-3 deg or 1e-4 in φ near zero).
@@ -477,6 +601,7 @@ fn agree(a: &TrimPoint, b: &TrimPoint) -> bool {
     close(a.alpha_deg, b.alpha_deg, 1e-3)
         && close(a.elevon_deg, b.elevon_deg, 1e-3)
         && close(a.fuel_equivalence_ratio, b.fuel_equivalence_ratio, 1e-4)
+        && close(a.flight_path_angle_deg, b.flight_path_angle_deg, 1e-3)
 }
 
 /// Accelerations below which a point is trimmed: 1e-3 m/s² and 1e-4 rad/s² (our choice: four
@@ -490,13 +615,17 @@ fn is_trimmed(a: &Accelerations) -> bool {
         && a.q_dot_rad_s2.abs() <= TRIMMED_PITCH_ACCELERATION_RAD_S2
 }
 
-/// Trims `vehicle` for steady level flight (module docs).
+/// Trims `vehicle` for steady flight (module docs): level with an engine, a glide without.
 pub fn trim(
     vehicle: &mut dyn SteadyFlight,
     request: &TrimRequest,
 ) -> Result<TrimResult, TrimError> {
     let start = Instant::now();
-    let (first, refusal) = minimize(vehicle, request, request.start)?;
+    let search_start = match Balance::of(vehicle) {
+        Balance::Thrust => request.start,
+        Balance::Glide => [request.start[0], request.start[1], request.glide_start_deg],
+    };
+    let (first, refusal) = minimize(vehicle, request, search_start)?;
     if !is_trimmed(&first.accelerations) {
         let a = first.accelerations;
         return Err(TrimError::Untrimmable {
@@ -504,7 +633,10 @@ pub fn trim(
             altitude_m: request.altitude_m,
             alpha_deg: first.alpha_deg,
             elevon_deg: first.elevon_deg,
-            phi: first.fuel_equivalence_ratio,
+            third: third_named(
+                &[first.alpha_deg, first.elevon_deg, third(&first)],
+                first.balance,
+            ),
             u_dot: a.u_dot_m_s2,
             w_dot: a.w_dot_m_s2,
             q_dot: a.q_dot_rad_s2,

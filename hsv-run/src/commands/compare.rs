@@ -16,7 +16,7 @@ use hsv_core::registry::Registry;
 use super::{ConfigArg, JsonFlag, load_config};
 use crate::analysis::flight::{Flight, FlightOptions};
 use crate::analysis::simulate::Sample;
-use crate::analysis::trim::{TrimPoint, TrimRequest, trim};
+use crate::analysis::trim::{Balance, TrimPoint, TrimRequest, trim};
 use crate::outln;
 use crate::output::{LinePlot, RunFolder, RunStatus, Series, write_csv, write_line_plots_png};
 use crate::vehicle::assemble;
@@ -137,16 +137,23 @@ pub fn run(args: CompareArgs, registry: &Registry) -> Result<()> {
     // Table 2 layout.
     let mut rows = vec![("rigid".to_owned(), rigid.clone())];
     rows.extend(cases.iter().map(|c| (c.label.to_owned(), c.trim.clone())));
+    // Level flight balances the drag with φ; a vehicle without an engine glides at γ.
+    let glide = rigid.balance == Balance::Glide;
+    let (flight, third) = if glide {
+        ("Steady glide (no propulsion region)", "gamma deg")
+    } else {
+        ("Steady level flight", "phi")
+    };
     outln!(
-        "Steady level flight at Mach {mach}, {altitude_m} m (paper Table 2 layout; rigid = rigid \
-         vehicle, the others flexible)"
+        "{flight} at Mach {mach}, {altitude_m} m (paper Table 2 layout; rigid = rigid vehicle, \
+         the others flexible)"
     )?;
     outln!(
         "{:<34} {:>10} {:>10} {:>9} {:>12} {:>12} {:>11}",
         "model",
         "alpha deg",
         "elevon deg",
-        "phi",
+        third,
         "thrust N",
         "drag N",
         "J"
@@ -157,7 +164,11 @@ pub fn run(args: CompareArgs, registry: &Registry) -> Result<()> {
             label,
             t.alpha_deg,
             t.elevon_deg,
-            t.fuel_equivalence_ratio,
+            if glide {
+                t.flight_path_angle_deg
+            } else {
+                t.fuel_equivalence_ratio
+            },
             t.loads.thrust_n,
             t.loads.drag_n,
             t.cost
@@ -246,6 +257,7 @@ pub fn run(args: CompareArgs, registry: &Registry) -> Result<()> {
             "alpha_deg": t.alpha_deg,
             "elevon_deg": t.elevon_deg,
             "fuel_equivalence_ratio": t.fuel_equivalence_ratio,
+            "flight_path_angle_deg": t.flight_path_angle_deg,
             "thrust_n": t.loads.thrust_n,
             "drag_n": t.loads.drag_n,
             "cost": t.cost,

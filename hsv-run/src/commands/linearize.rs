@@ -179,6 +179,7 @@ pub fn run(args: LinearizeArgs, registry: &Registry) -> Result<()> {
             "alpha_deg": t.alpha_deg,
             "elevon_deg": t.elevon_deg,
             "fuel_equivalence_ratio": t.fuel_equivalence_ratio,
+            "flight_path_angle_deg": t.flight_path_angle_deg,
         },
         "states": m.state_names.len(),
         "inputs": m.input_names,
@@ -199,10 +200,10 @@ pub fn run(args: LinearizeArgs, registry: &Registry) -> Result<()> {
         return Ok(());
     }
     outln!(
-        "linearized at trim alpha {:.4} deg, elevon {:.4} deg, phi {:.4}: {} states, {} inputs, {} outputs",
+        "linearized at trim alpha {:.4} deg, elevon {:.4} deg, {}: {} states, {} inputs, {} outputs",
         t.alpha_deg,
         t.elevon_deg,
-        t.fuel_equivalence_ratio,
+        t.balance_named(),
         m.state_names.len(),
         m.input_names.len(),
         m.output_names.len()

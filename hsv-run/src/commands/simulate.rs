@@ -15,6 +15,7 @@ use crate::analysis::flight::{
     Flight, FlightOptions, FlightSettings, flight_vehicle, rate_seconds,
 };
 use crate::analysis::simulate::{RunSettings, Sample, simulate};
+use crate::analysis::trim::Balance;
 use crate::outln;
 use crate::output::{
     LinePlot, RunFolder, RunStatus, Series, write_csv, write_line_plots_png, write_pvd,
@@ -161,6 +162,9 @@ struct RestartFile {
     step: usize,
     time_s: f64,
     trim_alpha_deg: f64,
+    /// The trim's flight-path angle, deg (a glide's; 0 in level flight and in older files).
+    #[serde(default)]
+    trim_flight_path_angle_deg: f64,
     controls: FlightControls,
     state: crate::dynamics::VehicleState,
     vehicle: crate::vehicle::partitioned::VehicleRestart,
@@ -241,6 +245,7 @@ pub fn run(args: SimulateArgs, registry: &Registry) -> Result<()> {
                 t.elevon_deg,
                 t.fuel_equivalence_ratio,
                 t.modal_amplitudes.clone(),
+                t.flight_path_angle_deg,
             );
             (
                 flight.vehicle,
@@ -313,6 +318,7 @@ pub fn run(args: SimulateArgs, registry: &Registry) -> Result<()> {
                 restart.controls.elevon.symmetric_rad.to_degrees(),
                 restart.controls.fuel_equivalence_ratio,
                 Vec::new(),
+                restart.trim_flight_path_angle_deg,
             );
             (
                 vehicle,
@@ -424,6 +430,7 @@ pub fn run(args: SimulateArgs, registry: &Registry) -> Result<()> {
         step: reached,
         time_s: plan.start_s(reached.min(plan.steps)).min(plan.duration_s),
         trim_alpha_deg: trim_point.0,
+        trim_flight_path_angle_deg: trim_point.4,
         controls: trim_controls,
         state: state.clone(),
         vehicle: vehicle.restart(),
@@ -451,6 +458,7 @@ pub fn run(args: SimulateArgs, registry: &Registry) -> Result<()> {
             "alpha_deg": trim_point.0,
             "elevon_deg": trim_point.1,
             "fuel_equivalence_ratio": trim_point.2,
+            "flight_path_angle_deg": trim_point.4,
             "body_modal_amplitudes": trim_point.3,
         },
         "resumed_from": args.resume.as_ref().map(|p| p.display().to_string()),
@@ -478,12 +486,17 @@ pub fn run(args: SimulateArgs, registry: &Registry) -> Result<()> {
         outln!("{}", serde_json::to_string_pretty(&written)?)?;
     } else {
         let last = samples.last().cloned().unwrap_or_default();
+        // Level flight balances the drag with thrust (φ), a glide with its descent (γ).
+        let third = if trim_point.4 == 0.0 {
+            Balance::Thrust.named(trim_point.2)
+        } else {
+            Balance::Glide.named(trim_point.4)
+        };
         outln!(
-            "trim: alpha {:.4} deg, elevon {:.4} deg, phi {:.4}; flew {:.3} s in {:.2} s of wall \
+            "trim: alpha {:.4} deg, elevon {:.4} deg, {third}; flew {:.3} s in {:.2} s of wall \
              time",
             trim_point.0,
             trim_point.1,
-            trim_point.2,
             last.time_s,
             wall_time_s
         )?;

@@ -1,13 +1,14 @@
 //! `hsv-run trim`: steady level flight of the rigid vehicle (paper §IV.B), printed in the layout
 //! of the paper's Table 2: α, δe, φ, thrust, drag, J and each residual acceleration, with the
-//! restart check, evaluations and wall time.
+//! restart check, evaluations and wall time. A vehicle without a propulsion region trims for a
+//! steady glide: γ in place of φ.
 
 use anyhow::{Result, bail};
 use clap::Args;
 use hsv_core::registry::Registry;
 
 use super::{ConfigArg, JsonFlag, load_config};
-use crate::analysis::trim::{TrimRequest, TrimResult, TrimStatus, trim};
+use crate::analysis::trim::{Balance, TrimRequest, TrimResult, TrimStatus, trim};
 use crate::dynamics::GravityModel;
 use crate::outln;
 use crate::vehicle::assemble;
@@ -33,13 +34,14 @@ pub struct TrimArgs {
     #[arg(long = "altitude-m", allow_negative_numbers = true)]
     pub altitude_m: Option<f64>,
     /// Where the search starts: α (deg), δe (deg), φ, e.g. `--start=-0.5,1.5,0.13` (default
-    /// 2,0,0.3). A vehicle may have more than one trim (a low-φ one with the surfaces lifting
-    /// and a high-φ one with them pushing down): the start picks the basin.
+    /// 2,0,0.3); for a vehicle without an engine the third is the glide's flight-path angle γ
+    /// (deg, default -10). A vehicle may have more than one trim (a low-φ one with the surfaces
+    /// lifting and a high-φ one with them pushing down): the start picks the basin.
     #[arg(
         long,
         value_delimiter = ',',
         allow_negative_numbers = true,
-        value_name = "ALPHA_DEG,ELEVON_DEG,PHI"
+        value_name = "ALPHA_DEG,ELEVON_DEG,PHI_OR_GAMMA_DEG"
     )]
     pub start: Option<Vec<f64>>,
     #[command(flatten)]
@@ -103,8 +105,10 @@ pub fn trim_configured(
         altitude_m,
         ..TrimRequest::default()
     };
+    let glide = !loaded.config.regions.has("propulsion");
     if let Some(start) = start {
-        request.start = trim_start(start)?;
+        request.start = trim_start(start, glide)?;
+        request.glide_start_deg = request.start[2];
     }
     Ok(if flexible {
         let needs = partitioned_needs("trim of the flexible vehicle");
@@ -129,22 +133,35 @@ pub fn trim_configured(
     })
 }
 
-/// A search start α (deg), δe (deg), φ checked: three finite numbers, φ in (0, 1].
-fn trim_start(start: &[f64]) -> Result<[f64; 3]> {
-    let &[alpha_deg, elevon_deg, phi] = start else {
+/// A search start α (deg), δe (deg), φ checked: three finite numbers, φ in (0, 1]; for a
+/// `glide` the third is γ (deg) in (-60, 60).
+fn trim_start(start: &[f64], glide: bool) -> Result<[f64; 3]> {
+    let &[alpha_deg, elevon_deg, third] = start else {
         bail!(
-            "--start takes three numbers (alpha_deg,elevon_deg,phi), got {}",
+            "--start takes three numbers (alpha_deg,elevon_deg,{}), got {}",
+            if glide { "gamma_deg" } else { "phi" },
             start.len()
         );
     };
-    let finite = [alpha_deg, elevon_deg, phi].iter().all(|v| v.is_finite());
-    if !(finite && phi > 0.0 && phi <= 1.0) {
+    let finite = [alpha_deg, elevon_deg, third].iter().all(|v| v.is_finite());
+    let valid = if glide {
+        finite && third.abs() < 60.0
+    } else {
+        finite && third > 0.0 && third <= 1.0
+    };
+    if !valid && glide {
         bail!(
-            "--start {alpha_deg},{elevon_deg},{phi}: expected finite angles in degrees and a fuel \
-             equivalence ratio in (0, 1]"
+            "--start {alpha_deg},{elevon_deg},{third}: expected finite angles in degrees, the \
+             glide's flight-path angle in (-60, 60) deg (the vehicle has no propulsion region)"
         );
     }
-    Ok([alpha_deg, elevon_deg, phi])
+    if !valid {
+        bail!(
+            "--start {alpha_deg},{elevon_deg},{third}: expected finite angles in degrees and a \
+             fuel equivalence ratio in (0, 1]"
+        );
+    }
+    Ok([alpha_deg, elevon_deg, third])
 }
 
 /// The JSON summary (what `--json` prints): keys name quantity and unit.
@@ -154,6 +171,9 @@ pub fn summary(r: &TrimResult, model: &str) -> serde_json::Value {
             "alpha_deg": p.alpha_deg,
             "elevon_deg": p.elevon_deg,
             "fuel_equivalence_ratio": p.fuel_equivalence_ratio,
+            "flight_path_angle_deg": p.flight_path_angle_deg,
+            // thrust (level flight, the engine balances the drag) or glide (the weight does).
+            "balance": p.balance,
             "thrust_n": p.loads.thrust_n,
             "drag_n": p.loads.drag_n,
             "friction_drag_n": p.loads.friction_drag_n,
@@ -193,8 +213,12 @@ pub fn summary(r: &TrimResult, model: &str) -> serde_json::Value {
 
 fn print_table(r: &TrimResult, model: &str) -> Result<()> {
     let t = &r.trim;
+    let flight = match t.balance {
+        Balance::Thrust => "Steady level flight",
+        Balance::Glide => "Steady glide (no propulsion region)",
+    };
     outln!(
-        "Steady level flight, {model} vehicle, Mach {}, {} m ({:.0} kg)",
+        "{flight}, {model} vehicle, Mach {}, {} m ({:.0} kg)",
         r.mach,
         r.altitude_m,
         r.mass_kg
@@ -217,12 +241,20 @@ fn print_table(r: &TrimResult, model: &str) -> Result<()> {
         t.elevon_deg,
         e.elevon_deg,
     )?;
-    row(
-        "phi",
-        "fuel equivalence ratio",
-        t.fuel_equivalence_ratio,
-        e.fuel_equivalence_ratio,
-    )?;
+    match t.balance {
+        Balance::Thrust => row(
+            "phi",
+            "fuel equivalence ratio",
+            t.fuel_equivalence_ratio,
+            e.fuel_equivalence_ratio,
+        )?,
+        Balance::Glide => row(
+            "gamma",
+            "flight-path angle (deg)",
+            t.flight_path_angle_deg,
+            e.flight_path_angle_deg,
+        )?,
+    }
     for (k, ((name, a), (_, b))) in t
         .modal_amplitudes
         .iter()

@@ -69,9 +69,21 @@ impl RigidBodyState {
     /// Steady level flight at altitude `altitude_m`, heading north at airspeed `airspeed_m_s`
     /// with angle of attack `alpha_rad` (pitch θ = α, no wind).
     pub fn level_flight(altitude_m: f64, airspeed_m_s: f64, alpha_rad: f64) -> Self {
+        Self::steady_flight(altitude_m, airspeed_m_s, alpha_rad, 0.0)
+    }
+
+    /// Steady wings-level flight on a path `flight_path_angle_rad` above the horizon (γ < 0
+    /// descends), heading north at `airspeed_m_s` with angle of attack `alpha_rad`: pitch
+    /// θ = α + γ, no wind.
+    pub fn steady_flight(
+        altitude_m: f64,
+        airspeed_m_s: f64,
+        alpha_rad: f64,
+        flight_path_angle_rad: f64,
+    ) -> Self {
         Self::from_euler(
             Vector3::new(0.0, 0.0, -altitude_m),
-            (0.0, alpha_rad, 0.0),
+            (0.0, alpha_rad + flight_path_angle_rad, 0.0),
             frames::body_velocity_from_wind(airspeed_m_s, alpha_rad, 0.0),
             Vector3::zeros(),
         )
@@ -310,7 +322,24 @@ impl RigidBody {
         airspeed_m_s: f64,
         alpha_rad: f64,
     ) -> RigidBodyState {
-        let mut state = RigidBodyState::level_flight(altitude_m, airspeed_m_s, alpha_rad);
+        self.steady_flight(altitude_m, airspeed_m_s, alpha_rad, 0.0)
+    }
+
+    /// [`Self::level_flight`] on a path `flight_path_angle_rad` above the horizon (a glide
+    /// descends, γ < 0; pitch θ = α + γ).
+    pub fn steady_flight(
+        &self,
+        altitude_m: f64,
+        airspeed_m_s: f64,
+        alpha_rad: f64,
+        flight_path_angle_rad: f64,
+    ) -> RigidBodyState {
+        let mut state = RigidBodyState::steady_flight(
+            altitude_m,
+            airspeed_m_s,
+            alpha_rad,
+            flight_path_angle_rad,
+        );
         let rho = self
             .earth
             .transport_rate_ned(&state, &state.velocity_ned_m_s());

@@ -107,6 +107,9 @@ pub fn check_models(loaded: &LoadedConfig, registry: &Registry) -> Vec<Problem> 
     // Each region built, with the model names it sees.
     let mut regions: Vec<(RegionInfo, RegionModels)> = Vec::new();
     for region in REGION_NAMES {
+        let Some(names) = loaded.config.regions.region(region) else {
+            continue;
+        };
         let info = match loaded.region(region) {
             Ok(info) => info,
             Err(e) => {
@@ -114,7 +117,6 @@ pub fn check_models(loaded: &LoadedConfig, registry: &Registry) -> Vec<Problem> 
                 continue;
             }
         };
-        let names = loaded.config.regions.region(region).unwrap_or_default();
         let need = needs
             .regions
             .iter()

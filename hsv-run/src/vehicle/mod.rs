@@ -162,8 +162,8 @@ fn role_key(role: Role) -> &'static str {
     }
 }
 
-/// Builds the models every region needs for the analysis, by name, and checks them before
-/// anything runs. Roles the analysis does not use are not built (a rigid trim trains no POD
+/// Builds the models every region of the vehicle needs for the analysis, by name, and checks
+/// them before anything runs. Roles the analysis does not use are not built (a rigid trim trains no POD
 /// basis); regions it does not list get no models.
 pub fn assemble(
     loaded: &LoadedConfig,
@@ -175,8 +175,12 @@ pub fn assemble(
         let Some((_, need)) = needs.regions.iter().find(|(r, _)| *r == name) else {
             continue;
         };
+        // A region the config leaves out (only the engine may be: a glide) is not part of the
+        // vehicle; the vehicle says what it cannot do without it.
+        let Some(names) = loaded.config.regions.region(name) else {
+            continue;
+        };
         let info = loaded.region(name)?;
-        let names = loaded.config.regions.region(name).unwrap_or_default();
         let wanted = |role: Role, model: &Option<String>| {
             need.roles.contains(&role).then(|| model.clone()).flatten()
         };

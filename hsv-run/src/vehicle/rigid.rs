@@ -6,7 +6,8 @@
 //! [`RegionKind::MainBody`], each lifting surface's aero model its [`RegionKind::LiftingSurface`]
 //! panels (deflected about the pivot by the elevon), and the engine the body panels tagged
 //! [`RegionKind::Propulsion`]; caps ([`RegionKind::Other`]) close meshes and carry no load. So no
-//! surface is counted twice.
+//! surface is counted twice. A vehicle without a propulsion region (a glide) has no engine: its
+//! body aero loads the engine's panels as well, and the duct is flow-through with no inner load.
 
 use hsv_core::aero::{AeroModel, AeroSolution, Loads, PanelMotion, integrate_pressure};
 use hsv_core::atmosphere::gravity;
@@ -26,7 +27,7 @@ use super::{AnalysisNeeds, AssemblyError, RegionModelSet, RegionNeeds};
 use hsv_core::registry::Role;
 
 /// What the rigid vehicle needs of its regions: aero on the body and both surfaces, mass
-/// properties from every structure, an engine.
+/// properties from every structure, an engine if the vehicle has a propulsion region.
 pub fn rigid_needs(analysis: &str) -> AnalysisNeeds {
     let with_mass = |roles: Vec<Role>| RegionNeeds {
         roles,
@@ -57,12 +58,15 @@ pub fn rigid_needs(analysis: &str) -> AnalysisNeeds {
 /// The controls of steady flight.
 #[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
 pub struct Controls {
-    /// Angle of attack, rad (level flight: also the pitch angle).
+    /// Angle of attack, rad.
     pub alpha_rad: f64,
     /// Symmetric elevon deflection, rad (positive: trailing edge up, nose up).
     pub elevon_rad: f64,
-    /// Fuel equivalence ratio φ.
+    /// Fuel equivalence ratio φ (ignored by a vehicle without an engine).
     pub fuel_equivalence_ratio: f64,
+    /// Flight-path angle γ, rad (0: level flight; negative: descending). The pitch angle is
+    /// θ = α + γ, which sets where the weight acts in body axes.
+    pub flight_path_angle_rad: f64,
 }
 
 /// Loads of one evaluation, body axes, moments about the centre of mass.
@@ -114,7 +118,8 @@ pub struct RigidVehicle {
     body_mesh: PanelMesh,
     body_aero: Box<dyn AeroModel>,
     surfaces: Vec<Surface>,
-    engine: Box<dyn PropulsionModel>,
+    /// `None` without a propulsion region (a glide): the body aero loads the engine's panels.
+    engine: Option<Box<dyn PropulsionModel>>,
     mass: MassProperties,
     reference_point_m: Point3<f64>,
     gas: PerfectGas,
@@ -184,7 +189,7 @@ impl RigidVehicle {
             body_mesh,
             body_aero,
             surfaces,
-            engine: engine.ok_or_else(|| missing("propulsion", "the region"))?,
+            engine,
             mass: mass.ok_or_else(|| missing("main_body", "mass properties"))?,
             reference_point_m,
             gas,
@@ -217,8 +222,8 @@ impl RigidVehicle {
         Ok(flight)
     }
 
-    /// Every region's loads and their sum about the centre of mass in steady level flight
-    /// (pitch angle = α, no rates).
+    /// Every region's loads and their sum about the centre of mass in steady wings-level
+    /// flight (pitch angle θ = α + γ, no rates).
     pub fn loads(
         &mut self,
         mach: f64,
@@ -227,6 +232,10 @@ impl RigidVehicle {
     ) -> Result<RigidLoads, hsv_core::ModelError> {
         let flight = self.flight(mach, altitude_m, controls.alpha_rad)?;
         let cg = self.mass.center_of_mass_m;
+        // Without an engine the body aero loads the engine's ramp and nozzle too.
+        let unpowered = self.engine.is_none();
+        let body_panels =
+            |r: RegionKind| r == RegionKind::MainBody || (unpowered && r == RegionKind::Propulsion);
         let p_inf = flight.freestream.pressure_pa;
         self.body_aero.evaluate(
             &self.body_mesh,
@@ -239,7 +248,7 @@ impl RigidVehicle {
             &self.solution.pressure_pa,
             p_inf,
             &cg,
-            |r| r == RegionKind::MainBody,
+            body_panels,
         );
         let mut friction = Loads::default();
         if let Some(f) = &mut self.body_friction {
@@ -249,7 +258,7 @@ impl RigidVehicle {
                 &self.solution,
                 &PanelMotion::default(),
                 &cg,
-                |r| r == RegionKind::MainBody,
+                body_panels,
             )?;
             body_aero = body_aero + friction;
         }
@@ -290,14 +299,16 @@ impl RigidVehicle {
                 surface_aero = surface_aero + shear;
             }
         }
-        self.engine.evaluate(
-            &EngineInputs {
-                flight: &flight,
-                body: &self.body_mesh,
-                fuel_equivalence_ratio: controls.fuel_equivalence_ratio,
-            },
-            &mut self.engine_solution,
-        )?;
+        if let Some(engine) = &mut self.engine {
+            engine.evaluate(
+                &EngineInputs {
+                    flight: &flight,
+                    body: &self.body_mesh,
+                    fuel_equivalence_ratio: controls.fuel_equivalence_ratio,
+                },
+                &mut self.engine_solution,
+            )?;
+        }
         // The engine gives its moment about the vehicle's reference point: move it to the CG.
         let engine_ref = self.engine_solution.loads;
         let engine = Loads {
@@ -305,11 +316,11 @@ impl RigidVehicle {
             moment_nm: engine_ref.moment_nm
                 + (self.reference_point_m - cg).cross(&engine_ref.force_n),
         };
-        // Level flight: pitch = α, so the weight (down in earth axes) in body axes.
+        // Pitch θ = α + γ: the weight (down in earth axes) in body axes.
         let weight = self.mass.mass_kg * gravity(altitude_m);
+        let pitch_rad = controls.alpha_rad + controls.flight_path_angle_rad;
         let gravity_loads = Loads {
-            force_n: frames::earth_to_body(0.0, controls.alpha_rad, 0.0)
-                * Vector3::new(0.0, 0.0, weight),
+            force_n: frames::earth_to_body(0.0, pitch_rad, 0.0) * Vector3::new(0.0, 0.0, weight),
             moment_nm: Vector3::zeros(),
         };
         let aero = body_aero + surface_aero;
@@ -388,6 +399,9 @@ pub trait SteadyFlight {
     fn modal_amplitudes(&self) -> Vec<(String, f64)> {
         Vec::new()
     }
+
+    /// Whether the vehicle has an engine (without one, steady flight is a glide).
+    fn powered(&self) -> bool;
 }
 
 impl SteadyFlight for RigidVehicle {
@@ -406,5 +420,9 @@ impl SteadyFlight for RigidVehicle {
 
     fn gas(&self) -> PerfectGas {
         RigidVehicle::gas(self)
+    }
+
+    fn powered(&self) -> bool {
+        self.engine.is_some()
     }
 }

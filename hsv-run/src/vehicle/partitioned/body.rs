@@ -1,14 +1,20 @@
 //! The main-body region: aero and skin friction on the beam-deformed OML, the engine on its
 //! underside, the body's generalized forces, and the monolithic model's follower surfaces.
+//!
+//! Without an engine (no propulsion region: a glide) the body's aero model also loads the
+//! engine's ramp and nozzle, as outer surfaces of the flow it computes there; the duct is
+//! flow-through and its inner forces are not modelled (the inlet face and nozzle exit are caps
+//! that carry no load, as with an engine).
 
 use super::*;
 
 /// The main body's aero (pressure and friction) and engine loads about the centre of mass, and
-/// its generalized forces, on the OML deformed by the beam modes.
+/// its generalized forces, on the OML deformed by the beam modes; without an engine the aero
+/// takes the engine's panels and the engine loads are zero.
 #[allow(clippy::too_many_arguments)]
 pub(super) fn body_region_loads(
     b: &mut Body,
-    engine: &mut dyn PropulsionModel,
+    engine: Option<&mut Box<dyn PropulsionModel>>,
     engine_solution: &mut PropulsionSolution,
     state: &VehicleState,
     controls: &FlightControls,
@@ -43,6 +49,7 @@ pub(super) fn body_region_loads(
         ..
     } = b;
     let (mesh, shapes) = (&*mesh, &*shapes);
+    let unpowered = engine.is_none();
     let (body_aero, engine_loads) = join(
         || -> Result<Loads, VehicleError> {
             let motion = PanelMotion {
@@ -50,7 +57,9 @@ pub(super) fn body_region_loads(
             };
             aero.evaluate(mesh, flight, &motion, solution)
                 .map_err(&body_err)?;
-            let main_body = |r: RegionKind| r == RegionKind::MainBody;
+            let main_body = |r: RegionKind| {
+                r == RegionKind::MainBody || (unpowered && r == RegionKind::Propulsion)
+            };
             let mut body_aero =
                 integrate_pressure(mesh, &solution.pressure_pa, p_inf, cg, main_body);
             if let Some(f) = friction {
@@ -75,6 +84,10 @@ pub(super) fn body_region_loads(
         },
         || -> Result<Loads, VehicleError> {
             // Engine on the deformed underside; its moment comes about the reference point.
+            let Some(engine) = engine else {
+                engine_generalized.iter_mut().for_each(|q| *q = 0.0);
+                return Ok(Loads::default());
+            };
             let engine_err = model_error("propulsion");
             engine
                 .evaluate(

@@ -260,7 +260,7 @@ impl PartitionedVehicle {
             surfaces,
             followers,
             surface_model,
-            engine: engine.ok_or_else(|| assembly_error("propulsion", "the region".into()))?,
+            engine,
             engine_solution: PropulsionSolution::default(),
             mass,
             reference_point_m,

@@ -235,7 +235,8 @@ pub struct SurfaceTemperatures {
     pub mean_k: f64,
 }
 
-/// What the monolithic vehicle needs: aero and mass on the body and surfaces, an engine.
+/// What the monolithic vehicle needs: aero and mass on the body and surfaces, an engine if the
+/// vehicle has a propulsion region.
 pub fn monolithic_needs(analysis: &str) -> AnalysisNeeds {
     let surface = RegionNeeds {
         roles: vec![Role::Aero, Role::Structure],
@@ -475,7 +476,9 @@ pub struct PartitionedVehicle {
     /// The monolithic model's surfaces (empty for the partitioned vehicle).
     followers: Vec<FollowerSurface>,
     surface_model: SurfaceModel,
-    engine: Box<dyn PropulsionModel>,
+    /// The propulsion region's engine; `None` for a vehicle without one (a glide), whose
+    /// body aero then loads the engine's ramp and nozzle panels.
+    engine: Option<Box<dyn PropulsionModel>>,
     engine_solution: PropulsionSolution,
     mass: MassProperties,
     reference_point_m: Point3<f64>,

@@ -29,7 +29,13 @@ impl crate::vehicle::rigid::SteadyFlight for PartitionedVehicle {
             fuel_equivalence_ratio: c.fuel_equivalence_ratio,
         };
         let (state, out) = self
-            .level_flight_state(mach, altitude_m, c.alpha_rad, &controls)
+            .steady_flight_state(
+                mach,
+                altitude_m,
+                c.alpha_rad,
+                c.flight_path_angle_rad,
+                &controls,
+            )
             .map_err(|e| ModelError::inconsistent("flexible vehicle", e.to_string()))?;
         self.trim_modes = state.body_modes.q.iter().copied().collect();
         let a = out.rigid.acceleration_body_m_s2;
@@ -58,6 +64,10 @@ impl crate::vehicle::rigid::SteadyFlight for PartitionedVehicle {
 
     fn gas(&self) -> PerfectGas {
         self.gas
+    }
+
+    fn powered(&self) -> bool {
+        self.engine.is_some()
     }
 
     fn modal_amplitudes(&self) -> Vec<(String, f64)> {
@@ -316,6 +326,19 @@ impl PartitionedVehicle {
         alpha_rad: f64,
         controls: &FlightControls,
     ) -> Result<(VehicleState, VehicleDerivative), VehicleError> {
+        self.steady_flight_state(mach, altitude_m, alpha_rad, 0.0, controls)
+    }
+
+    /// [`Self::level_flight_state`] on a path `flight_path_angle_rad` above the horizon (a
+    /// glide: γ < 0).
+    pub fn steady_flight_state(
+        &mut self,
+        mach: f64,
+        altitude_m: f64,
+        alpha_rad: f64,
+        flight_path_angle_rad: f64,
+        controls: &FlightControls,
+    ) -> Result<(VehicleState, VehicleDerivative), VehicleError> {
         let airspeed_m_s = Freestream::standard(mach, altitude_m, self.gas)
             .map_err(model_error("main_body"))?
             .velocity_m_s;
@@ -324,10 +347,12 @@ impl PartitionedVehicle {
             .warm_start
             .take()
             .unwrap_or_else(|| self.dynamics.zero_state());
-        state.rigid = self
-            .dynamics
-            .rigid_body()
-            .level_flight(altitude_m, airspeed_m_s, alpha_rad);
+        state.rigid = self.dynamics.rigid_body().steady_flight(
+            altitude_m,
+            airspeed_m_s,
+            alpha_rad,
+            flight_path_angle_rad,
+        );
         let mut out = self.dynamics.zero_derivative();
         self.settle(&mut state, controls, 1e-6, 200, &mut out)?;
         self.warm_start = Some(state.clone());

@@ -53,6 +53,37 @@ fn linear_read_of_10ms_publisher_every_1ms_is_exact_on_linear_signal() {
     assert!((bracket.weight - 0.5).abs() <= 1e-12);
 }
 
+/// Closed form: the predictor x₁ + (t − t₁)(x₁ − x₀)/(t₁ − t₀) reproduces a signal linear in
+/// time exactly past the newest value (Farhat & Lesoinne 2000's second-order predictor), so the
+/// stages of a 1 ms step read 3 t + 1 from values at 0 and 1 ms (to rounding, 1e-12); inside the
+/// history it interpolates, at the newest value it returns that value bit for bit, and with one
+/// value it holds it.
+#[test]
+fn a_predicted_topic_extrapolates_a_linear_signal_exactly_past_its_newest_value() {
+    let mut builder = DataManagerBuilder::new();
+    let publisher = builder
+        .publish_predicted::<f64>("main-body", "loads", 0.001)
+        .unwrap();
+    let reader = builder.subscribe::<f64>("vehicle", "loads").unwrap();
+    let mut data = builder.build().unwrap();
+    let mut x = f64::NAN;
+    publish_converged(&mut data, publisher, 0.0);
+    data.read_at(reader, 0.0005, &mut x).unwrap();
+    assert_eq!(x, linear_signal(0.0), "one value: held");
+    publish_converged(&mut data, publisher, 0.001);
+    for t_s in [0.001, 0.0015, 0.002, 0.0035] {
+        let bracket = data.read_at(reader, t_s, &mut x).unwrap();
+        assert!((x - linear_signal(t_s)).abs() <= 1e-12, "t = {t_s}: {x}");
+        assert_eq!(bracket.later_time_s, 0.001);
+    }
+    data.read_at(reader, 0.001, &mut x).unwrap();
+    assert_eq!(x.to_bits(), linear_signal(0.001).to_bits());
+    data.read_at(reader, 0.0004, &mut x).unwrap();
+    assert!((x - linear_signal(0.0004)).abs() <= 1e-12, "inside: {x}");
+    let info = data.topics().next().unwrap();
+    assert_eq!(info.interpolation, Interpolation::Predicted);
+}
+
 #[test]
 fn read_beyond_newest_value_holds_it() {
     let (mut data, publisher, reader) = one_topic_f64(0.01, SubscriptionSpec::every(0.001));

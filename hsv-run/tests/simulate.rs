@@ -64,7 +64,7 @@ fn fly_full(
     inputs: &Inputs,
 ) -> Result<Vec<Sample>, hsv_run::analysis::simulate::SimulationError> {
     let (mut vehicle, mut state, controls) = trimmed();
-    vehicle.set_body_load_rate(rate);
+    vehicle.set_body_load_rate(rate).expect("rate");
     let mut samples = Vec::new();
     let settings = RunSettings {
         dt_s,
@@ -214,7 +214,7 @@ fn the_surfaces_at_the_aeroelastic_rate_leave_the_doublet_response_unchanged() {
     let doublet = Inputs::paper_doublet();
     let fly = |rate: RegionLoadRate| {
         let (mut vehicle, mut state, controls) = trimmed();
-        vehicle.set_surface_load_rate(rate);
+        vehicle.set_surface_load_rate(rate).expect("rate");
         let settings = RunSettings {
             dt_s: 0.001,
             integrator: Integrator::default(),
@@ -325,8 +325,10 @@ fn resumes_bit_for_bit(surface_rate: RegionLoadRate) {
     use hsv_run::vehicle::partitioned::VehicleRestart;
     let start = || {
         let (mut vehicle, state, controls) = heated_trimmed();
-        vehicle.set_body_load_rate(RegionLoadRate::Interval(0.004));
-        vehicle.set_surface_load_rate(surface_rate);
+        vehicle
+            .set_body_load_rate(RegionLoadRate::Interval(0.004))
+            .expect("rate");
+        vehicle.set_surface_load_rate(surface_rate).expect("rate");
         (vehicle, state, controls)
     };
     let inputs = Inputs {
@@ -527,16 +529,24 @@ fn the_time_loop_allocates_nothing_once_its_buffers_exist() {
         .build()
         .expect("pool");
     pool.install(|| {
-        // Both coupling schemes: the implicit stage fixed point and the staggered step.
+        // Both coupling schemes: the implicit stage fixed point and the staggered step; and
+        // the surfaces published once per step through the data manager.
         let staggered = hsv_run::vehicle::staggered::StaggeredSettings {
             residual_tolerance_m: 1e-5,
             max_sub_iterations: 30,
         };
-        for staggered in [None, Some(staggered)] {
+        for (staggered, surface_rate) in [
+            (None, RegionLoadRate::EveryStage),
+            (Some(staggered), RegionLoadRate::EveryStage),
+            (None, RegionLoadRate::Interval(0.002)),
+        ] {
             let loaded = common::parse(&common::coarse_text());
             let (mut vehicle, mut state, controls) =
                 common::trimmed(&loaded, SurfaceModel::Partitioned, true);
             vehicle.set_staggered(staggered);
+            vehicle
+                .set_surface_load_rate(surface_rate)
+                .expect("surface rate");
             vehicle
                 .start_heating(&HeatingRates {
                     conduction_s: 0.01,
@@ -577,7 +587,8 @@ fn the_time_loop_allocates_nothing_once_its_buffers_exist() {
             let steady = counts[100] - counts[20];
             assert_eq!(
                 steady, 0,
-                "{staggered:?}: {steady} allocations in steps 20 to 100"
+                "{staggered:?}, surfaces {surface_rate:?}: {steady} allocations in steps 20 to \
+                 100"
             );
         }
     });

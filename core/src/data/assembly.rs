@@ -131,6 +131,25 @@ impl DataManagerBuilder {
         self.declare_publisher(region, topic, Some(period_s), Interpolation::Linear, make)
     }
 
+    /// Declares that `region` commits `topic` at most every `period_s` seconds; reads between
+    /// values interpolate linearly and reads past the newest extrapolate from the two newest
+    /// ([`Interpolation::Predicted`]).
+    pub fn publish_predicted<T: TopicValue + Interpolate>(
+        &mut self,
+        region: &str,
+        topic: &str,
+        period_s: f64,
+    ) -> Result<Publisher<T>, DataError> {
+        let make = predicted_topic::<T>;
+        self.declare_publisher(
+            region,
+            topic,
+            Some(period_s),
+            Interpolation::Predicted,
+            make,
+        )
+    }
+
     pub(super) fn declare_subscriber<T: TopicValue>(
         &mut self,
         region: &str,
@@ -326,6 +345,12 @@ pub(super) fn hold_topic<T: TopicValue>(depth: usize) -> Box<dyn ErasedTopic> {
 
 pub(super) fn linear_topic<T: TopicValue + Interpolate>(depth: usize) -> Box<dyn ErasedTopic> {
     Box::new(Topic::<T>::new(depth, T::copy_into, Some(T::lerp_into)))
+}
+
+pub(super) fn predicted_topic<T: TopicValue + Interpolate>(depth: usize) -> Box<dyn ErasedTopic> {
+    let mut topic = Topic::<T>::new(depth, T::copy_into, Some(T::lerp_into));
+    topic.extrapolate = Some(T::extrapolate_into);
+    Box::new(topic)
 }
 
 pub(super) fn clone_into<T: Clone>(value: &T, out: &mut T) {

@@ -15,7 +15,11 @@
 //! stamped converged values; [`DataManager::read_at`] reads that history only, interpolated
 //! linearly between the two values bracketing the asked time (topics declared with
 //! [`DataManagerBuilder::publish_interpolated`]) or held from the earlier one (all other topics),
-//! and held from the newest value beyond it (zero-order hold, no extrapolation).
+//! and held from the newest value beyond it (zero-order hold, no extrapolation). Topics declared
+//! with [`DataManagerBuilder::publish_predicted`] interpolate linearly inside their history and
+//! extrapolate beyond it from their last two converged values, `x₁ + (t − t₁)(x₁ − x₀)/(t₁ − t₀)`:
+//! the predictor of explicit partitioned schemes (Farhat & Lesoinne 2000, Comput. Methods Appl.
+//! Mech. Engrg. 182), by which a region evaluated once per step serves every stage of it.
 //!
 //! # Rates and history, checked by [`DataManagerBuilder::build`]
 //! 1. Every period a publisher or subscriber declares is finite and > 0 s; a history is finite
@@ -220,6 +224,10 @@ pub enum DataError {
 pub enum Interpolation {
     /// `x(t) = x₀ + (t − t₀)/(t₁ − t₀) (x₁ − x₀)`: exact on signals linear in time.
     Linear,
+    /// [`Interpolation::Linear`] inside the history and, beyond the newest value x₁ at t₁, the
+    /// linear predictor `x(t) = x₁ + (t − t₁)/(t₁ − t₀) (x₁ − x₀)` from the two newest (held with
+    /// one): exact on signals linear in time at any time.
+    Predicted,
     /// `x(t) = x₀`, the newest value at or before `t` (zero-order hold): any value type.
     Hold,
 }
@@ -254,10 +262,15 @@ pub struct ShapeMismatch {
     pub later: (usize, usize),
 }
 
-/// Values that can be read between two converged samples by linear interpolation.
+/// Values that can be read between two converged samples by linear interpolation, and past the
+/// newest by linear extrapolation.
 pub trait Interpolate: Clone {
     /// `out = self + w (other − self)` with `w` ∈ [0, 1] the weight of `other`; reuses `out`.
     fn lerp_into(&self, other: &Self, w: f64, out: &mut Self) -> Result<(), ShapeMismatch>;
+
+    /// `out = newer + w (newer − self)` with `w` ≥ 0 how far past `newer` the read lies, in
+    /// units of the two values' spacing; reuses `out`.
+    fn extrapolate_into(&self, newer: &Self, w: f64, out: &mut Self) -> Result<(), ShapeMismatch>;
 
     /// `out = self`, reusing the storage `out` already owns.
     fn copy_into(&self, out: &mut Self) {
@@ -270,9 +283,19 @@ fn lerp(a: f64, b: f64, w: f64) -> f64 {
     a + w * (b - a)
 }
 
+/// `b + (b − a) w`: the linear predictor past `b` from `a` before it.
+fn extrapolate(a: f64, b: f64, w: f64) -> f64 {
+    b + (b - a) * w
+}
+
 impl Interpolate for f64 {
     fn lerp_into(&self, other: &f64, w: f64, out: &mut f64) -> Result<(), ShapeMismatch> {
         *out = lerp(*self, *other, w);
+        Ok(())
+    }
+
+    fn extrapolate_into(&self, newer: &f64, w: f64, out: &mut f64) -> Result<(), ShapeMismatch> {
+        *out = extrapolate(*self, *newer, w);
         Ok(())
     }
 }
@@ -281,6 +304,13 @@ impl<T: Interpolate, const N: usize> Interpolate for [T; N] {
     fn lerp_into(&self, other: &Self, w: f64, out: &mut Self) -> Result<(), ShapeMismatch> {
         for ((o, a), b) in out.iter_mut().zip(self).zip(other) {
             a.lerp_into(b, w, o)?;
+        }
+        Ok(())
+    }
+
+    fn extrapolate_into(&self, newer: &Self, w: f64, out: &mut Self) -> Result<(), ShapeMismatch> {
+        for ((o, a), b) in out.iter_mut().zip(self).zip(newer) {
+            a.extrapolate_into(b, w, o)?;
         }
         Ok(())
     }
@@ -307,6 +337,20 @@ impl<T: Interpolate> Interpolate for Vec<T> {
         Ok(())
     }
 
+    fn extrapolate_into(&self, newer: &Self, w: f64, out: &mut Self) -> Result<(), ShapeMismatch> {
+        if self.len() != newer.len() {
+            return Err(ShapeMismatch {
+                earlier: (self.len(), 1),
+                later: (newer.len(), 1),
+            });
+        }
+        self.copy_into(out);
+        for ((o, a), b) in out.iter_mut().zip(self).zip(newer) {
+            a.extrapolate_into(b, w, o)?;
+        }
+        Ok(())
+    }
+
     fn copy_into(&self, out: &mut Self) {
         out.truncate(self.len());
         let kept = out.len();
@@ -321,6 +365,13 @@ impl<const R: usize, const C: usize> Interpolate for SMatrix<f64, R, C> {
     fn lerp_into(&self, other: &Self, w: f64, out: &mut Self) -> Result<(), ShapeMismatch> {
         for ((o, a), b) in out.iter_mut().zip(self.iter()).zip(other.iter()) {
             *o = lerp(*a, *b, w);
+        }
+        Ok(())
+    }
+
+    fn extrapolate_into(&self, newer: &Self, w: f64, out: &mut Self) -> Result<(), ShapeMismatch> {
+        for ((o, a), b) in out.iter_mut().zip(self.iter()).zip(newer.iter()) {
+            *o = extrapolate(*a, *b, w);
         }
         Ok(())
     }
@@ -340,6 +391,25 @@ macro_rules! interpolate_dynamic_matrix {
                 self.copy_into(out);
                 for ((o, a), b) in out.iter_mut().zip(self.iter()).zip(other.iter()) {
                     *o = lerp(*a, *b, w);
+                }
+                Ok(())
+            }
+
+            fn extrapolate_into(
+                &self,
+                newer: &Self,
+                w: f64,
+                out: &mut Self,
+            ) -> Result<(), ShapeMismatch> {
+                if self.shape() != newer.shape() {
+                    return Err(ShapeMismatch {
+                        earlier: self.shape(),
+                        later: newer.shape(),
+                    });
+                }
+                self.copy_into(out);
+                for ((o, a), b) in out.iter_mut().zip(self.iter()).zip(newer.iter()) {
+                    *o = extrapolate(*a, *b, w);
                 }
                 Ok(())
             }
@@ -407,7 +477,8 @@ pub struct Stamped<'a, T> {
 
 /// The converged values a [`DataManager::read_at`] used:
 /// `value = earlier + weight (later − earlier)`; `earlier == later` and `weight = 0` when one
-/// value was copied (exact time, hold, or beyond the newest value).
+/// value was copied (exact time, hold, or beyond the newest value but for a predicted topic,
+/// whose weight there exceeds 1).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Bracket {
     pub earlier_time_s: f64,

@@ -198,6 +198,8 @@ pub(super) struct Topic<T> {
     pub(super) depth: usize,
     pub(super) copy: CopyFn<T>,
     pub(super) lerp: Option<LerpFn<T>>,
+    /// The predictor past the newest value (topics with [`Interpolation::Predicted`]).
+    pub(super) extrapolate: Option<LerpFn<T>>,
 }
 
 impl<T: TopicValue> Topic<T> {
@@ -211,11 +213,13 @@ impl<T: TopicValue> Topic<T> {
             depth,
             copy,
             lerp,
+            extrapolate: None,
         }
     }
 
     /// The converged value at `time_s` into `out`: interpolated or held between the bracketing
-    /// values, held from the newest beyond it.
+    /// values; beyond the newest, extrapolated from the two newest for a predicted topic, else
+    /// held.
     pub(super) fn sample_at(&self, time_s: f64, out: &mut T) -> Result<Bracket, Miss> {
         let state = &self.state;
         let len = state.history.len();
@@ -228,6 +232,22 @@ impl<T: TopicValue> Topic<T> {
             return Err(Miss::TooOld { oldest_s });
         }
         let earlier = state.at(count - 1);
+        if let Some(extrapolate) = self.extrapolate
+            && count == len
+            && len >= 2
+            && earlier.time_s != time_s
+        {
+            let older = state.at(len - 2);
+            let w = (time_s - earlier.time_s) / (earlier.time_s - older.time_s);
+            extrapolate(&older.value, &earlier.value, w, out).map_err(Miss::Shape)?;
+            return Ok(Bracket {
+                earlier_time_s: older.time_s,
+                earlier_version: older.version,
+                later_time_s: earlier.time_s,
+                later_version: earlier.version,
+                weight: 1.0 + w,
+            });
+        }
         let lerp = match self.lerp {
             Some(lerp) if count < len && earlier.time_s != time_s => lerp,
             _ => {

@@ -309,9 +309,9 @@ pub fn flight_vehicle(
         heated,
         "the time simulation",
     )?;
-    vehicle.set_body_load_rate(settings.body_loads);
-    vehicle.set_body_friction_rate(settings.body_friction);
-    vehicle.set_surface_load_rate(settings.surface_loads);
+    vehicle.set_body_load_rate(settings.body_loads)?;
+    vehicle.set_body_friction_rate(settings.body_friction)?;
+    vehicle.set_surface_load_rate(settings.surface_loads)?;
     vehicle.set_earth(settings.earth);
     Ok(vehicle)
 }
@@ -426,7 +426,7 @@ impl Flight {
         };
         vehicle.set_disturbances(disturbances);
         vehicle.start_heating(&settings.rates)?;
-        vehicle.forget_region_loads();
+        vehicle.forget_region_loads()?;
         let initial = Initial {
             state: trim.state.clone(),
             vehicle: vehicle.restart(),
@@ -460,7 +460,7 @@ impl Flight {
         self.vehicle
             .set_disturbances(self.initial.disturbances.clone());
         self.vehicle.restore(&self.initial.vehicle)?;
-        self.vehicle.forget_region_loads();
+        self.vehicle.forget_region_loads()?;
         self.control.restore(self.initial.control.clone())?;
         self.state.clone_from(&self.initial.state);
         self.step = 0;

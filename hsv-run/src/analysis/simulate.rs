@@ -392,7 +392,7 @@ fn march(
         return Ok(0);
     }
     if settings.start_step == 0 {
-        vehicle.forget_region_loads();
+        vehicle.forget_region_loads().map_err(wrap(t0))?;
     }
     for k in settings.start_step.min(steps)..steps {
         let t = plan.start_s(k);

@@ -151,7 +151,7 @@ impl DisturbanceArgs {
 }
 
 /// Tag of the restart file format.
-const RESTART_FORMAT: &str = "hsv-restart-1";
+const RESTART_FORMAT: &str = "hsv-restart-2";
 
 /// What `--resume` continues from: written as `restart.json` at the end of every run.
 #[derive(Debug, Clone, serde::Serialize, serde::Deserialize)]

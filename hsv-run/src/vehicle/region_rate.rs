@@ -9,7 +9,8 @@
 //! predictor of explicit partitioned schemes (Farhat & Lesoinne 2000, Comput. Methods Appl.
 //! Mech. Engrg. 182: the "predictor" of the conventional serial staggered procedure), so the
 //! scheme stays second order in the region's loads; over the first step, with one publication,
-//! the loads are held.
+//! the loads are held. The publications go through the data manager ([`RegionExchange`]: one
+//! predicted topic per region, [`hsv_core::data`]), whose checkpoint a restart file carries.
 //!
 //! - **The main body** (`[simulation] body_loads_dt_s`, default 1 ms): aero and skin friction
 //!   on the deformed OML, the engine, and the monolithic model's surfaces. Its evaluation is
@@ -31,6 +32,10 @@
 //! the flight's time scale), and on the 1304-panel body it cost as much as the engine.
 
 use hsv_core::aero::Loads;
+use hsv_core::data::{
+    DataCheckpoint, DataError, DataManager, DataManagerBuilder, Interpolate, Publisher,
+    ShapeMismatch, Subscriber,
+};
 use nalgebra::{DVector, Vector3};
 use serde::{Deserialize, Serialize};
 
@@ -79,11 +84,10 @@ impl RegionLoadRate {
 }
 
 /// One publication of a region (the body's, or a lifting surface's with its applied loads about
-/// the pivot in the surface's frame as the total and no separate aero part): plain data, part
-/// of a restart file.
+/// the pivot in the surface's frame as the total and no separate aero part): the value of the
+/// region's loads topic; the data manager stamps it with its time.
 #[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize)]
 pub struct PublishedLoads {
-    pub time_s: f64,
     /// The body: aero, skin friction, engine (and the monolithic model's surfaces) about the
     /// centre of mass, body axes; a surface: its pressure and friction about its pivot in its
     /// own frame. N and N m.
@@ -97,92 +101,321 @@ pub struct PublishedLoads {
     pub generalized: DVector<f64>,
 }
 
-/// The body's skin friction at its last evaluation: plain data, part of a restart file.
+impl Interpolate for PublishedLoads {
+    fn lerp_into(&self, other: &Self, w: f64, out: &mut Self) -> Result<(), ShapeMismatch> {
+        self.force_n
+            .lerp_into(&other.force_n, w, &mut out.force_n)?;
+        self.moment_nm
+            .lerp_into(&other.moment_nm, w, &mut out.moment_nm)?;
+        self.aero_force_n
+            .lerp_into(&other.aero_force_n, w, &mut out.aero_force_n)?;
+        self.aero_moment_nm
+            .lerp_into(&other.aero_moment_nm, w, &mut out.aero_moment_nm)?;
+        self.generalized
+            .lerp_into(&other.generalized, w, &mut out.generalized)
+    }
+
+    fn extrapolate_into(&self, newer: &Self, w: f64, out: &mut Self) -> Result<(), ShapeMismatch> {
+        self.force_n
+            .extrapolate_into(&newer.force_n, w, &mut out.force_n)?;
+        self.moment_nm
+            .extrapolate_into(&newer.moment_nm, w, &mut out.moment_nm)?;
+        self.aero_force_n
+            .extrapolate_into(&newer.aero_force_n, w, &mut out.aero_force_n)?;
+        self.aero_moment_nm
+            .extrapolate_into(&newer.aero_moment_nm, w, &mut out.aero_moment_nm)?;
+        self.generalized
+            .extrapolate_into(&newer.generalized, w, &mut out.generalized)
+    }
+
+    fn copy_into(&self, out: &mut Self) {
+        out.force_n = self.force_n;
+        out.moment_nm = self.moment_nm;
+        out.aero_force_n = self.aero_force_n;
+        out.aero_moment_nm = self.aero_moment_nm;
+        self.generalized.copy_into(&mut out.generalized);
+    }
+}
+
+/// The body's skin friction at one evaluation, about the centre of mass, body axes, N and N m:
+/// the value of its topic.
 #[derive(Debug, Clone, Copy, PartialEq, Default, Serialize, Deserialize)]
 pub struct PublishedFriction {
-    pub time_s: f64,
-    /// About the centre of mass, body axes, N and N m.
     pub force_n: Vector3<f64>,
     pub moment_nm: Vector3<f64>,
 }
 
-impl PublishedFriction {
-    pub fn new(time_s: f64, loads: &Loads) -> Self {
-        Self {
-            time_s,
-            force_n: loads.force_n,
-            moment_nm: loads.moment_nm,
-        }
+impl Interpolate for PublishedFriction {
+    fn lerp_into(&self, other: &Self, w: f64, out: &mut Self) -> Result<(), ShapeMismatch> {
+        self.force_n
+            .lerp_into(&other.force_n, w, &mut out.force_n)?;
+        self.moment_nm
+            .lerp_into(&other.moment_nm, w, &mut out.moment_nm)
     }
 
-    pub fn loads(&self) -> Loads {
-        Loads {
-            force_n: self.force_n,
-            moment_nm: self.moment_nm,
-        }
+    fn extrapolate_into(&self, newer: &Self, w: f64, out: &mut Self) -> Result<(), ShapeMismatch> {
+        self.force_n
+            .extrapolate_into(&newer.force_n, w, &mut out.force_n)?;
+        self.moment_nm
+            .extrapolate_into(&newer.moment_nm, w, &mut out.moment_nm)
     }
 }
 
-/// The last two publications of a region, and the body's held skin friction.
-#[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize)]
-pub struct RegionLoadHistory {
-    pub latest: Option<PublishedLoads>,
-    pub before: Option<PublishedLoads>,
-    /// The last two evaluations of the body's skin friction (absent in restart files written
-    /// before the friction had its own rate).
-    #[serde(default)]
-    pub friction: Option<PublishedFriction>,
-    #[serde(default)]
-    pub friction_before: Option<PublishedFriction>,
+/// The reader of every topic: the coupled derivative, which assembles the vehicle's loads.
+const READER: &str = "coupling";
+
+/// A publisher and its reader.
+type Channel<T> = (Publisher<T>, Subscriber<T>);
+
+/// The regions' publications at their own rates, exchanged through the data manager (paper
+/// §III): one predicted topic per region (`main_body/loads`, `<surface>/loads`) and the body's
+/// skin friction (`main_body/skin_friction`), each keeping its last two converged values and
+/// read at any stage time by the module's predictor. Handles are indices: no look-up and, once
+/// each topic has two values, no allocation in the time loop.
+pub struct RegionExchange {
+    data: DataManager,
+    /// The exchange with nothing published: what forgetting restores.
+    empty: DataCheckpoint,
+    body: Channel<PublishedLoads>,
+    friction: Channel<PublishedFriction>,
+    surfaces: Vec<Channel<PublishedLoads>>,
+    /// The value a read fills before it is copied out (no allocation after the first).
+    scratch: PublishedLoads,
 }
 
-impl RegionLoadHistory {
-    /// The time of the latest publication, s.
-    pub fn latest_time_s(&self) -> Option<f64> {
-        self.latest.as_ref().map(|l| l.time_s)
+impl std::fmt::Debug for RegionExchange {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("RegionExchange")
+            .field("data", &self.data)
+            .finish_non_exhaustive()
+    }
+}
+
+/// The period a topic declares for a rate, s: its interval, or (every stage: never published)
+/// the shortest one that passes the data manager's check.
+fn declared_period_s(rate: RegionLoadRate) -> f64 {
+    match rate {
+        RegionLoadRate::Interval(interval_s) => interval_s,
+        RegionLoadRate::EveryStage => f64::MIN_POSITIVE,
+    }
+}
+
+impl RegionExchange {
+    /// The topics of the body (at `body` rate, its skin friction at `friction`'s among them)
+    /// and of each surface named in `surfaces` (at `surface` rate), nothing published.
+    pub fn new(
+        surfaces: &[String],
+        body: RegionLoadRate,
+        friction: RegionLoadRate,
+        surface: RegionLoadRate,
+    ) -> Result<Self, DataError> {
+        let mut builder = DataManagerBuilder::new();
+        let body_period_s = declared_period_s(body);
+        // The friction is published only at the body's publications where it is due.
+        let friction_period_s = match friction {
+            RegionLoadRate::Interval(interval_s) => interval_s.max(body_period_s),
+            RegionLoadRate::EveryStage => body_period_s,
+        };
+        let body = (
+            builder.publish_predicted("main_body", "main_body/loads", body_period_s)?,
+            builder.subscribe(READER, "main_body/loads")?,
+        );
+        let friction = (
+            builder.publish_predicted("main_body", "main_body/skin_friction", friction_period_s)?,
+            builder.subscribe(READER, "main_body/skin_friction")?,
+        );
+        let surfaces = surfaces
+            .iter()
+            .map(|name| {
+                let topic = format!("{name}/loads");
+                Ok((
+                    builder.publish_predicted(name, &topic, declared_period_s(surface))?,
+                    builder.subscribe(READER, &topic)?,
+                ))
+            })
+            .collect::<Result<Vec<_>, DataError>>()?;
+        let data = builder.build()?;
+        Ok(Self {
+            empty: data.checkpoint(),
+            data,
+            body,
+            friction,
+            surfaces,
+            scratch: PublishedLoads::default(),
+        })
     }
 
     /// Forgets every publication (a new run).
-    pub fn clear(&mut self) {
-        self.latest = None;
-        self.before = None;
-        self.forget_friction();
+    pub fn clear(&mut self) -> Result<(), DataError> {
+        self.data.restore(&self.empty)
     }
 
-    /// Forgets the skin friction's evaluations.
-    pub fn forget_friction(&mut self) {
-        self.friction = None;
-        self.friction_before = None;
+    /// The exchange's state, for a restart file.
+    pub fn checkpoint(&self) -> DataCheckpoint {
+        self.data.checkpoint()
+    }
+
+    /// Restores a state of [`Self::checkpoint`] (of an exchange with the same topics).
+    pub fn restore(&mut self, checkpoint: &DataCheckpoint) -> Result<(), DataError> {
+        self.data.restore(checkpoint)
+    }
+
+    /// The time of the body's latest publication, s.
+    pub fn body_time_s(&self) -> Option<f64> {
+        self.data.read_converged(self.body.1).ok().map(|s| s.time_s)
+    }
+
+    /// The time of the first surface's latest publication, s (the surfaces publish together).
+    pub fn surfaces_time_s(&self) -> Option<f64> {
+        let (_, reader) = self.surfaces.first()?;
+        self.data.read_converged(*reader).ok().map(|s| s.time_s)
+    }
+
+    /// Publishes the body's loads at `time_s`.
+    pub fn publish_body(
+        &mut self,
+        time_s: f64,
+        total: &Loads,
+        aero: &Loads,
+        generalized: &[f64],
+    ) -> Result<(), DataError> {
+        publish_loads(
+            &mut self.data,
+            self.body.0,
+            time_s,
+            total,
+            aero,
+            generalized,
+        )
+    }
+
+    /// Publishes surface `index`'s applied loads about its pivot and aero generalized forces at
+    /// `time_s`.
+    pub fn publish_surface(
+        &mut self,
+        index: usize,
+        time_s: f64,
+        applied: &Loads,
+        generalized: &[f64],
+    ) -> Result<(), DataError> {
+        let Some(&(publisher, _)) = self.surfaces.get(index) else {
+            return Ok(());
+        };
+        let none = Loads::default();
+        publish_loads(
+            &mut self.data,
+            publisher,
+            time_s,
+            applied,
+            &none,
+            generalized,
+        )
+    }
+
+    /// The body's loads at `time_s` into the outputs (module docs' predictor; held with one
+    /// publication); false (outputs untouched) with none.
+    pub fn read_body(
+        &mut self,
+        time_s: f64,
+        total: &mut Loads,
+        aero: &mut Loads,
+        generalized: &mut [f64],
+    ) -> Result<bool, DataError> {
+        let reader = self.body.1;
+        self.read_loads(reader, time_s, total, Some(aero), generalized)
+    }
+
+    /// Surface `index`'s applied loads and aero generalized forces at `time_s` (as
+    /// [`Self::read_body`]).
+    pub fn read_surface(
+        &mut self,
+        index: usize,
+        time_s: f64,
+        applied: &mut Loads,
+        generalized: &mut [f64],
+    ) -> Result<bool, DataError> {
+        let Some(&(_, reader)) = self.surfaces.get(index) else {
+            return Ok(false);
+        };
+        self.read_loads(reader, time_s, applied, None, generalized)
+    }
+
+    fn read_loads(
+        &mut self,
+        reader: Subscriber<PublishedLoads>,
+        time_s: f64,
+        total: &mut Loads,
+        aero: Option<&mut Loads>,
+        generalized: &mut [f64],
+    ) -> Result<bool, DataError> {
+        match self.data.read_at(reader, time_s, &mut self.scratch) {
+            Err(DataError::NothingConverged { .. }) => return Ok(false),
+            Err(e) => return Err(e),
+            Ok(_) => {}
+        }
+        let l = &self.scratch;
+        if l.generalized.len() != generalized.len() {
+            return Ok(false);
+        }
+        total.force_n = l.force_n;
+        total.moment_nm = l.moment_nm;
+        if let Some(aero) = aero {
+            aero.force_n = l.aero_force_n;
+            aero.moment_nm = l.aero_moment_nm;
+        }
+        generalized.copy_from_slice(l.generalized.as_slice());
+        Ok(true)
     }
 
     /// Publishes the body's skin friction evaluated at `time_s`.
-    pub fn publish_friction(&mut self, time_s: f64, loads: &Loads) {
-        self.friction_before = self.friction.take();
-        self.friction = Some(PublishedFriction::new(time_s, loads));
+    pub fn publish_friction(&mut self, time_s: f64, loads: &Loads) -> Result<(), DataError> {
+        self.data.publish(
+            self.friction.0,
+            time_s,
+            PublishedFriction {
+                force_n: loads.force_n,
+                moment_nm: loads.moment_nm,
+            },
+        )?;
+        self.data.mark_converged(self.friction.0)?;
+        Ok(())
     }
 
     /// The skin friction at `time_s`, extrapolated linearly from its last two evaluations (held
     /// with one), when `rate` says it is not due; None when it is.
-    pub fn friction_at(&self, time_s: f64, rate: &RegionLoadRate) -> Option<Loads> {
-        let f1 = self
-            .friction
-            .filter(|f| !rate.is_due(time_s, Some(f.time_s)))?;
-        let Some(f0) = self.friction_before.filter(|f0| f1.time_s > f0.time_s) else {
-            return Some(f1.loads());
+    pub fn friction_at(
+        &self,
+        time_s: f64,
+        rate: &RegionLoadRate,
+    ) -> Result<Option<Loads>, DataError> {
+        let reader = self.friction.1;
+        let last_s = match self.data.read_converged(reader) {
+            Ok(latest) => latest.time_s,
+            Err(DataError::NothingConverged { .. }) => return Ok(None),
+            Err(e) => return Err(e),
         };
-        let w = predictor_weight(time_s, f0.time_s, f1.time_s);
-        Some(Loads {
-            force_n: predict(&f0.force_n, &f1.force_n, w),
-            moment_nm: predict(&f0.moment_nm, &f1.moment_nm, w),
-        })
+        if rate.is_due(time_s, Some(last_s)) {
+            return Ok(None);
+        }
+        let mut friction = PublishedFriction::default();
+        self.data.read_at(reader, time_s, &mut friction)?;
+        Ok(Some(Loads {
+            force_n: friction.force_n,
+            moment_nm: friction.moment_nm,
+        }))
     }
+}
 
-    /// Publishes the loads at `time_s`; the latest becomes the one before. Reuses the buffers
-    /// of the oldest publication, so after two publications nothing is allocated.
-    pub fn publish(&mut self, time_s: f64, total: &Loads, aero: &Loads, generalized: &[f64]) {
-        std::mem::swap(&mut self.latest, &mut self.before);
-        let slot = self.latest.get_or_insert_with(PublishedLoads::default);
-        slot.time_s = time_s;
+/// Publishes and commits one region's loads at `time_s`, in place (the head's buffers reused).
+fn publish_loads(
+    data: &mut DataManager,
+    publisher: Publisher<PublishedLoads>,
+    time_s: f64,
+    total: &Loads,
+    aero: &Loads,
+    generalized: &[f64],
+) -> Result<(), DataError> {
+    data.publish_with(publisher, time_s, |slot| {
         slot.force_n = total.force_n;
         slot.moment_nm = total.moment_nm;
         slot.aero_force_n = aero.force_n;
@@ -192,55 +425,9 @@ impl RegionLoadHistory {
         } else {
             slot.generalized = DVector::from_column_slice(generalized);
         }
-    }
-
-    /// The loads at `time_s` into the outputs: L₁ + (t − t₁)(L₁ − L₀)/(t₁ − t₀) from the last
-    /// two publications, or L₁ with one. False (outputs untouched) with none.
-    pub fn read(
-        &self,
-        time_s: f64,
-        total: &mut Loads,
-        aero: &mut Loads,
-        generalized: &mut [f64],
-    ) -> bool {
-        let Some(l1) = self
-            .latest
-            .as_ref()
-            .filter(|l| l.generalized.len() == generalized.len())
-        else {
-            return false;
-        };
-        let w = match &self.before {
-            Some(l0) if l1.time_s > l0.time_s && l0.generalized.len() == l1.generalized.len() => {
-                predictor_weight(time_s, l0.time_s, l1.time_s)
-            }
-            _ => 0.0,
-        };
-        let l0 = self.before.as_ref().filter(|_| w != 0.0).unwrap_or(l1);
-        total.force_n = predict(&l0.force_n, &l1.force_n, w);
-        total.moment_nm = predict(&l0.moment_nm, &l1.moment_nm, w);
-        aero.force_n = predict(&l0.aero_force_n, &l1.aero_force_n, w);
-        aero.moment_nm = predict(&l0.aero_moment_nm, &l1.aero_moment_nm, w);
-        for ((q, a), b) in generalized
-            .iter_mut()
-            .zip(l0.generalized.iter())
-            .zip(l1.generalized.iter())
-        {
-            *q = b + (b - a) * w;
-        }
-        true
-    }
-}
-
-/// w = (t − t₁)/(t₁ − t₀): how far past the latest of two publications at t₀ < t₁ time `t` is,
-/// in units of their spacing.
-fn predictor_weight(time_s: f64, t0: f64, t1: f64) -> f64 {
-    (time_s - t1) / (t1 - t0)
-}
-
-/// L₁ + w (L₁ − L₀): the linear predictor of the module docs from L₀ = `a`, L₁ = `b`.
-fn predict(a: &Vector3<f64>, b: &Vector3<f64>, w: f64) -> Vector3<f64> {
-    b + (b - a) * w
+    })?;
+    data.mark_converged(publisher)?;
+    Ok(())
 }
 
 #[cfg(test)]
@@ -254,59 +441,109 @@ mod tests {
         }
     }
 
+    fn exchange() -> RegionExchange {
+        RegionExchange::new(
+            &["left_surface".to_owned()],
+            RegionLoadRate::Interval(1e-3),
+            RegionLoadRate::Interval(0.01),
+            RegionLoadRate::Interval(1e-3),
+        )
+        .expect("exchange")
+    }
+
     /// A load linear in time is reproduced exactly at any stage time: the predictor is exact
     /// for polynomials of degree one (second-order local error).
     #[test]
     fn a_load_linear_in_time_is_extrapolated_exactly() {
-        let mut h = RegionLoadHistory::default();
+        let mut h = exchange();
         let f = |t: f64| 3.0 - 7.0 * t;
         for t in [0.0, 1e-3] {
-            h.publish(t, &loads(f(t)), &loads(0.5 * f(t)), &[f(t); 2]);
+            h.publish_body(t, &loads(f(t)), &loads(0.5 * f(t)), &[f(t); 2])
+                .expect("published");
+            h.publish_surface(0, t, &loads(-f(t)), &[f(t); 3])
+                .expect("published");
         }
         let (mut total, mut aero, mut q) = (Loads::default(), Loads::default(), [0.0; 2]);
+        let mut q3 = [0.0; 3];
         for t in [1e-3, 1.5e-3, 2e-3] {
-            assert!(h.read(t, &mut total, &mut aero, &mut q));
+            assert!(h.read_body(t, &mut total, &mut aero, &mut q).expect("read"));
             assert!((total.force_n.x - f(t)).abs() < 1e-12);
             assert!((total.force_n.y - 2.0 * f(t)).abs() < 1e-12);
             assert!((aero.moment_nm.z + 0.5 * f(t)).abs() < 1e-12);
             assert!((q[1] - f(t)).abs() < 1e-12);
+            assert!(h.read_surface(0, t, &mut total, &mut q3).expect("read"));
+            assert!((total.force_n.x + f(t)).abs() < 1e-12);
+            assert!((q3[2] - f(t)).abs() < 1e-12);
         }
+        assert_eq!(h.body_time_s(), Some(1e-3));
+        assert_eq!(h.surfaces_time_s(), Some(1e-3));
     }
 
     /// The friction predictor is exact for a friction linear in time, and steps aside (None)
     /// when the friction is due again.
     #[test]
     fn friction_linear_in_time_is_extrapolated_until_it_is_due() {
-        let mut h = RegionLoadHistory::default();
+        let mut h = exchange();
         let rate = RegionLoadRate::Interval(0.01);
         let f = |t: f64| 2.0 + 5.0 * t;
-        assert!(h.friction_at(0.0, &rate).is_none(), "nothing published");
-        h.publish_friction(0.0, &loads(f(0.0)));
+        assert!(
+            h.friction_at(0.0, &rate).expect("read").is_none(),
+            "nothing published"
+        );
+        h.publish_friction(0.0, &loads(f(0.0))).expect("published");
         assert_eq!(
-            h.friction_at(0.004, &rate),
+            h.friction_at(0.004, &rate).expect("read"),
             Some(loads(f(0.0))),
             "one: held"
         );
-        h.publish_friction(0.01, &loads(f(0.01)));
+        h.publish_friction(0.01, &loads(f(0.01)))
+            .expect("published");
         for t in [0.011, 0.015, 0.019] {
-            let read = h.friction_at(t, &rate).expect("not due");
+            let read = h.friction_at(t, &rate).expect("read").expect("not due");
             assert!((read.force_n.x - f(t)).abs() < 1e-12);
             assert!((read.moment_nm.z + f(t)).abs() < 1e-12);
         }
-        assert!(h.friction_at(0.02, &rate).is_none(), "due at 10 ms");
+        assert!(
+            h.friction_at(0.02, &rate).expect("read").is_none(),
+            "due at 10 ms"
+        );
     }
 
+    /// One publication is held, none reads nothing, a publication sooner than the declared
+    /// interval is refused, and clearing forgets everything (a checkpoint round trip restores
+    /// it).
     #[test]
-    fn one_publication_is_held_and_none_is_refused() {
-        let mut h = RegionLoadHistory::default();
+    fn one_publication_is_held_none_is_refused_and_clearing_forgets() {
+        let mut h = exchange();
         let (mut total, mut aero, mut q) = (Loads::default(), Loads::default(), [0.0; 1]);
-        assert!(!h.read(0.0, &mut total, &mut aero, &mut q));
-        h.publish(0.0, &loads(4.0), &loads(1.0), &[4.0]);
-        assert!(h.read(5e-4, &mut total, &mut aero, &mut q));
+        assert!(
+            !h.read_body(0.0, &mut total, &mut aero, &mut q)
+                .expect("read")
+        );
+        h.publish_body(0.0, &loads(4.0), &loads(1.0), &[4.0])
+            .expect("published");
+        assert!(
+            h.read_body(5e-4, &mut total, &mut aero, &mut q)
+                .expect("read")
+        );
         assert_eq!(total.force_n.x, 4.0);
         assert_eq!(q[0], 4.0);
-        h.clear();
-        assert!(!h.read(0.0, &mut total, &mut aero, &mut q));
+        let err = h
+            .publish_body(5e-4, &loads(4.0), &loads(1.0), &[4.0])
+            .expect_err("sooner than 1 ms");
+        assert!(err.to_string().contains("main_body/loads"), "{err}");
+        let saved = h.checkpoint();
+        h.clear().expect("cleared");
+        assert!(
+            !h.read_body(0.0, &mut total, &mut aero, &mut q)
+                .expect("read")
+        );
+        h.restore(&saved).expect("restored");
+        assert!(
+            h.read_body(5e-4, &mut total, &mut aero, &mut q)
+                .expect("read")
+        );
+        assert_eq!(h.checkpoint(), saved);
     }
 }
 

@@ -246,6 +246,13 @@ impl PartitionedVehicle {
             .map(|s| DVector::zeros(s.shapes.n_modes()))
             .collect();
         let interface_len = q_ddot.iter().map(|q| q.len()).sum::<usize>() + body_modal.n_modes();
+        let surface_names: Vec<String> = surfaces.iter().map(|s| s.name.clone()).collect();
+        let exchange = RegionExchange::new(
+            &surface_names,
+            RegionLoadRate::default(),
+            RegionLoadRate::Interval(DEFAULT_BODY_FRICTION_DT_S),
+            RegionLoadRate::EveryStage,
+        )?;
         Ok(Self {
             q_ddot,
             body_q_ddot: DVector::zeros(body_modal.n_modes()),
@@ -277,9 +284,9 @@ impl PartitionedVehicle {
             trim_modes: Vec::new(),
             body_rate: RegionLoadRate::default(),
             body_friction_rate: RegionLoadRate::Interval(DEFAULT_BODY_FRICTION_DT_S),
-            body_history: RegionLoadHistory::default(),
+
             surface_rate: RegionLoadRate::EveryStage,
-            surface_histories: Vec::new(),
+            exchange,
             stage_one: None,
             stage_one_state: VehicleState::default(),
             in_step: false,

@@ -49,7 +49,7 @@ use nalgebra::{DVector, Point3, Vector3};
 use rayon::prelude::*;
 
 use super::friction::RegionFriction;
-use super::region_rate::{DEFAULT_BODY_FRICTION_DT_S, RegionLoadHistory, RegionLoadRate};
+use super::region_rate::{DEFAULT_BODY_FRICTION_DT_S, RegionExchange, RegionLoadRate};
 use super::{AnalysisNeeds, AssemblyError, RegionModelSet, RegionNeeds};
 use crate::disturbance::Disturbances;
 use crate::dynamics::equations_of_motion::pivot_motion;
@@ -209,14 +209,9 @@ pub struct VehicleRestart {
     pub heating_heat_flux_s: f64,
     pub heating_stiffness_s: f64,
     pub heating_initial_k: f64,
-    /// The body region's last publications (absent in restart files of runs that evaluated the
-    /// body at every stage).
-    #[serde(default)]
-    pub body_loads: RegionLoadHistory,
-    /// Each lifting surface's last publications (empty in restart files of runs that evaluated
-    /// the surfaces at every stage).
-    #[serde(default)]
-    pub surface_loads: Vec<RegionLoadHistory>,
+    /// The regions' publications at their own rates: the data manager's checkpoint of the
+    /// body's and each surface's loads topics and the body's skin friction.
+    pub region_loads: hsv_core::data::DataCheckpoint,
     /// The last coupling iteration's report (the first sample of a continued run shows it;
     /// absent in older restart files).
     #[serde(default)]
@@ -398,6 +393,9 @@ pub enum VehicleError {
     },
     #[error(transparent)]
     Dynamics(#[from] crate::dynamics::DynamicsError),
+    /// The regions' exchange through the data manager refused a publication or read.
+    #[error("exchanging region data: {0}")]
+    Exchange(#[from] hsv_core::data::DataError),
     /// A run's inputs are refused (its steps, its tables).
     #[error("{0}")]
     Input(String),
@@ -519,11 +517,11 @@ pub struct PartitionedVehicle {
     /// How often the body's skin friction is re-evaluated among the body's publications in a
     /// run (module [`super::region_rate`]); outside a run, at every evaluation.
     body_friction_rate: RegionLoadRate,
-    body_history: RegionLoadHistory,
-    /// How often the lifting surfaces are evaluated within a step, and each one's publications
-    /// (module [`super::region_rate`]).
+    /// How often the lifting surfaces are evaluated within a step (module
+    /// [`super::region_rate`]).
     surface_rate: RegionLoadRate,
-    surface_histories: Vec<RegionLoadHistory>,
+    /// The body's and the surfaces' publications at those rates, through the data manager.
+    exchange: RegionExchange,
     /// The surfaces evaluated beside the body at the accepted state by `begin_step` (when they
     /// run at every stage): the time and controls, and the state, that the step's first stage
     /// must match to use them instead of evaluating them again.

@@ -29,8 +29,7 @@ impl PartitionedVehicle {
             heating_heat_flux_s: self.heating.heat_flux_s,
             heating_stiffness_s: self.heating.stiffness_s,
             heating_initial_k: self.heating.initial_k,
-            body_loads: self.body_history.clone(),
-            surface_loads: self.surface_histories.clone(),
+            region_loads: self.exchange.checkpoint(),
             body_q_ddot: self.body_q_ddot.clone(),
             coupling: self.report,
         }
@@ -74,17 +73,7 @@ impl PartitionedVehicle {
         }
         self.time_s = r.time_s;
         self.report = r.coupling;
-        self.body_history.clone_from(&r.body_loads);
-        match r.surface_loads.len() {
-            0 => self.forget_surface_loads(),
-            len if len == n => self.surface_histories.clone_from(&r.surface_loads),
-            len => {
-                return Err(VehicleError::Input(format!(
-                    "restart file: {len} surface load histories for a vehicle of {n} lifting \
-                     surfaces"
-                )));
-            }
-        }
+        self.exchange.restore(&r.region_loads)?;
         self.in_step = false;
         self.stage_one = None;
         self.q_ddot.clone_from(&r.q_ddot);

@@ -51,10 +51,11 @@ impl PartitionedVehicle {
         self.dynamics.set_earth(earth);
     }
 
-    /// How often the body region is evaluated within a time step ([`RegionLoadRate`]).
-    pub fn set_body_load_rate(&mut self, rate: RegionLoadRate) {
+    /// How often the body region is evaluated within a time step ([`RegionLoadRate`]); forgets
+    /// the regions' publications.
+    pub fn set_body_load_rate(&mut self, rate: RegionLoadRate) -> Result<(), VehicleError> {
         self.body_rate = rate;
-        self.body_history.clear();
+        self.rebuild_exchange()
     }
 
     pub fn body_load_rate(&self) -> RegionLoadRate {
@@ -64,16 +65,28 @@ impl PartitionedVehicle {
     /// How often, among the body region's publications, its skin friction is evaluated again
     /// (`EveryStage`: at every publication); default the aerothermal rate
     /// [`DEFAULT_BODY_FRICTION_DT_S`].
-    pub fn set_body_friction_rate(&mut self, rate: RegionLoadRate) {
+    pub fn set_body_friction_rate(&mut self, rate: RegionLoadRate) -> Result<(), VehicleError> {
         self.body_friction_rate = rate;
-        self.body_history.forget_friction();
+        self.rebuild_exchange()
     }
 
     /// How often the lifting surfaces are evaluated within a time step ([`RegionLoadRate`];
     /// `EveryStage` by default).
-    pub fn set_surface_load_rate(&mut self, rate: RegionLoadRate) {
+    pub fn set_surface_load_rate(&mut self, rate: RegionLoadRate) -> Result<(), VehicleError> {
         self.surface_rate = rate;
-        self.forget_surface_loads();
+        self.rebuild_exchange()
+    }
+
+    /// The regions' exchange declared again for the current rates, nothing published.
+    fn rebuild_exchange(&mut self) -> Result<(), VehicleError> {
+        let names: Vec<String> = self.surfaces.iter().map(|s| s.name.clone()).collect();
+        self.exchange = RegionExchange::new(
+            &names,
+            self.body_rate,
+            self.body_friction_rate,
+            self.surface_rate,
+        )?;
+        Ok(())
     }
 
     pub fn surface_load_rate(&self) -> RegionLoadRate {
@@ -81,15 +94,8 @@ impl PartitionedVehicle {
     }
 
     /// Forgets the regions' publications (a run starting afresh).
-    pub fn forget_region_loads(&mut self) {
-        self.body_history.clear();
-        self.forget_surface_loads();
-    }
-
-    pub(super) fn forget_surface_loads(&mut self) {
-        self.surface_histories.clear();
-        self.surface_histories
-            .resize_with(self.surfaces.len(), RegionLoadHistory::default);
+    pub fn forget_region_loads(&mut self) -> Result<(), VehicleError> {
+        Ok(self.exchange.clear()?)
     }
 
     /// Opens the step starting at `time_s` from the accepted `state`: the heat flux where due;
@@ -116,17 +122,12 @@ impl PartitionedVehicle {
             s.held_friction = None;
         }
         let body_due = self.body_rate != RegionLoadRate::EveryStage
-            && self
-                .body_rate
-                .is_due(time_s, self.body_history.latest_time_s());
+            && self.body_rate.is_due(time_s, self.exchange.body_time_s());
         let surfaces_due = self.surface_rate != RegionLoadRate::EveryStage
             && !self.surfaces.is_empty()
-            && self.surface_rate.is_due(
-                time_s,
-                self.surface_histories
-                    .first()
-                    .and_then(RegionLoadHistory::latest_time_s),
-            );
+            && self
+                .surface_rate
+                .is_due(time_s, self.exchange.surfaces_time_s());
         // Surfaces evaluated at every stage meet the body here on the first stage's state, so
         // two threads take them side by side; that stage then reads what they gave
         // (`stage_one_surfaces`). The staggered scheme moves their roots between sub-iterations.
@@ -168,8 +169,8 @@ impl PartitionedVehicle {
         }
         if body_due {
             self.body.held_friction = self
-                .body_history
-                .friction_at(time_s, &self.body_friction_rate);
+                .exchange
+                .friction_at(time_s, &self.body_friction_rate)?;
         }
         let (body_loads, surfaces_done) = self.regions_side_by_side(
             state,
@@ -184,34 +185,30 @@ impl PartitionedVehicle {
         let held = self.body.held_friction.take();
         if let Some(done) = surfaces_done {
             done?;
-            let publishing = self.surface_rate != RegionLoadRate::EveryStage;
-            for (s, history) in self
-                .surfaces
-                .iter()
-                .zip(&mut self.surface_histories)
-                .filter(|_| publishing)
-            {
-                history.publish(
-                    time_s,
-                    &s.applied_surface_frame,
-                    &Loads::default(),
-                    &s.generalized,
-                );
+            if self.surface_rate != RegionLoadRate::EveryStage {
+                for (index, s) in self.surfaces.iter().enumerate() {
+                    self.exchange.publish_surface(
+                        index,
+                        time_s,
+                        &s.applied_surface_frame,
+                        &s.generalized,
+                    )?;
+                }
             }
         }
         if let Some(loads) = body_loads {
             self.set_body_loads(loads?);
             self.follower_loads(state, controls, &flight)?;
             if held.is_none() && self.body.friction.is_some() {
-                self.body_history
-                    .publish_friction(time_s, &self.body.friction_loads);
+                self.exchange
+                    .publish_friction(time_s, &self.body.friction_loads)?;
             }
-            self.body_history.publish(
+            self.exchange.publish_body(
                 time_s,
                 &self.loads.body,
                 &self.aero_loads,
                 self.loads.body_generalized_force.as_slice(),
-            );
+            )?;
         }
         Ok(())
     }
@@ -290,12 +287,12 @@ impl PartitionedVehicle {
             && (self.read_surface_loads(&controls.elevon)?
                 || self.stage_one_surfaces(state, controls));
         let body_read = self.in_step
-            && self.body_history.read(
+            && self.exchange.read_body(
                 self.time_s,
                 &mut self.loads.body,
                 &mut self.aero_loads,
                 self.loads.body_generalized_force.as_mut_slice(),
-            );
+            )?;
         if !surfaces_read {
             self.update_surface_flights(state, flight)?;
         }

@@ -452,19 +452,18 @@ impl PartitionedVehicle {
         if self.surface_rate == RegionLoadRate::EveryStage || self.surfaces.is_empty() {
             return Ok(false);
         }
-        let mut unused = Loads::default();
-        for ((s, history), out) in self
+        for (index, (s, out)) in self
             .surfaces
             .iter_mut()
-            .zip(&self.surface_histories)
             .zip(self.loads.surface_generalized_forces.iter_mut())
+            .enumerate()
         {
-            if !history.read(
+            if !self.exchange.read_surface(
+                index,
                 self.time_s,
                 &mut s.applied_surface_frame,
-                &mut unused,
                 &mut s.generalized,
-            ) {
+            )? {
                 return Ok(false);
             }
             let rotation = elevon_rotation(&s.name, elevon.deflection_rad(s.side))?;

@@ -42,13 +42,18 @@
 //! node values ([`SurfaceGrid::interpolate`]). The map is built once; every transfer is then
 //! allocation-free, and a target node off the source planform (the other side's grid, a
 //! different planform) is an error at construction instead of a silent clamp.
+//! [`StructureTemperatures`] is the whole conduction-to-structure step every heating loop
+//! takes: node mean and difference temperatures, moved, set on the structure's stiffness.
 
-use nalgebra::{DMatrix, Point3, Rotation3, Unit, Vector3};
+use nalgebra::{DMatrix, DVector, Point3, Rotation3, Unit, Vector3};
 
 use crate::aero::{Loads, integrate_pressure};
+use crate::error::ModelError;
 use crate::geometry::{LiftingSurfaceConfig, Side, pivot_point};
 use crate::mesh::{MeshError, ModeShapes, Panel, PanelMesh, RegionKind};
+use crate::structure::ThermalStiffness;
 use crate::surface_grid::{GridError, GridPoint, SurfaceGrid};
+use crate::thermal::ConductionModel;
 
 /// Why a coupling quantity could not be computed.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
@@ -514,5 +519,75 @@ impl GridTransfer {
         check_finite("source node values", source_values)?;
         SurfaceGrid::interpolate(&self.map, source_values, target_values);
         Ok(())
+    }
+}
+
+/// A conduction model's temperature field on a structure's temperature nodes: the node mean
+/// and through-thickness difference temperatures (K) moved by the one conduction-to-structure
+/// transfer ([`GridTransfer::conduction_to_structure`]) and set on the structure's
+/// temperature-dependent stiffness. The one step from conduction to structure of the in-flight
+/// heating, the flutter march and `hsv-run heat`; allocates nothing once built.
+#[derive(Debug, Clone, PartialEq)]
+pub struct StructureTemperatures {
+    transfer: Option<GridTransfer>,
+    node_k: Vec<f64>,
+    node_difference_k: Vec<f64>,
+    /// Mean temperature at each structure node, K (of the last [`Self::update`]).
+    pub mean_k: Vec<f64>,
+    /// Through-thickness temperature difference at each structure node, K.
+    pub difference_k: Vec<f64>,
+}
+
+impl StructureTemperatures {
+    /// The transfer from `conduction`'s nodes onto `structure`'s temperature nodes, with zero
+    /// fields; an error when they share neither nodes nor grids.
+    pub fn new(
+        conduction: &dyn ConductionModel,
+        structure: &dyn ThermalStiffness,
+    ) -> Result<Self, CouplingError> {
+        let (n_source, n_target) = (conduction.n_nodes(), structure.temperature_nodes());
+        let transfer = GridTransfer::conduction_to_structure(
+            (conduction.node_grid(), n_source),
+            (structure.temperature_grid(), n_target),
+        )?;
+        Ok(Self {
+            transfer,
+            node_k: vec![0.0; n_source],
+            node_difference_k: vec![0.0; n_source],
+            mean_k: vec![0.0; n_target],
+            difference_k: vec![0.0; n_target],
+        })
+    }
+
+    /// Moves the field of conduction `state` onto the structure's nodes ([`Self::mean_k`],
+    /// [`Self::difference_k`]).
+    pub fn update(
+        &mut self,
+        conduction: &dyn ConductionModel,
+        state: &DVector<f64>,
+    ) -> Result<(), CouplingError> {
+        conduction.node_temperatures(state, &mut self.node_k);
+        conduction.node_temperature_differences(state, &mut self.node_difference_k);
+        match &self.transfer {
+            Some(transfer) => {
+                transfer.apply(&self.node_k, &mut self.mean_k)?;
+                transfer.apply(&self.node_difference_k, &mut self.difference_k)
+            }
+            None => {
+                self.mean_k.copy_from_slice(&self.node_k);
+                self.difference_k.copy_from_slice(&self.node_difference_k);
+                Ok(())
+            }
+        }
+    }
+
+    /// Sets the moved field on `structure`'s stiffness.
+    pub fn apply(&self, structure: &mut dyn ThermalStiffness) -> Result<(), ModelError> {
+        structure.set_temperature_field(&self.mean_k, &self.difference_k)
+    }
+
+    /// The conduction nodes' mean temperatures of the last [`Self::update`], K.
+    pub fn conduction_node_k(&self) -> &[f64] {
+        &self.node_k
     }
 }

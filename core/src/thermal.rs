@@ -223,6 +223,21 @@ pub trait ConductionModel: Send {
         dt_s: f64,
     ) -> Result<(), ModelError>;
 
+    /// [`Self::step`] through the scratch `trial`, so a failed step leaves `state` as it was
+    /// (the last good one): the one conduction step of every heating loop.
+    fn advance(
+        &mut self,
+        state: &mut DVector<f64>,
+        trial: &mut DVector<f64>,
+        surface_heat_flux_w_m2: &[f64],
+        dt_s: f64,
+    ) -> Result<(), ModelError> {
+        trial.copy_from(state);
+        self.step(trial, surface_heat_flux_w_m2, dt_s)?;
+        std::mem::swap(state, trial);
+        Ok(())
+    }
+
     /// Wall temperature of each wetted panel, K.
     fn surface_temperatures(&self, state: &DVector<f64>, out_k: &mut [f64]);
 

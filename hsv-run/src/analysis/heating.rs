@@ -150,11 +150,9 @@ impl SurfaceHeating {
                 .map_err(|e| self.error(&self.models.heat_flux, e))?;
             self.diagnostics.evaluations += 1;
         }
-        self.trial.copy_from(&self.state);
         self.conduction
-            .step(&mut self.trial, &self.heat_flux_w_m2, dt_s)
+            .advance(&mut self.state, &mut self.trial, &self.heat_flux_w_m2, dt_s)
             .map_err(|e| self.error(&self.models.conduction, e))?;
-        std::mem::swap(&mut self.state, &mut self.trial);
         self.step += 1;
         self.time_s += dt_s;
         self.diagnostics.steps += 1;

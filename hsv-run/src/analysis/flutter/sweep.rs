@@ -3,7 +3,7 @@
 //! At each Mach number of a grid the surface starts uniformly at 293 K and heats in that flow
 //! ([`SurfaceHeating`]: heat flux, conduction); at each requested time the conduction model's
 //! node temperatures and through-thickness differences are moved onto the structure's grid
-//! ([`GridTransfer`]) and set on the structure (heat-degraded modulus, thermal-stress geometric
+//! ([`StructureTemperatures`]) and set on the structure (heat-degraded modulus, thermal-stress geometric
 //! stiffness, thermal moment), then the surface's equilibrium, identified state matrix and
 //! eigenvalues give the point's stability. The grid marches are independent and run on all
 //! cores.
@@ -29,7 +29,7 @@ use std::sync::atomic::{AtomicUsize, Ordering};
 use std::time::Instant;
 
 use hsv_core::aero::AeroModel;
-use hsv_core::coupling::GridTransfer;
+use hsv_core::coupling::StructureTemperatures;
 use hsv_core::flow::{FlightCondition, Freestream};
 use hsv_core::region::RegionInfo;
 use hsv_core::registry::{ModelContext, Registry, RoleModel};
@@ -161,11 +161,7 @@ pub fn flight_at(setup: &FlutterSetup, mach: f64) -> Result<FlightCondition, Flu
 /// The temperature state of a march, moved onto the structure.
 struct Thermal {
     heating: SurfaceHeating,
-    transfer: GridTransfer,
-    source_mean: Vec<f64>,
-    source_difference: Vec<f64>,
-    mean: Vec<f64>,
-    difference: Vec<f64>,
+    onto_structure: StructureTemperatures,
 }
 
 impl Thermal {
@@ -186,33 +182,22 @@ impl Thermal {
             flight,
             setup.heating,
         )?;
-        let conduction = heating.conduction();
-        let Some(source) = conduction.node_grid() else {
+        let Some(thermal) = structure.thermal_stiffness() else {
             return Err(FlutterError::Inconsistent(format!(
-                "conduction model `{}` has no node grid to move its temperatures onto the \
-                 structure",
-                setup.models.conduction
-            )));
-        };
-        let Some(target) = structure
-            .thermal_stiffness()
-            .and_then(|t| t.temperature_grid())
-        else {
-            return Err(FlutterError::Inconsistent(format!(
-                "structure model `{}` has no temperature-dependent stiffness on a grid",
+                "structure model `{}` has no temperature-dependent stiffness",
                 setup.models.structure
             )));
         };
-        let transfer = GridTransfer::onto_structure_grid(source, target)?;
-        let n_source = conduction.n_nodes();
-        let n_target = transfer.n_target();
+        let onto_structure =
+            StructureTemperatures::new(heating.conduction(), thermal).map_err(|e| {
+                FlutterError::Inconsistent(format!(
+                    "conduction model `{}` onto structure model `{}`: {e}",
+                    setup.models.conduction, setup.models.structure
+                ))
+            })?;
         Ok(Self {
             heating,
-            transfer,
-            source_mean: vec![0.0; n_source],
-            source_difference: vec![0.0; n_source],
-            mean: vec![0.0; n_target],
-            difference: vec![0.0; n_target],
+            onto_structure,
         })
     }
 
@@ -241,22 +226,17 @@ impl Thermal {
         structure: &mut dyn StructureModel,
         name: &str,
     ) -> Result<(f64, f64, f64), FlutterError> {
-        let conduction = self.heating.conduction();
-        let state = self.heating.state();
-        conduction.node_temperatures(state, &mut self.source_mean);
-        conduction.node_temperature_differences(state, &mut self.source_difference);
-        self.transfer.apply(&self.source_mean, &mut self.mean)?;
-        self.transfer
-            .apply(&self.source_difference, &mut self.difference)?;
+        self.onto_structure
+            .update(self.heating.conduction(), self.heating.state())?;
         let Some(thermal) = structure.thermal_stiffness_mut() else {
             return Err(FlutterError::Inconsistent(format!(
                 "structure model `{name}` has no temperature-dependent stiffness"
             )));
         };
-        thermal
-            .set_temperature_field(&self.mean, &self.difference)
+        self.onto_structure
+            .apply(thermal)
             .map_err(|e| FlutterError::model(name, e))?;
-        Ok(temperature_range(&self.source_mean))
+        Ok(temperature_range(self.onto_structure.conduction_node_k()))
     }
 }
 

@@ -171,10 +171,8 @@ struct SurfaceThermal {
     wall_k: Vec<f64>,
     flux_w_m2: Vec<f64>,
     node_k: Vec<f64>,
-    node_difference_k: Vec<f64>,
-    structure_k: Vec<f64>,
-    structure_difference_k: Vec<f64>,
-    transfer: Option<hsv_core::coupling::GridTransfer>,
+    /// The temperature field moved onto the structure's nodes (last stiffness update).
+    onto_structure: hsv_core::coupling::StructureTemperatures,
     /// Time up to which conduction has been stepped, and of the last flux and stiffness update.
     conduction_time_s: f64,
     flux_time_s: f64,

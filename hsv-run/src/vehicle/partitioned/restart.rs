@@ -16,8 +16,8 @@ impl PartitionedVehicle {
                     s.thermal.as_ref().map(|t| ThermalRestart {
                         state: t.state.clone(),
                         flux_w_m2: t.flux_w_m2.clone(),
-                        structure_k: t.structure_k.clone(),
-                        structure_difference_k: t.structure_difference_k.clone(),
+                        structure_k: t.onto_structure.mean_k.clone(),
+                        structure_difference_k: t.onto_structure.difference_k.clone(),
                         conduction_time_s: t.conduction_time_s,
                         flux_time_s: t.flux_time_s,
                         stiffness_time_s: t.stiffness_time_s,
@@ -103,16 +103,17 @@ impl PartitionedVehicle {
                     }
                     t.state.clone_from(&saved.state);
                     t.flux_w_m2.clone_from(&saved.flux_w_m2);
-                    t.structure_k.clone_from(&saved.structure_k);
-                    t.structure_difference_k
+                    t.onto_structure.mean_k.clone_from(&saved.structure_k);
+                    t.onto_structure
+                        .difference_k
                         .clone_from(&saved.structure_difference_k);
                     t.conduction_time_s = saved.conduction_time_s;
                     t.flux_time_s = saved.flux_time_s;
                     t.stiffness_time_s = saved.stiffness_time_s;
                     if t.stiffness_time_s > 0.0 {
                         if let Some(thermal) = s.structure.thermal_stiffness_mut() {
-                            thermal
-                                .set_temperature_field(&t.structure_k, &t.structure_difference_k)
+                            t.onto_structure
+                                .apply(thermal)
                                 .map_err(model_error(&s.name))?;
                         }
                         self.dynamics

@@ -16,12 +16,10 @@ pub(super) fn surface_thermal(
     let thermal = structure
         .thermal_stiffness()
         .ok_or_else(|| assembly_error(name, "temperature-dependent stiffness".into()))?;
-    let n_structure = thermal.temperature_nodes();
-    let transfer = hsv_core::coupling::GridTransfer::conduction_to_structure(
-        (conduction.node_grid(), conduction.n_nodes()),
-        (thermal.temperature_grid(), n_structure),
-    )
-    .map_err(|e| assembly_error(name, format!("conduction `{}`: {e}", conduction.name())))?;
+    let onto_structure =
+        hsv_core::coupling::StructureTemperatures::new(conduction.as_ref(), thermal).map_err(
+            |e| assembly_error(name, format!("conduction `{}`: {e}", conduction.name())),
+        )?;
     if conduction.n_surface_panels() != n_panels {
         return Err(assembly_error(
             name,
@@ -41,10 +39,7 @@ pub(super) fn surface_thermal(
         wall_k: vec![0.0; n_panels],
         flux_w_m2: vec![0.0; n_panels],
         node_k: vec![0.0; n_nodes],
-        node_difference_k: vec![0.0; n_nodes],
-        structure_k: vec![0.0; n_structure],
-        structure_difference_k: vec![0.0; n_structure],
-        transfer,
+        onto_structure,
         conduction_time_s: 0.0,
         flux_time_s: f64::NEG_INFINITY,
         stiffness_time_s: 0.0,
@@ -278,43 +273,23 @@ pub(super) fn heat_surface(
     let mut stepped = false;
     while time_s - t.conduction_time_s > 1e-9 * rates.conduction_s {
         let dt = rates.conduction_s.min(time_s - t.conduction_time_s);
-        t.trial.copy_from(&t.state);
         t.conduction
-            .step(&mut t.trial, &t.flux_w_m2, dt)
+            .advance(&mut t.state, &mut t.trial, &t.flux_w_m2, dt)
             .map_err(&err)?;
-        std::mem::swap(&mut t.state, &mut t.trial);
         t.conduction_time_s += dt;
         stepped = true;
     }
     if stepped && time_s - t.stiffness_time_s >= rates.stiffness_s - 1e-12 {
-        t.conduction.node_temperatures(&t.state, &mut t.node_k);
-        t.conduction
-            .node_temperature_differences(&t.state, &mut t.node_difference_k);
-        match &t.transfer {
-            Some(transfer) => {
-                let to_err = |e: hsv_core::coupling::CouplingError| {
-                    err(ModelError::inconsistent(
-                        "temperature transfer",
-                        e.to_string(),
-                    ))
-                };
-                transfer
-                    .apply(&t.node_k, &mut t.structure_k)
-                    .map_err(to_err)?;
-                transfer
-                    .apply(&t.node_difference_k, &mut t.structure_difference_k)
-                    .map_err(to_err)?;
-            }
-            None => {
-                t.structure_k.copy_from_slice(&t.node_k);
-                t.structure_difference_k
-                    .copy_from_slice(&t.node_difference_k);
-            }
-        }
+        t.onto_structure
+            .update(t.conduction.as_ref(), &t.state)
+            .map_err(|e| {
+                err(ModelError::inconsistent(
+                    "temperature transfer",
+                    e.to_string(),
+                ))
+            })?;
         if let Some(thermal) = s.structure.thermal_stiffness_mut() {
-            thermal
-                .set_temperature_field(&t.structure_k, &t.structure_difference_k)
-                .map_err(&err)?;
+            t.onto_structure.apply(thermal).map_err(&err)?;
         }
         t.stiffness_changed = true;
         t.stiffness_time_s = time_s;

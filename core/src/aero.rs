@@ -68,10 +68,23 @@ impl PanelMotion<'_> {
         mesh: &PanelMesh,
         index: usize,
     ) -> Vector3<f64> {
-        let rigid = flight.point_velocity_m_s(&mesh.panels[index].centroid);
-        match self.elastic_velocity_m_s {
-            Some(elastic) => rigid + elastic[index],
-            None => rigid,
+        self.velocity_of_panels(flight, mesh)(index)
+    }
+
+    /// [`Self::panel_velocity_m_s`] of any panel by index, the flight's body velocity (two
+    /// `sin_cos`) computed once: what a loop over the panels calls.
+    pub fn velocity_of_panels<'m>(
+        &'m self,
+        flight: &'m FlightCondition,
+        mesh: &'m PanelMesh,
+    ) -> impl Fn(usize) -> Vector3<f64> + 'm {
+        let body_velocity_m_s = flight.velocity_body_m_s();
+        move |index| {
+            let rigid = flight.point_velocity_from(body_velocity_m_s, &mesh.panels[index].centroid);
+            match self.elastic_velocity_m_s {
+                Some(elastic) => rigid + elastic[index],
+                None => rigid,
+            }
         }
     }
 }
@@ -301,11 +314,12 @@ pub fn integrate_shear(
     include: impl Fn(RegionKind) -> bool,
 ) -> Loads {
     let mut loads = Loads::default();
+    let panel_velocity = motion.velocity_of_panels(flight, mesh);
     for (i, (panel, &tau)) in mesh.panels.iter().zip(shear_pa).enumerate() {
         if !include(mesh.surfaces[panel.surface as usize].region) {
             continue;
         }
-        let velocity = motion.panel_velocity_m_s(flight, mesh, i);
+        let velocity = panel_velocity(i);
         let Some(direction) = edge_flow_direction(&panel.normal, &velocity) else {
             continue;
         };

@@ -136,7 +136,17 @@ impl FlightCondition {
 
     /// Velocity of a body-fixed point relative to the air: V + ω × (r - r_c), m/s.
     pub fn point_velocity_m_s(&self, point: &Point3<f64>) -> Vector3<f64> {
-        self.velocity_body_m_s()
+        self.point_velocity_from(self.velocity_body_m_s(), point)
+    }
+
+    /// [`Self::point_velocity_m_s`] from the centre's velocity V ([`Self::velocity_body_m_s`],
+    /// whose trigonometry a loop over many points takes once), m/s.
+    pub fn point_velocity_from(
+        &self,
+        body_velocity_m_s: Vector3<f64>,
+        point: &Point3<f64>,
+    ) -> Vector3<f64> {
+        body_velocity_m_s
             + self
                 .angular_velocity_rad_s
                 .cross(&(point - self.rotation_center_m))

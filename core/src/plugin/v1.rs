@@ -231,12 +231,13 @@ impl AeroModel for PluginAeroModel {
         self.normal.clear();
         self.area.clear();
         self.velocity.clear();
+        let panel_velocity = motion.velocity_of_panels(flight, mesh);
         for (i, panel) in mesh.panels.iter().enumerate() {
             self.centroid
                 .extend_from_slice(panel.centroid.coords.as_slice());
             self.normal.extend_from_slice(panel.normal.as_slice());
             self.area.push(panel.area_m2);
-            let v: Vector3<f64> = motion.panel_velocity_m_s(flight, mesh, i);
+            let v: Vector3<f64> = panel_velocity(i);
             self.velocity.extend_from_slice(v.as_slice());
         }
         self.strip_offsets.clear();

@@ -213,18 +213,31 @@ impl Newtonian {
         out: &mut AeroSolution,
     ) -> Result<(), ModelError> {
         let freestream = &flight.freestream;
+        // C_p,max and the stagnation state depend on the panel's speed alone: panels moving
+        // alike (all of them in steady flight without rotation) reuse the last panel's.
+        let mut last: Option<(u64, f64, Stagnation)> = None;
+        let panel_velocity = motion.velocity_of_panels(flight, mesh);
         for (i, panel) in mesh.panels.iter().enumerate() {
-            let velocity = motion.panel_velocity_m_s(flight, mesh, i);
+            let velocity = panel_velocity(i);
             let Some((speed, sin_theta)) = self.inclination(&velocity, &panel.normal, i)? else {
                 self.shadow(freestream, out, i);
                 continue;
             };
-            let mach = speed / freestream.speed_of_sound_m_s;
-            let cp_max = newtonian_cp_max(mach, freestream.gas.gamma)?;
+            let (cp_max, stagnation) = match last {
+                Some((bits, cp_max, stagnation)) if bits == speed.to_bits() => (cp_max, stagnation),
+                _ => {
+                    let mach = speed / freestream.speed_of_sound_m_s;
+                    let at_speed = (
+                        newtonian_cp_max(mach, freestream.gas.gamma)?,
+                        Stagnation::at_mach(freestream, mach)?,
+                    );
+                    last = Some((speed.to_bits(), at_speed.0, at_speed.1));
+                    at_speed
+                }
+            };
             let dynamic_pressure_pa = 0.5 * freestream.density_kg_m3 * speed * speed;
             let pressure_pa =
                 freestream.pressure_pa + dynamic_pressure_pa * cp_max * sin_theta.powi(2);
-            let stagnation = Stagnation::at_mach(freestream, mach)?;
             self.set_windward(&stagnation, pressure_pa, &freestream.gas, out, i)?;
         }
         Ok(())

@@ -87,8 +87,9 @@ impl AeroModel for PistonTheory {
         let freestream = &flight.freestream;
         let total_temperature_k = freestream.total_temperature_k();
         out.reset(mesh.panels.len());
+        let panel_velocity = motion.velocity_of_panels(flight, mesh);
         for (i, panel) in mesh.panels.iter().enumerate() {
-            let velocity = motion.panel_velocity_m_s(flight, mesh, i);
+            let velocity = panel_velocity(i);
             let w_over_a = velocity.dot(&panel.normal) / freestream.speed_of_sound_m_s;
             if !w_over_a.is_finite() {
                 return Err(ModelError::non_finite_at_panel(

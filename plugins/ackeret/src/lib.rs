@@ -64,8 +64,9 @@ impl AeroModel for Ackeret {
         let gamma = f.gas.gamma;
         let r = f.gas.gas_constant_j_kg_k;
         let total_temperature = f.temperature_k * (1.0 + 0.5 * (gamma - 1.0) * f.mach * f.mach);
+        let panel_velocity = motion.velocity_of_panels(flight, mesh);
         for (i, panel) in mesh.panels.iter().enumerate() {
-            let velocity = motion.panel_velocity_m_s(flight, mesh, i);
+            let velocity = panel_velocity(i);
             let cp = ackeret_cp(
                 inclination(panel.normal.as_slice(), velocity.as_slice()),
                 f.mach,

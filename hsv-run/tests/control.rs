@@ -315,3 +315,41 @@ fn tracking_holds_trim_through_severe_turbulence_reading_the_flight_path() {
         samples.last().map_or(0.0, |s| s.time_s)
     );
 }
+
+/// Issue 25 item 2, state as data: a heated flight flown 0.1 s, its `RunState` taken and sent
+/// through JSON, flown on to 0.2 s; restored to the saved state (the heated structure assembled
+/// again) it flies the same 0.1 s again to the last bit, the whole run state included; a state
+/// of another vehicle's shape is refused, and a reset returns to t = 0.
+#[test]
+fn a_flight_restored_to_its_run_state_repeats_its_steps_bit_for_bit() {
+    use hsv_run::analysis::flight::{Flight, FlightOptions, RunState};
+    let registry = hsv_run::registry().expect("registry");
+    let text = common::coarse_text().replace("conduction = \"pod\"", "conduction = \"full-order\"")
+        + "\n[simulation]\nheat_transfer_dt_s = 0.01\naerothermal_dt_s = 0.02\nstiffness_interval_s = 0.05\n";
+    let loaded = common::parse(&text);
+    let options = FlightOptions {
+        dt_s: 0.002,
+        ..FlightOptions::default()
+    };
+    let mut flight = Flight::trimmed(&loaded, &registry, &options, |_| {}).expect("trims");
+    flight.advance(50).expect("to 0.1 s");
+    let json = serde_json::to_string(&flight.run_state()).expect("to json");
+    let saved: RunState = serde_json::from_str(&json).expect("from json");
+    flight.advance(50).expect("to 0.2 s");
+    let end = flight.run_state();
+    assert!(
+        flight.vehicle.stiffness_heated(),
+        "the stiffness was heated by 0.2 s"
+    );
+    flight.restore(&saved).expect("restores");
+    assert_eq!(flight.steps_taken(), 50);
+    flight.advance(50).expect("to 0.2 s again");
+    assert_eq!(flight.run_state(), end, "the repeated steps drifted");
+
+    let mut foreign = saved.clone();
+    foreign.state.body_modes.q = nalgebra::DVector::zeros(1);
+    let err = flight.restore(&foreign).expect_err("wrong shape");
+    assert!(err.to_string().contains("modal coordinates"), "{err}");
+    flight.reset().expect("resets");
+    assert_eq!(flight.steps_taken(), 0);
+}

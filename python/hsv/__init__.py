@@ -245,9 +245,11 @@ class Simulation:
 
     @property
     def trim(self) -> dict:
-        """The trim the flight started from."""
-        alpha, elevon, phi = self._native.trim
-        return {"alpha_deg": alpha, "elevon_deg": elevon, "fuel_equivalence_ratio": phi}
+        """The trim the flight started from (a vehicle without an engine glides: φ 0 and a
+        negative flight-path angle)."""
+        alpha, elevon, phi, gamma = self._native.trim
+        return {"alpha_deg": alpha, "elevon_deg": elevon, "fuel_equivalence_ratio": phi,
+                "flight_path_angle_deg": gamma}
 
     @property
     def state(self) -> np.ndarray:
@@ -277,6 +279,17 @@ class Simulation:
     def reset(self) -> np.ndarray:
         """Back to the trimmed flight at t = 0 (no new trim); the outputs there."""
         return self._native.reset()
+
+    def snapshot(self) -> str:
+        """Everything the next step depends on, as a JSON string: the steps taken, the vehicle
+        state, its coupling guesses, thermal states and load histories, the control loop. Keep
+        it to branch a flight (Monte Carlo from a common start, a learning agent's episodes)."""
+        return self._native.run_state_json()
+
+    def restore(self, snapshot: str) -> np.ndarray:
+        """Back to a ``snapshot()`` of this flight (or of one built alike): the steps after it
+        repeat those after it was taken, bit for bit. The outputs there."""
+        return self._native.restore_json(str(snapshot))
 
     def step(self, u=None, n: int = 1) -> np.ndarray:
         """``n`` steps with commands ``u`` = (elevon deg, differential elevon deg, φ), absolute

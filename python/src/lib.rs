@@ -371,11 +371,17 @@ impl Simulation {
         &self.flight.controller_name
     }
 
-    /// The trim the flight started from: (α deg, elevon deg, φ).
+    /// The trim the flight started from: (α deg, elevon deg, φ, flight-path angle deg; a
+    /// vehicle without an engine glides: φ 0, γ < 0).
     #[getter]
-    fn trim(&self) -> (f64, f64, f64) {
+    fn trim(&self) -> (f64, f64, f64, f64) {
         let t = &self.flight.trim.result.trim;
-        (t.alpha_deg, t.elevon_deg, t.fuel_equivalence_ratio)
+        (
+            t.alpha_deg,
+            t.elevon_deg,
+            t.fuel_equivalence_ratio,
+            t.flight_path_angle_deg,
+        )
     }
 
     /// The vehicle state as a vector (position NED, attitude quaternion, body velocities and
@@ -416,6 +422,26 @@ impl Simulation {
     /// Back to the trimmed flight at t = 0 (no new trim); the outputs there.
     fn reset<'py>(&mut self, py: Python<'py>) -> PyResult<Bound<'py, PyArray1<f64>>> {
         self.flight.reset().map_err(hsv_error)?;
+        self.outputs(py)
+    }
+
+    /// Everything the next step depends on (the flight's `RunState`: steps taken, vehicle
+    /// state, coupling guesses, thermal states, the regions' publications, the control loop)
+    /// as JSON whose floats round-trip exactly.
+    fn run_state_json(&self) -> PyResult<String> {
+        serde_json::to_string(&self.flight.run_state()).map_err(hsv_error)
+    }
+
+    /// Back to a state of `run_state_json` (of this flight, or one built alike); the outputs
+    /// there. The steps after it repeat those after it was taken, bit for bit.
+    fn restore_json<'py>(
+        &mut self,
+        py: Python<'py>,
+        text: &str,
+    ) -> PyResult<Bound<'py, PyArray1<f64>>> {
+        let run: hsv_run::analysis::flight::RunState = serde_json::from_str(text)
+            .map_err(|e| hsv_error(anyhow::anyhow!("not a run state of this package: {e}")))?;
+        self.flight.restore(&run).map_err(hsv_error)?;
         self.outputs(py)
     }
 

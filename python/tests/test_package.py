@@ -98,6 +98,20 @@ def test_reset_reproduces_the_flight_bit_for_bit(scheduled):
     assert scheduled.time_s == pytest.approx(0.05, abs=1e-15)
 
 
+def test_a_snapshot_restores_the_flight_bit_for_bit(scheduled):
+    scheduled.reset()
+    scheduled.step(None, n=20)
+    snap = scheduled.snapshot()
+    first = scheduled.step(None, n=30)
+    scheduled.reset()
+    scheduled.restore(snap)
+    assert scheduled.time_s == pytest.approx(0.02, abs=1e-15)
+    second = scheduled.step(None, n=30)
+    assert np.array_equal(first, second)
+    with pytest.raises(hsv.HsvError):
+        scheduled.restore("{}")
+
+
 def test_commands_held_at_trim_fly_the_schedule_before_its_doublet(scheduled, external):
     """The paper's doublet starts at 0.5 s: until then the schedule commands the trim, so a
     host holding the trim commands flies the same flight, bit for bit."""

@@ -355,19 +355,27 @@ pub struct Flight {
     /// Built at the first step (after any restore of the state).
     stepper: Option<Stepper>,
     /// The flight at t = 0, for [`Flight::reset`].
-    initial: Initial,
+    initial: RunState,
+    /// The wind field from t = 0 (a vehicle assembled again flies it again; the field is a
+    /// function of its seed and time, so one serves any restored time).
+    disturbances: Disturbances,
     /// What the vehicle was assembled from: a reset after the heated stiffness has been applied
     /// assembles it again (the structure models keep no cold copy of their matrices).
     source: (LoadedConfig, Registry, FlightOptions),
 }
 
-/// What a flight restores to at t = 0.
-struct Initial {
-    state: VehicleState,
-    vehicle: crate::vehicle::partitioned::VehicleRestart,
-    control: crate::control::ControlState,
-    /// The wind field from t = 0 (a vehicle assembled again on reset flies it again).
-    disturbances: Disturbances,
+/// Everything the next step of a flight depends on, as plain data (serde; floats round-trip
+/// JSON exactly): the steps taken, the integrated state, the vehicle's own state (coupling
+/// guesses, thermal states, ROM histories, the regions' publications in the data manager) and
+/// the control loop's. A flight restored to it continues bit for bit ([`Flight::restore`]);
+/// `simulate`'s `restart.json` holds the same parts.
+#[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
+pub struct RunState {
+    /// Steps taken (the next step's index); the time is steps × Δt.
+    pub step: usize,
+    pub state: VehicleState,
+    pub vehicle: crate::vehicle::partitioned::VehicleRestart,
+    pub control: crate::control::ControlState,
 }
 
 /// The name a flight under the host's commands reports as its controller.
@@ -427,12 +435,13 @@ impl Flight {
         vehicle.set_disturbances(disturbances);
         vehicle.start_heating(&settings.rates)?;
         vehicle.forget_region_loads()?;
-        let initial = Initial {
+        let initial = RunState {
+            step: 0,
             state: trim.state.clone(),
             vehicle: vehicle.restart(),
             control: control.state.clone(),
-            disturbances: vehicle.disturbances().clone(),
         };
+        let disturbances = vehicle.disturbances().clone();
         Ok(Self {
             vehicle,
             state: trim.state.clone(),
@@ -445,6 +454,7 @@ impl Flight {
             step: 0,
             stepper: None,
             initial,
+            disturbances,
             source: (loaded.clone(), registry.clone(), options.clone()),
         })
     }
@@ -452,18 +462,48 @@ impl Flight {
     /// Back to the trimmed flight at t = 0 (the vehicle's models, heating and control loop as
     /// they were), without trimming again: a run after a reset repeats the first bit for bit.
     pub fn reset(&mut self) -> Result<(), VehicleError> {
+        let initial = self.initial.clone();
+        self.restore(&initial)
+    }
+
+    /// The flight's state now, as data ([`RunState`]): what [`Self::restore`] returns to.
+    pub fn run_state(&self) -> RunState {
+        RunState {
+            step: self.step,
+            state: self.state.clone(),
+            vehicle: self.vehicle.restart(),
+            control: self.control.state.clone(),
+        }
+    }
+
+    /// Returns the flight to `run` (taken from this flight, or one built from the same config
+    /// and options): the steps after it repeat those after it was taken, bit for bit. A vehicle
+    /// whose stiffness has been heated is assembled again first (its structure models keep no
+    /// cold matrices).
+    pub fn restore(&mut self, run: &RunState) -> Result<(), VehicleError> {
+        let shape = |s: &VehicleState| {
+            let modes = |m: &crate::dynamics::ModalState| (m.q.len(), m.q_dot.len());
+            let surfaces: Vec<_> = s.surface_modes.iter().map(modes).collect();
+            (modes(&s.body_modes), surfaces)
+        };
+        let expected = shape(&self.vehicle.dynamics().zero_state());
+        if shape(&run.state) != expected {
+            return Err(VehicleError::Input(format!(
+                "the run state's modal coordinates (body, surfaces) {:?} do not fit this \
+                 vehicle's {expected:?}",
+                shape(&run.state)
+            )));
+        }
         if self.vehicle.stiffness_heated() {
             let (loaded, registry, options) = &self.source;
             self.vehicle = flight_vehicle(loaded, registry, options, &self.settings)
                 .map_err(|e| VehicleError::Input(crate::error_line::error_line(&e)))?;
         }
-        self.vehicle
-            .set_disturbances(self.initial.disturbances.clone());
-        self.vehicle.restore(&self.initial.vehicle)?;
-        self.vehicle.forget_region_loads()?;
-        self.control.restore(self.initial.control.clone())?;
-        self.state.clone_from(&self.initial.state);
-        self.step = 0;
+        self.vehicle.set_disturbances(self.disturbances.clone());
+        self.vehicle.restore(&run.vehicle)?;
+        self.control.restore(run.control.clone())?;
+        self.state.clone_from(&run.state);
+        self.step = run.step;
         self.stepper = None;
         Ok(())
     }

@@ -73,7 +73,8 @@ enum Command {
     /// Fly the partitioned flexible vehicle from trim under the control inputs (default: the
     /// paper's elevon doublet).
     Simulate(SimulateArgs),
-    /// Trim steady level flight (rigid vehicle): alpha, elevon and fuel equivalence ratio.
+    /// Trim steady level flight (rigid vehicle): alpha, elevon and fuel equivalence ratio; a vehicle
+    /// without a propulsion region trims for a steady glide (flight-path angle in place of phi).
     Trim(TrimArgs),
     /// Flutter of the heated lifting surface versus time in the flow (identified state matrix,
     /// eigenvalues, flutter Mach number); `--panel` for the classical simply supported panel.

@@ -170,8 +170,11 @@ type Channel<T> = (Publisher<T>, Subscriber<T>);
 /// The regions' publications at their own rates, exchanged through the data manager (paper
 /// §III): one predicted topic per region (`main_body/loads`, `<surface>/loads`) and the body's
 /// skin friction (`main_body/skin_friction`), each keeping its last two converged values and
-/// read at any stage time by the module's predictor. Handles are indices: no look-up and, once
-/// each topic has two values, no allocation in the time loop.
+/// read at any stage time by the module's predictor; and each lifting surface's wall heat flux
+/// (`<surface>/wall_heat_flux`, W/m² per panel), published by the aerothermal step every
+/// heat-flux interval (paper Table 3: 10 ms) and held for the conduction steps between (1 ms).
+/// Handles are indices: no look-up and, once each topic has its values, no allocation in the
+/// time loop.
 pub struct RegionExchange {
     data: DataManager,
     /// The exchange with nothing published: what forgetting restores.
@@ -179,6 +182,7 @@ pub struct RegionExchange {
     body: Channel<PublishedLoads>,
     friction: Channel<PublishedFriction>,
     surfaces: Vec<Channel<PublishedLoads>>,
+    heat_fluxes: Vec<Channel<Vec<f64>>>,
     /// The value a read fills before it is copied out (no allocation after the first).
     scratch: PublishedLoads,
 }
@@ -202,12 +206,14 @@ fn declared_period_s(rate: RegionLoadRate) -> f64 {
 
 impl RegionExchange {
     /// The topics of the body (at `body` rate, its skin friction at `friction`'s among them)
-    /// and of each surface named in `surfaces` (at `surface` rate), nothing published.
+    /// and of each surface named in `surfaces` (at `surface` rate, its wall heat flux every
+    /// `heat_flux_period_s`), nothing published.
     pub fn new(
-        surfaces: &[String],
+        surface_names: &[String],
         body: RegionLoadRate,
         friction: RegionLoadRate,
         surface: RegionLoadRate,
+        heat_flux_period_s: f64,
     ) -> Result<Self, DataError> {
         let mut builder = DataManagerBuilder::new();
         let body_period_s = declared_period_s(body);
@@ -224,12 +230,22 @@ impl RegionExchange {
             builder.publish_predicted("main_body", "main_body/skin_friction", friction_period_s)?,
             builder.subscribe(READER, "main_body/skin_friction")?,
         );
-        let surfaces = surfaces
+        let surfaces = surface_names
             .iter()
             .map(|name| {
                 let topic = format!("{name}/loads");
                 Ok((
                     builder.publish_predicted(name, &topic, declared_period_s(surface))?,
+                    builder.subscribe(READER, &topic)?,
+                ))
+            })
+            .collect::<Result<Vec<_>, DataError>>()?;
+        let heat_fluxes = surface_names
+            .iter()
+            .map(|name| {
+                let topic = format!("{name}/wall_heat_flux");
+                Ok((
+                    builder.publish_with_rate(name, &topic, heat_flux_period_s)?,
                     builder.subscribe(READER, &topic)?,
                 ))
             })
@@ -241,8 +257,53 @@ impl RegionExchange {
             body,
             friction,
             surfaces,
+            heat_fluxes,
             scratch: PublishedLoads::default(),
         })
+    }
+
+    /// The time of the first surface's latest wall heat flux, s (the heated surfaces' fluxes
+    /// are refreshed together).
+    pub fn heat_flux_time_s(&self) -> Option<f64> {
+        let (_, reader) = self.heat_fluxes.first()?;
+        self.data.read_converged(*reader).ok().map(|s| s.time_s)
+    }
+
+    /// Publishes surface `index`'s wall heat flux (W/m² per panel) at `time_s`, in place.
+    pub fn publish_heat_flux(
+        &mut self,
+        index: usize,
+        time_s: f64,
+        flux_w_m2: &[f64],
+    ) -> Result<(), DataError> {
+        let Some(&(publisher, _)) = self.heat_fluxes.get(index) else {
+            return Ok(());
+        };
+        self.data
+            .publish_with(publisher, time_s, |v: &mut Vec<f64>| {
+                v.clear();
+                v.extend_from_slice(flux_w_m2);
+            })?;
+        self.data.mark_converged(publisher)?;
+        Ok(())
+    }
+
+    /// Surface `index`'s latest published wall heat flux into `out` (held until the next
+    /// refresh, which comes at a step's start before that step's conduction); false
+    /// (untouched) when none is.
+    pub fn read_heat_flux(&self, index: usize, out: &mut Vec<f64>) -> Result<bool, DataError> {
+        let Some(&(_, reader)) = self.heat_fluxes.get(index) else {
+            return Ok(false);
+        };
+        match self.data.read_converged(reader) {
+            Ok(latest) => {
+                out.clear();
+                out.extend_from_slice(latest.value);
+                Ok(true)
+            }
+            Err(DataError::NothingConverged { .. }) => Ok(false),
+            Err(e) => Err(e),
+        }
     }
 
     /// Forgets every publication (a new run).
@@ -447,6 +508,7 @@ mod tests {
             RegionLoadRate::Interval(1e-3),
             RegionLoadRate::Interval(0.01),
             RegionLoadRate::Interval(1e-3),
+            0.01,
         )
         .expect("exchange")
     }
@@ -506,6 +568,29 @@ mod tests {
         assert!(
             h.friction_at(0.02, &rate).expect("read").is_none(),
             "due at 10 ms"
+        );
+    }
+
+    /// The wall heat flux is published every 10 ms and read as published (the latest), and a
+    /// refresh sooner than its interval is refused naming the topic.
+    #[test]
+    fn the_heat_flux_is_held_between_its_refreshes() {
+        let mut h = exchange();
+        let mut flux = Vec::new();
+        assert!(!h.read_heat_flux(0, &mut flux).expect("read"), "none yet");
+        assert_eq!(h.heat_flux_time_s(), None);
+        h.publish_heat_flux(0, 0.0, &[1.0, 2.0]).expect("published");
+        h.publish_heat_flux(0, 0.01, &[3.0, 4.0])
+            .expect("published");
+        assert!(h.read_heat_flux(0, &mut flux).expect("read"));
+        assert_eq!(flux, [3.0, 4.0]);
+        assert_eq!(h.heat_flux_time_s(), Some(0.01));
+        let err = h
+            .publish_heat_flux(0, 0.015, &[5.0, 6.0])
+            .expect_err("sooner than 10 ms");
+        assert!(
+            err.to_string().contains("left_surface/wall_heat_flux"),
+            "{err}"
         );
     }
 

@@ -252,6 +252,7 @@ impl PartitionedVehicle {
             RegionLoadRate::default(),
             RegionLoadRate::Interval(DEFAULT_BODY_FRICTION_DT_S),
             RegionLoadRate::EveryStage,
+            HeatingRates::default().heat_flux_s,
         )?;
         Ok(Self {
             q_ddot,

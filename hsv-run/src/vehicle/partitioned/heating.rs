@@ -7,6 +7,8 @@ impl PartitionedVehicle {
     /// Starts every heated surface at a uniform temperature with `rates` (call before flying).
     pub fn start_heating(&mut self, rates: &HeatingRates) -> Result<(), VehicleError> {
         self.heating = *rates;
+        // The heat-flux topics at the new rate, nothing published: the first step refreshes.
+        self.rebuild_exchange()?;
         for s in &mut self.surfaces {
             if let Some(t) = &mut s.thermal {
                 t.state = t
@@ -15,7 +17,6 @@ impl PartitionedVehicle {
                     .map_err(model_error(&s.name))?;
                 t.trial.clone_from(&t.state);
                 t.conduction_time_s = 0.0;
-                t.flux_time_s = f64::NEG_INFINITY;
                 t.stiffness_time_s = 0.0;
             }
         }
@@ -27,12 +28,16 @@ impl PartitionedVehicle {
     /// equations) from the temperature field every stiffness interval.
     pub(super) fn advance_heating(&mut self, time_s: f64) -> Result<(), VehicleError> {
         let rates = self.heating;
+        let exchange = &self.exchange;
         // Each surface heats on its own (conduction, its stiffness): side by side.
-        let heat = |s: &mut Surface| heat_surface(s, time_s, &rates);
+        let heat = |(i, s): (usize, &mut Surface)| heat_surface(s, exchange, i, time_s, &rates);
         if side_by_side() {
-            self.surfaces.par_iter_mut().try_for_each(heat)?;
+            self.surfaces
+                .par_iter_mut()
+                .enumerate()
+                .try_for_each(heat)?;
         } else {
-            self.surfaces.iter_mut().try_for_each(heat)?;
+            self.surfaces.iter_mut().enumerate().try_for_each(heat)?;
         }
         for (i, s) in self.surfaces.iter_mut().enumerate() {
             if let Some(t) = &mut s.thermal

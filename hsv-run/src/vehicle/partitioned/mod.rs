@@ -169,13 +169,14 @@ struct SurfaceThermal {
     state: DVector<f64>,
     trial: DVector<f64>,
     wall_k: Vec<f64>,
+    /// The wall heat flux, W/m² per panel: computed here by the aerothermal step, then
+    /// published on and read back from the surface's `wall_heat_flux` topic.
     flux_w_m2: Vec<f64>,
     node_k: Vec<f64>,
     /// The temperature field moved onto the structure's nodes (last stiffness update).
     onto_structure: hsv_core::coupling::StructureTemperatures,
-    /// Time up to which conduction has been stepped, and of the last flux and stiffness update.
+    /// Time up to which conduction has been stepped, and of the last stiffness update.
     conduction_time_s: f64,
-    flux_time_s: f64,
     stiffness_time_s: f64,
     /// Set when the stiffness was updated and the vehicle's modal matrices must follow.
     stiffness_changed: bool,
@@ -185,11 +186,9 @@ struct SurfaceThermal {
 #[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct ThermalRestart {
     pub state: DVector<f64>,
-    pub flux_w_m2: Vec<f64>,
     pub structure_k: Vec<f64>,
     pub structure_difference_k: Vec<f64>,
     pub conduction_time_s: f64,
-    pub flux_time_s: f64,
     pub stiffness_time_s: f64,
 }
 

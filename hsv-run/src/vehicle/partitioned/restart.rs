@@ -15,11 +15,9 @@ impl PartitionedVehicle {
                 .map(|s| {
                     s.thermal.as_ref().map(|t| ThermalRestart {
                         state: t.state.clone(),
-                        flux_w_m2: t.flux_w_m2.clone(),
                         structure_k: t.onto_structure.mean_k.clone(),
                         structure_difference_k: t.onto_structure.difference_k.clone(),
                         conduction_time_s: t.conduction_time_s,
-                        flux_time_s: t.flux_time_s,
                         stiffness_time_s: t.stiffness_time_s,
                     })
                 })
@@ -73,6 +71,14 @@ impl PartitionedVehicle {
         }
         self.time_s = r.time_s;
         self.report = r.coupling;
+        self.heating = HeatingRates {
+            conduction_s: r.heating_conduction_s,
+            heat_flux_s: r.heating_heat_flux_s,
+            stiffness_s: r.heating_stiffness_s,
+            initial_k: r.heating_initial_k,
+        };
+        // The exchange declares the heat flux's interval: at the run's, then its state.
+        self.rebuild_exchange()?;
         self.exchange.restore(&r.region_loads)?;
         self.in_step = false;
         self.stage_one = None;
@@ -82,12 +88,6 @@ impl PartitionedVehicle {
         } else {
             self.body_q_ddot.copy_from(&r.body_q_ddot);
         }
-        self.heating = HeatingRates {
-            conduction_s: r.heating_conduction_s,
-            heat_flux_s: r.heating_heat_flux_s,
-            stiffness_s: r.heating_stiffness_s,
-            initial_k: r.heating_initial_k,
-        };
         for (i, s) in self.surfaces.iter_mut().enumerate() {
             s.root_force_n = r.root_force_n[i];
             s.history.clone_from(&r.histories[i]);
@@ -102,13 +102,11 @@ impl PartitionedVehicle {
                         )));
                     }
                     t.state.clone_from(&saved.state);
-                    t.flux_w_m2.clone_from(&saved.flux_w_m2);
                     t.onto_structure.mean_k.clone_from(&saved.structure_k);
                     t.onto_structure
                         .difference_k
                         .clone_from(&saved.structure_difference_k);
                     t.conduction_time_s = saved.conduction_time_s;
-                    t.flux_time_s = saved.flux_time_s;
                     t.stiffness_time_s = saved.stiffness_time_s;
                     if t.stiffness_time_s > 0.0 {
                         if let Some(thermal) = s.structure.thermal_stiffness_mut() {

@@ -78,13 +78,14 @@ impl PartitionedVehicle {
     }
 
     /// The regions' exchange declared again for the current rates, nothing published.
-    fn rebuild_exchange(&mut self) -> Result<(), VehicleError> {
+    pub(super) fn rebuild_exchange(&mut self) -> Result<(), VehicleError> {
         let names: Vec<String> = self.surfaces.iter().map(|s| s.name.clone()).collect();
         self.exchange = RegionExchange::new(
             &names,
             self.body_rate,
             self.body_friction_rate,
             self.surface_rate,
+            self.heating.heat_flux_s,
         )?;
         Ok(())
     }

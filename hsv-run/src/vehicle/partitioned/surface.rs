@@ -41,7 +41,6 @@ pub(super) fn surface_thermal(
         node_k: vec![0.0; n_nodes],
         onto_structure,
         conduction_time_s: 0.0,
-        flux_time_s: f64::NEG_INFINITY,
         stiffness_time_s: 0.0,
         stiffness_changed: false,
     })
@@ -211,29 +210,25 @@ pub(super) fn elevon_rotation(
         .map_err(|e| model_error(surface)(ModelError::inconsistent("elevon", e.to_string())))
 }
 
-/// Whether a heated surface's heat flux is due again at `time_s` (every heat-flux interval).
-pub(super) fn heat_flux_due(t: &SurfaceThermal, time_s: f64, rates: &HeatingRates) -> bool {
-    time_s - t.flux_time_s >= rates.heat_flux_s - 1e-12
+/// Whether the heat flux, last published at `last_s` (None: never), is due again at `time_s`
+/// (every heat-flux interval).
+pub(super) fn heat_flux_due(last_s: Option<f64>, time_s: f64, rates: &HeatingRates) -> bool {
+    last_s.is_none_or(|last| time_s - last >= rates.heat_flux_s - 1e-12)
 }
 
-/// One surface's heat flux at `time_s` from its aero at the accepted state (the surface's
-/// modes, the body's, the elevon and its flight condition), held until it is due again. The
-/// aero is evaluated here unless `aero_current` (the step's start has just evaluated the
-/// surface at this state), never read from the last derivative: inside a step that is the last
-/// Runge-Kutta stage's predictor, not a state the flight passes through.
+/// One heated surface's heat flux at `time_s` from its aero at the accepted state (the
+/// surface's modes, the body's, the elevon and its flight condition), into its buffer for the
+/// vehicle to publish. The aero is evaluated here unless `aero_current` (the step's start has
+/// just evaluated the surface at this state), never read from the last derivative: inside a step
+/// that is the last Runge-Kutta stage's predictor, not a state the flight passes through.
 pub(super) fn refresh_heat_flux(
     s: &mut Surface,
     modes: (&crate::dynamics::ModalState, &crate::dynamics::ModalState),
     elevon: &ElevonCommand,
     flight: &FlightCondition,
     (time_s, aero_current): (f64, bool),
-    rates: &HeatingRates,
 ) -> Result<(), VehicleError> {
-    if !s
-        .thermal
-        .as_ref()
-        .is_some_and(|t| heat_flux_due(t, time_s, rates))
-    {
+    if s.thermal.is_none() {
         return Ok(());
     }
     if !aero_current {
@@ -254,15 +249,16 @@ pub(super) fn refresh_heat_flux(
             &mut t.flux_w_m2,
         )
         .map_err(&err)?;
-    t.flux_time_s = time_s;
     Ok(())
 }
 
-/// One surface's heating up to `time_s`: conduction steps under the heat flux last refreshed
-/// ([`refresh_heat_flux`], at the steps' starts), and the stiffness from the temperature field
-/// at its rate (flagged for the vehicle's modal matrices).
+/// Surface `index`'s heating up to `time_s`: conduction steps under the heat flux it last
+/// published (`exchange`, [`refresh_heat_flux`] at the steps' starts), and the stiffness from
+/// the temperature field at its rate (flagged for the vehicle's modal matrices).
 pub(super) fn heat_surface(
     s: &mut Surface,
+    exchange: &RegionExchange,
+    index: usize,
     time_s: f64,
     rates: &HeatingRates,
 ) -> Result<(), VehicleError> {
@@ -270,6 +266,7 @@ pub(super) fn heat_surface(
         return Ok(());
     };
     let err = model_error(&s.name);
+    exchange.read_heat_flux(index, &mut t.flux_w_m2)?;
     let mut stepped = false;
     while time_s - t.conduction_time_s > 1e-9 * rates.conduction_s {
         let dt = rates.conduction_s.min(time_s - t.conduction_time_s);
@@ -354,12 +351,9 @@ impl PartitionedVehicle {
         aero_current: bool,
     ) -> Result<(), VehicleError> {
         let rates = self.heating;
-        let due = |s: &Surface| {
-            s.thermal
-                .as_ref()
-                .is_some_and(|t| heat_flux_due(t, time_s, &rates))
-        };
-        if !self.surfaces.iter().any(due) {
+        // The heated surfaces' fluxes are refreshed together, from t = 0 on.
+        let heated = self.surfaces.iter().any(|s| s.thermal.is_some());
+        if !heated || !heat_flux_due(self.exchange.heat_flux_time_s(), time_s, &rates) {
             return Ok(());
         }
         if !aero_current {
@@ -378,7 +372,6 @@ impl PartitionedVehicle {
                 &elevon,
                 flight,
                 (time_s, aero_current),
-                &rates,
             )
         };
         if side_by_side() {
@@ -386,14 +379,21 @@ impl PartitionedVehicle {
                 .par_iter_mut()
                 .zip(state.surface_modes.par_iter())
                 .zip(self.surface_flights.par_iter())
-                .try_for_each(refresh)
+                .try_for_each(refresh)?;
         } else {
             self.surfaces
                 .iter_mut()
                 .zip(state.surface_modes.iter())
                 .zip(self.surface_flights.iter())
-                .try_for_each(refresh)
+                .try_for_each(refresh)?;
         }
+        for (index, s) in self.surfaces.iter().enumerate() {
+            if let Some(t) = &s.thermal {
+                self.exchange
+                    .publish_heat_flux(index, time_s, &t.flux_w_m2)?;
+            }
+        }
+        Ok(())
     }
 
     /// Each surface's flight condition into `surface_flights`: the wind at its pivot, `lead`

@@ -44,8 +44,14 @@ pub const REGION_TABLES: [&str; 5] = [
 /// Model keys of a region table, one per role.
 pub const ROLE_KEYS: [&str; 5] = ["aero", "heat_flux", "conduction", "structure", "propulsion"];
 
-/// Trim values compared between combinations.
-pub const TRIM_QUANTITIES: [&str; 3] = ["alpha_deg", "elevon_deg", "fuel_equivalence_ratio"];
+/// Trim values compared between combinations (a vehicle without an engine glides: φ 0 and its
+/// flight-path angle compared instead; level flight has γ 0 throughout).
+pub const TRIM_QUANTITIES: [&str; 4] = [
+    "alpha_deg",
+    "elevon_deg",
+    "fuel_equivalence_ratio",
+    "flight_path_angle_deg",
+];
 
 /// Time histories compared between combinations (the flight's response to the inputs).
 pub const HISTORY_CHANNELS: [&str; 5] = [
@@ -402,8 +408,8 @@ pub struct TradeRow {
     pub model_cost_s: Option<f64>,
     /// |value − reference| of each trim value, or RMS(history − reference) of each channel.
     pub deviations: BTreeMap<String, f64>,
-    /// Trim: the largest relative deviation of α, δe, φ; simulate: the largest channel RMS
-    /// deviation over the reference channel's scale, max(RMS, peak-to-peak, floor)
+    /// Trim: the largest relative deviation of α, δe, φ (γ for a glide); simulate: the largest
+    /// channel RMS deviation over the reference channel's scale, max(RMS, peak-to-peak, floor)
     /// ([`HISTORY_FLOORS`]); flutter: the largest relative deviation of the flutter Mach number
     /// over the times ([`flutter_deviation`]). `None` when either failed.
     pub error: Option<f64>,

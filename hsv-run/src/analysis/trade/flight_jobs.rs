@@ -38,6 +38,7 @@ pub(super) fn trim_case(
             "fuel_equivalence_ratio".to_owned(),
             t.fuel_equivalence_ratio,
         ),
+        ("flight_path_angle_deg".to_owned(), t.flight_path_angle_deg),
         ("thrust_n".to_owned(), t.loads.thrust_n),
         ("drag_n".to_owned(), t.loads.drag_n),
     ]);

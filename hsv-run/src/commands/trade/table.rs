@@ -254,6 +254,7 @@ fn shown_values(spec: &StudySpec) -> Vec<(String, String)> {
             ("alpha_deg", "alpha (deg)"),
             ("elevon_deg", "elevon (deg)"),
             ("fuel_equivalence_ratio", "phi"),
+            ("flight_path_angle_deg", "gamma (deg)"),
         ]),
         TradeJob::Simulate => pairs(&[
             ("trim_alpha_deg", "trim alpha"),
@@ -339,7 +340,10 @@ fn print_table(table: &TradeTable) -> Result<()> {
     outln!(
         "error: {}; pf = on the Pareto front of (cost, error)",
         match spec.job {
-            TradeJob::Trim => "largest relative deviation of alpha, elevon, phi from the reference",
+            TradeJob::Trim => {
+                "largest relative deviation of alpha, elevon, phi (gamma for a glide) from the \
+                 reference"
+            }
             TradeJob::Simulate =>
                 "largest RMS deviation of altitude, airspeed, alpha, pitch, q relative to the reference's size (max of its RMS and peak-to-peak)",
             TradeJob::Flutter => FLUTTER_ERROR,

@@ -499,9 +499,8 @@ fn the_heat_flux_comes_from_the_accepted_state_not_the_last_stage() {
         ..controls
     };
     let mut derivative = staged.dynamics().zero_derivative();
-    staged.set_time(0.01);
     staged
-        .derivative(&state, &far_stage, &mut derivative)
+        .derivative_at(0.01, &state, &far_stage, &mut derivative)
         .expect("stage");
     for vehicle in [&mut staged, &mut unstaged] {
         vehicle.commit_step(&state, 0.01).expect("commits");
@@ -621,10 +620,9 @@ fn a_uniform_gust_is_a_change_of_relative_wind() {
         }],
         airspeed_m_s: airspeed,
     });
-    vehicle.set_time(half_length_m / airspeed);
     let mut gusty = vehicle.dynamics().zero_derivative();
     vehicle
-        .derivative(&state, &controls, &mut gusty)
+        .derivative_at(half_length_m / airspeed, &state, &controls, &mut gusty)
         .expect("derivative in the gust");
     assert!((vehicle.gust_body_m_s().z - w_g).abs() < 1e-9);
 

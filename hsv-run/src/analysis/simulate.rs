@@ -495,8 +495,7 @@ impl Stepper {
             let mut f = |time: f64, x: &DVector<f64>, dx: &mut DVector<f64>| {
                 layout.unpack(x, scratch)?;
                 let controls = control.controls_at(time)?;
-                vehicle.set_time(time);
-                vehicle.derivative(scratch, &controls, derivative)?;
+                vehicle.derivative_at(time, scratch, &controls, derivative)?;
                 layout.pack_derivative(x, derivative, dx)?;
                 Ok::<(), VehicleError>(())
             };
@@ -540,14 +539,13 @@ fn staggered_step(
         let mut f = |time: f64, x: &DVector<f64>, dx: &mut DVector<f64>| {
             layout.unpack(x, scratch)?;
             let controls = control.controls_at(time)?;
-            vehicle.set_time(time);
             let (guess, produced) = interface.stage(stage).ok_or_else(|| {
                 VehicleError::Input(format!(
                     "the staggered scheme exchanges at {} stages; the integrator asked for more",
                     crate::vehicle::staggered::STAGES
                 ))
             })?;
-            vehicle.staggered_derivative(scratch, &controls, guess, produced, derivative)?;
+            vehicle.staggered_derivative(time, scratch, &controls, guess, produced, derivative)?;
             layout.pack_derivative(x, derivative, dx)?;
             stage += 1;
             Ok::<(), VehicleError>(())

@@ -56,17 +56,20 @@ impl PartitionedVehicle {
         );
     }
 
-    /// One evaluation of the staggered scheme: the regions' loads at `state`, then each region
-    /// once with the other side's interface data `guess` (the previous sub-iteration's, at this
-    /// stage), no fixed point; the interface the regions produce goes to `produced`.
+    /// One evaluation of the staggered scheme at time `time_s`: the regions' loads at `state`,
+    /// then each region once with the other side's interface data `guess` (the previous
+    /// sub-iteration's, at this stage), no fixed point; the interface the regions produce goes
+    /// to `produced`.
     pub fn staggered_derivative(
         &mut self,
+        time_s: f64,
         state: &VehicleState,
         controls: &FlightControls,
         guess: &[f64],
         produced: &mut [f64],
         out: &mut VehicleDerivative,
     ) -> Result<(), VehicleError> {
+        self.time_s = time_s;
         let flight = self.flight(state)?;
         self.region_loads(state, controls, &flight)?;
         self.set_interface_guess(guess);
@@ -210,8 +213,23 @@ impl PartitionedVehicle {
         Ok(change)
     }
 
+    /// The state derivative at time `time_s` (the time models with memory read their history up
+    /// to and the wind field is sampled at), `state` and `controls`, into `out`: a Runge-Kutta
+    /// stage's evaluation ([`Self::derivative`] at that time).
+    pub fn derivative_at(
+        &mut self,
+        time_s: f64,
+        state: &VehicleState,
+        controls: &FlightControls,
+        out: &mut VehicleDerivative,
+    ) -> Result<(), VehicleError> {
+        self.time_s = time_s;
+        self.derivative(state, controls, out)
+    }
+
     /// The state derivative at `state` under `controls` into `out` (buffers from
-    /// `dynamics().zero_derivative()`), with the body-surface coupling converged (module docs).
+    /// `dynamics().zero_derivative()`), with the body-surface coupling converged (module docs),
+    /// at the vehicle's time (its last step's, or trim's t = 0).
     pub fn derivative(
         &mut self,
         state: &VehicleState,

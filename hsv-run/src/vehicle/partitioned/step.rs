@@ -13,12 +13,6 @@ impl PartitionedVehicle {
         &self.mass
     }
 
-    /// Sets the time the next derivatives are evaluated at (models with memory read their
-    /// history up to it).
-    pub fn set_time(&mut self, time_s: f64) {
-        self.time_s = time_s;
-    }
-
     /// Commits an accepted step ending at `time_s` with `state` into the surfaces' modal
     /// histories (aero models with memory; nothing for the others).
     pub fn commit_step(&mut self, state: &VehicleState, time_s: f64) -> Result<(), VehicleError> {

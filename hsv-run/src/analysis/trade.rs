@@ -44,14 +44,13 @@ pub const REGION_TABLES: [&str; 5] = [
 /// Model keys of a region table, one per role.
 pub const ROLE_KEYS: [&str; 5] = ["aero", "heat_flux", "conduction", "structure", "propulsion"];
 
-/// Trim values compared between combinations (a vehicle without an engine glides: φ 0 and its
-/// flight-path angle compared instead; level flight has γ 0 throughout).
-pub const TRIM_QUANTITIES: [&str; 4] = [
-    "alpha_deg",
-    "elevon_deg",
-    "fuel_equivalence_ratio",
-    "flight_path_angle_deg",
-];
+/// Trim values compared between combinations.
+pub const TRIM_QUANTITIES: [&str; 3] = ["alpha_deg", "elevon_deg", "fuel_equivalence_ratio"];
+
+/// Trim values compared as 0 where a case has none: a glide's flight-path angle (a vehicle
+/// without an engine glides with φ 0; level-flight cases, and files of earlier versions, carry
+/// no γ or γ 0).
+pub const OPTIONAL_TRIM_QUANTITIES: [&str; 1] = ["flight_path_angle_deg"];
 
 /// Time histories compared between combinations (the flight's response to the inputs).
 pub const HISTORY_CHANNELS: [&str; 5] = [
@@ -491,14 +490,22 @@ fn deviation(
     let mut error: f64 = 0.0;
     match job {
         TradeJob::Trim => {
-            for q in TRIM_QUANTITIES {
-                let (Some(v), Some(r)) = (case.values.get(q), reference.values.get(q)) else {
+            let optional = OPTIONAL_TRIM_QUANTITIES.into_iter().map(|q| {
+                let value = |c: &CaseResult| c.values.get(q).copied().unwrap_or(0.0);
+                (q, Some(value(case)), Some(value(reference)))
+            });
+            let required = TRIM_QUANTITIES.into_iter().map(|q| {
+                let value = |c: &CaseResult| c.values.get(q).copied();
+                (q, value(case), value(reference))
+            });
+            for (q, v, r) in required.chain(optional) {
+                let (Some(v), Some(r)) = (v, r) else {
                     return (deviations, None);
                 };
                 let d = (v - r).abs();
                 deviations.insert(q.to_owned(), d);
                 // Relative to the reference value (absolute when it is zero).
-                error = error.max(if *r != 0.0 { d / r.abs() } else { d });
+                error = error.max(if r != 0.0 { d / r.abs() } else { d });
             }
         }
         TradeJob::Simulate => {

@@ -12,7 +12,7 @@ use hsv_core::registry::Registry;
 use super::steps::time_steps;
 use super::{ConfigArg, JsonFlag, OutArgs, load_config};
 use crate::analysis::flight::{
-    Flight, FlightOptions, FlightSettings, flight_vehicle, rate_seconds,
+    Flight, FlightOptions, FlightSettings, RunState, flight_vehicle, rate_seconds,
 };
 use crate::analysis::simulate::{RunSettings, Sample, simulate};
 use crate::analysis::trim::Balance;
@@ -153,27 +153,23 @@ impl DisturbanceArgs {
 /// Tag of the restart file format.
 const RESTART_FORMAT: &str = "hsv-restart-2";
 
-/// What `--resume` continues from: written as `restart.json` at the end of every run.
+/// What `--resume` continues from: written as `restart.json` at the end of every run. Its
+/// `step`, `state`, `vehicle` and `control` are the run's [`RunState`] (flattened: the same keys
+/// at the top level), the rest says what flew.
 #[derive(Debug, Clone, serde::Serialize, serde::Deserialize)]
 struct RestartFile {
     format: String,
     dt_s: f64,
-    /// Steps done (the next step's index).
-    step: usize,
     time_s: f64,
     trim_alpha_deg: f64,
-    /// The trim's flight-path angle, deg (a glide's; 0 in level flight and in older files).
+    /// The trim's flight-path angle, deg (a glide's; 0 in level flight).
     #[serde(default)]
     trim_flight_path_angle_deg: f64,
     controls: FlightControls,
-    state: crate::dynamics::VehicleState,
-    vehicle: crate::vehicle::partitioned::VehicleRestart,
-    /// The controller, its loop state and the design it was built from (absent in files
-    /// written before controllers: the `schedule` at trim).
-    #[serde(default)]
-    controller: Option<String>,
-    #[serde(default)]
-    control: Option<crate::control::ControlState>,
+    #[serde(flatten)]
+    run: RunState,
+    /// The controller and the design it was built from.
+    controller: String,
     #[serde(default)]
     design: Option<crate::control::DesignRecord>,
 }
@@ -268,15 +264,15 @@ pub fn run(args: SimulateArgs, registry: &Registry) -> Result<()> {
                     args.dt_s
                 );
             }
-            if restart.step > plan.steps
-                || (plan.start_s(restart.step) - restart.time_s).abs() > 1e-9 * args.dt_s
+            if restart.run.step > plan.steps
+                || (plan.start_s(restart.run.step) - restart.time_s).abs() > 1e-9 * args.dt_s
             {
                 bail!(
                     "{}: the run stopped at t = {} s (step {}), which --duration-s {} does not \
                      continue (give a longer duration, a whole number of steps)",
                     path.display(),
                     restart.time_s,
-                    restart.step,
+                    restart.run.step,
                     args.duration_s
                 );
             }
@@ -287,7 +283,7 @@ pub fn run(args: SimulateArgs, registry: &Registry) -> Result<()> {
             vehicle.set_disturbances(crate::analysis::flight::flight_disturbances(
                 &loaded, &options,
             )?);
-            let stored_name = restart.controller.as_deref().unwrap_or("schedule");
+            let stored_name = restart.controller.as_str();
             if stored_name != controller_name {
                 bail!(
                     "{}: the run was flown by controller `{stored_name}`, not \
@@ -301,7 +297,7 @@ pub fn run(args: SimulateArgs, registry: &Registry) -> Result<()> {
                 &controller_name,
                 actuators,
                 &mut vehicle,
-                &restart.state,
+                &restart.run.state,
                 &restart.controls,
                 args.dt_s,
                 restart.design.clone().map_or(
@@ -309,10 +305,8 @@ pub fn run(args: SimulateArgs, registry: &Registry) -> Result<()> {
                     crate::control::DesignFrom::Restart,
                 ),
             )?;
-            if let Some(c) = restart.control.clone() {
-                control.restore(c)?;
-            }
-            vehicle.restore(&restart.vehicle)?;
+            control.restore(restart.run.control.clone())?;
+            vehicle.restore(&restart.run.vehicle)?;
             let point = (
                 restart.trim_alpha_deg,
                 restart.controls.elevon.symmetric_rad.to_degrees(),
@@ -324,8 +318,8 @@ pub fn run(args: SimulateArgs, registry: &Registry) -> Result<()> {
                 vehicle,
                 point,
                 restart.controls,
-                restart.state,
-                restart.step,
+                restart.run.state,
+                restart.run.step,
                 control,
                 design,
                 settings,
@@ -427,15 +421,17 @@ pub fn run(args: SimulateArgs, registry: &Registry) -> Result<()> {
     let restart = RestartFile {
         format: RESTART_FORMAT.to_owned(),
         dt_s: args.dt_s,
-        step: reached,
         time_s: plan.start_s(reached.min(plan.steps)).min(plan.duration_s),
         trim_alpha_deg: trim_point.0,
         trim_flight_path_angle_deg: trim_point.4,
         controls: trim_controls,
-        state: state.clone(),
-        vehicle: vehicle.restart(),
-        controller: Some(controller_name.clone()),
-        control: Some(control.state.clone()),
+        run: RunState {
+            step: reached,
+            state: state.clone(),
+            vehicle: vehicle.restart(),
+            control: control.state.clone(),
+        },
+        controller: controller_name.clone(),
         design: Some(design),
     };
     if !design_report.is_null() {

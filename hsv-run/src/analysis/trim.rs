@@ -80,12 +80,17 @@ impl Balance {
 }
 
 impl TrimPoint {
-    /// What balances the drag, with its value, for messages (`phi 0.3309`, `glide gamma ...`).
-    pub fn balance_named(&self) -> String {
-        self.balance.named(match self.balance {
+    /// The search's third parameter: φ, or a glide's γ (deg).
+    pub fn third(&self) -> f64 {
+        match self.balance {
             Balance::Thrust => self.fuel_equivalence_ratio,
             Balance::Glide => self.flight_path_angle_deg,
-        })
+        }
+    }
+
+    /// What balances the drag, with its value, for messages (`phi 0.3309`, `glide gamma ...`).
+    pub fn balance_named(&self) -> String {
+        self.balance.named(self.third())
     }
 }
 
@@ -330,11 +335,6 @@ fn controls(p: &[f64], balance: Balance) -> Controls {
     }
 }
 
-/// The third parameter of `p` named for messages.
-fn third_named(p: &[f64; 3], balance: Balance) -> String {
-    balance.named(p[2])
-}
-
 impl CostFunction for Problem<'_, '_> {
     type Param = Vec<f64>;
     type Output = f64;
@@ -477,7 +477,7 @@ fn evaluate(
             altitude_m: request.altitude_m,
             alpha_deg: best[0],
             elevon_deg: best[1],
-            third: third_named(best, balance),
+            third: balance.named(best[2]),
             u_dot: f64::NAN,
             w_dot: f64::NAN,
             q_dot: f64::NAN,
@@ -582,16 +582,8 @@ fn perturbed(p: &TrimPoint, seed: u64) -> [f64; 3] {
     [
         p.alpha_deg * (1.0 + 0.1 * unit()),
         p.elevon_deg * (1.0 + 0.1 * unit()),
-        third(p) * (1.0 + 0.1 * unit()),
+        p.third() * (1.0 + 0.1 * unit()),
     ]
-}
-
-/// The search's third parameter at `p`: φ, or a glide's γ (deg).
-fn third(p: &TrimPoint) -> f64 {
-    match p.balance {
-        Balance::Thrust => p.fuel_equivalence_ratio,
-        Balance::Glide => p.flight_path_angle_deg,
-    }
 }
 
 /// Both minima agree within 1 % in each parameter (absolute 1e-3 deg or 1e-4 in φ near zero).
@@ -633,10 +625,7 @@ pub fn trim(
             altitude_m: request.altitude_m,
             alpha_deg: first.alpha_deg,
             elevon_deg: first.elevon_deg,
-            third: third_named(
-                &[first.alpha_deg, first.elevon_deg, third(&first)],
-                first.balance,
-            ),
+            third: first.balance_named(),
             u_dot: a.u_dot_m_s2,
             w_dot: a.w_dot_m_s2,
             q_dot: a.q_dot_rad_s2,

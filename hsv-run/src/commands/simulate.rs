@@ -483,10 +483,9 @@ pub fn run(args: SimulateArgs, registry: &Registry) -> Result<()> {
     } else {
         let last = samples.last().cloned().unwrap_or_default();
         // Level flight balances the drag with thrust (φ), a glide with its descent (γ).
-        let third = if trim_point.4 == 0.0 {
-            Balance::Thrust.named(trim_point.2)
-        } else {
-            Balance::Glide.named(trim_point.4)
+        let third = match Balance::of(&vehicle) {
+            Balance::Thrust => Balance::Thrust.named(trim_point.2),
+            Balance::Glide => Balance::Glide.named(trim_point.4),
         };
         outln!(
             "trim: alpha {:.4} deg, elevon {:.4} deg, {third}; flew {:.3} s in {:.2} s of wall \

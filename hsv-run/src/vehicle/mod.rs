@@ -15,11 +15,19 @@ pub mod staggered;
 use hsv_core::aero::AeroModel;
 use hsv_core::config::{LoadedConfig, REGION_NAMES, RegionModels};
 use hsv_core::data::{DataError, DataManager, DataManagerBuilder};
+use hsv_core::mesh::RegionKind;
 use hsv_core::propulsion::PropulsionModel;
 use hsv_core::region::RegionInfo;
 use hsv_core::registry::{ModelContext, Registry, Role, RoleModel};
 use hsv_core::structure::{Capability, StructureModel, require};
 use hsv_core::thermal::{ConductionModel, HeatFluxModel};
+
+/// Whether the main body's aero model loads panels of `region`: the body's own, and the engine's
+/// ramp and nozzle when the vehicle has no engine to load them (a glide; module
+/// [`rigid`]'s ownership rule). Caps ([`RegionKind::Other`]) carry no load either way.
+pub fn body_aero_loads(region: RegionKind, powered: bool) -> bool {
+    region == RegionKind::MainBody || (!powered && region == RegionKind::Propulsion)
+}
 
 /// Why a vehicle could not be assembled: always names the region, and the model, role or
 /// capability at fault.

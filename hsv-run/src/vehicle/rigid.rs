@@ -233,9 +233,8 @@ impl RigidVehicle {
         let flight = self.flight(mach, altitude_m, controls.alpha_rad)?;
         let cg = self.mass.center_of_mass_m;
         // Without an engine the body aero loads the engine's ramp and nozzle too.
-        let unpowered = self.engine.is_none();
-        let body_panels =
-            |r: RegionKind| r == RegionKind::MainBody || (unpowered && r == RegionKind::Propulsion);
+        let powered = self.engine.is_some();
+        let body_panels = |r: RegionKind| super::body_aero_loads(r, powered);
         let p_inf = flight.freestream.pressure_pa;
         self.body_aero.evaluate(
             &self.body_mesh,

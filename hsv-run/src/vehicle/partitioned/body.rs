@@ -49,7 +49,7 @@ pub(super) fn body_region_loads(
         ..
     } = b;
     let (mesh, shapes) = (&*mesh, &*shapes);
-    let unpowered = engine.is_none();
+    let powered = engine.is_some();
     let (body_aero, engine_loads) = join(
         || -> Result<Loads, VehicleError> {
             let motion = PanelMotion {
@@ -57,9 +57,7 @@ pub(super) fn body_region_loads(
             };
             aero.evaluate(mesh, flight, &motion, solution)
                 .map_err(&body_err)?;
-            let main_body = |r: RegionKind| {
-                r == RegionKind::MainBody || (unpowered && r == RegionKind::Propulsion)
-            };
+            let main_body = |r: RegionKind| crate::vehicle::body_aero_loads(r, powered);
             let mut body_aero =
                 integrate_pressure(mesh, &solution.pressure_pa, p_inf, cg, main_body);
             if let Some(f) = friction {

@@ -302,22 +302,39 @@ pub fn write_styled_plots_png(
         bail!("{}: nothing to plot", path.display());
     }
     register_font()?;
-    let columns = columns.clamp(1, plots.len());
-    let rows = plots.len().div_ceil(columns);
-    // Drawn beside the target and renamed into place, like every other file.
+    draw_grid_png(path, None, plots, columns, (width, height), draw_panel)
+}
+
+/// Draws `items` as a grid of `columns` panels (each by `draw`, under a figure `title` when
+/// given) into a PNG of `width` × `height` pixels, drawn beside `path` and renamed into place
+/// like every other file (a failed drawing leaves no partial file).
+fn draw_grid_png<T>(
+    path: &Path,
+    title: Option<&str>,
+    items: &[T],
+    columns: usize,
+    (width, height): (u32, u32),
+    draw: fn(&Area<'_>, &T) -> std::result::Result<(), Box<dyn std::error::Error>>,
+) -> Result<()> {
+    let columns = columns.clamp(1, items.len());
+    let rows = items.len().div_ceil(columns);
     let partial = partial_path(path);
     // The backend lives inside the closure: dropped before the rename (it writes on drop).
-    let draw = || -> std::result::Result<(), Box<dyn std::error::Error>> {
+    let render = || -> std::result::Result<(), Box<dyn std::error::Error>> {
         let root = BitMapBackend::new(&partial, (width, height)).into_drawing_area();
         root.fill(&WHITE)?;
+        let root = match title {
+            Some(title) => root.titled(title, ("sans-serif", 20))?,
+            None => root,
+        };
         let areas = root.split_evenly((rows, columns));
-        for (plot, area) in plots.iter().zip(areas.iter()) {
-            draw_panel(area, plot)?;
+        for (item, area) in items.iter().zip(areas.iter()) {
+            draw(area, item)?;
         }
         root.present()?;
         Ok(())
     };
-    let drawn = draw().and_then(|()| Ok(fs::rename(&partial, path)?));
+    let drawn = render().and_then(|()| Ok(fs::rename(&partial, path)?));
     if let Err(e) = drawn {
         let _ = fs::remove_file(&partial);
         bail!("cannot draw {}: {e}", path.display());
@@ -530,24 +547,5 @@ pub fn write_field_maps_png(
         }
     }
     register_font()?;
-    let columns = columns.clamp(1, maps.len());
-    let rows = maps.len().div_ceil(columns);
-    let partial = partial_path(path);
-    let draw = || -> std::result::Result<(), Box<dyn std::error::Error>> {
-        let root = BitMapBackend::new(&partial, (width, height)).into_drawing_area();
-        root.fill(&WHITE)?;
-        let root = root.titled(title, ("sans-serif", 20))?;
-        let areas = root.split_evenly((rows, columns));
-        for (map, area) in maps.iter().zip(areas.iter()) {
-            draw_map(area, map)?;
-        }
-        root.present()?;
-        Ok(())
-    };
-    let drawn = draw().and_then(|()| Ok(fs::rename(&partial, path)?));
-    if let Err(e) = drawn {
-        let _ = fs::remove_file(&partial);
-        bail!("cannot draw {}: {e}", path.display());
-    }
-    Ok(())
+    draw_grid_png(path, Some(title), maps, columns, (width, height), draw_map)
 }

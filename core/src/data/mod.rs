@@ -377,22 +377,13 @@ impl<const R: usize, const C: usize> Interpolate for SMatrix<f64, R, C> {
     }
 }
 
-/// Interpolation for heap-backed nalgebra matrices: shapes must agree, `out` is reused.
+/// Interpolation for heap-backed nalgebra matrices: shapes must agree, `out` is reused (its
+/// values are overwritten, so it is only resized when its shape differs).
 macro_rules! interpolate_dynamic_matrix {
     ($matrix:ty) => {
         impl Interpolate for $matrix {
             fn lerp_into(&self, other: &Self, w: f64, out: &mut Self) -> Result<(), ShapeMismatch> {
-                if self.shape() != other.shape() {
-                    return Err(ShapeMismatch {
-                        earlier: self.shape(),
-                        later: other.shape(),
-                    });
-                }
-                self.copy_into(out);
-                for ((o, a), b) in out.iter_mut().zip(self.iter()).zip(other.iter()) {
-                    *o = lerp(*a, *b, w);
-                }
-                Ok(())
+                combine_into(self, other, out, |a, b| lerp(a, b, w))
             }
 
             fn extrapolate_into(
@@ -401,17 +392,7 @@ macro_rules! interpolate_dynamic_matrix {
                 w: f64,
                 out: &mut Self,
             ) -> Result<(), ShapeMismatch> {
-                if self.shape() != newer.shape() {
-                    return Err(ShapeMismatch {
-                        earlier: self.shape(),
-                        later: newer.shape(),
-                    });
-                }
-                self.copy_into(out);
-                for ((o, a), b) in out.iter_mut().zip(self.iter()).zip(newer.iter()) {
-                    *o = extrapolate(*a, *b, w);
-                }
-                Ok(())
+                combine_into(self, newer, out, |a, b| extrapolate(a, b, w))
             }
 
             fn copy_into(&self, out: &mut Self) {
@@ -423,6 +404,32 @@ macro_rules! interpolate_dynamic_matrix {
             }
         }
     };
+}
+
+/// `out[i] = f(a[i], b[i])` for two heap-backed matrices of one shape, `out` resized only when
+/// its shape differs.
+fn combine_into<R: nalgebra::Dim, C: nalgebra::Dim>(
+    a: &nalgebra::OMatrix<f64, R, C>,
+    b: &nalgebra::OMatrix<f64, R, C>,
+    out: &mut nalgebra::OMatrix<f64, R, C>,
+    f: impl Fn(f64, f64) -> f64,
+) -> Result<(), ShapeMismatch>
+where
+    nalgebra::DefaultAllocator: nalgebra::allocator::Allocator<R, C>,
+{
+    if a.shape() != b.shape() {
+        return Err(ShapeMismatch {
+            earlier: a.shape(),
+            later: b.shape(),
+        });
+    }
+    if out.shape() != a.shape() {
+        *out = a.clone();
+    }
+    for ((o, x), y) in out.iter_mut().zip(a.iter()).zip(b.iter()) {
+        *o = f(*x, *y);
+    }
+    Ok(())
 }
 interpolate_dynamic_matrix!(DVector<f64>);
 interpolate_dynamic_matrix!(DMatrix<f64>);

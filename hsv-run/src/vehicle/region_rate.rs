@@ -288,20 +288,16 @@ impl RegionExchange {
         Ok(())
     }
 
-    /// Surface `index`'s latest published wall heat flux into `out` (held until the next
-    /// refresh, which comes at a step's start before that step's conduction); false
-    /// (untouched) when none is.
-    pub fn read_heat_flux(&self, index: usize, out: &mut Vec<f64>) -> Result<bool, DataError> {
+    /// Surface `index`'s latest published wall heat flux, W/m² per panel, read in place (held
+    /// until the next refresh, which comes at a step's start before that step's conduction);
+    /// None before the first.
+    pub fn heat_flux(&self, index: usize) -> Result<Option<&[f64]>, DataError> {
         let Some(&(_, reader)) = self.heat_fluxes.get(index) else {
-            return Ok(false);
+            return Ok(None);
         };
         match self.data.read_converged(reader) {
-            Ok(latest) => {
-                out.clear();
-                out.extend_from_slice(latest.value);
-                Ok(true)
-            }
-            Err(DataError::NothingConverged { .. }) => Ok(false),
+            Ok(latest) => Ok(Some(latest.value.as_slice())),
+            Err(DataError::NothingConverged { .. }) => Ok(None),
             Err(e) => Err(e),
         }
     }
@@ -576,14 +572,12 @@ mod tests {
     #[test]
     fn the_heat_flux_is_held_between_its_refreshes() {
         let mut h = exchange();
-        let mut flux = Vec::new();
-        assert!(!h.read_heat_flux(0, &mut flux).expect("read"), "none yet");
+        assert_eq!(h.heat_flux(0).expect("read"), None, "none yet");
         assert_eq!(h.heat_flux_time_s(), None);
         h.publish_heat_flux(0, 0.0, &[1.0, 2.0]).expect("published");
         h.publish_heat_flux(0, 0.01, &[3.0, 4.0])
             .expect("published");
-        assert!(h.read_heat_flux(0, &mut flux).expect("read"));
-        assert_eq!(flux, [3.0, 4.0]);
+        assert_eq!(h.heat_flux(0).expect("read"), Some(&[3.0, 4.0][..]));
         assert_eq!(h.heat_flux_time_s(), Some(0.01));
         let err = h
             .publish_heat_flux(0, 0.015, &[5.0, 6.0])

@@ -169,8 +169,8 @@ struct SurfaceThermal {
     state: DVector<f64>,
     trial: DVector<f64>,
     wall_k: Vec<f64>,
-    /// The wall heat flux, W/m² per panel: computed here by the aerothermal step, then
-    /// published on and read back from the surface's `wall_heat_flux` topic.
+    /// The wall heat flux, W/m² per panel, as the aerothermal step computes it before it is
+    /// published on the surface's `wall_heat_flux` topic (the conduction reads the topic).
     flux_w_m2: Vec<f64>,
     node_k: Vec<f64>,
     /// The temperature field moved onto the structure's nodes (last stiffness update).

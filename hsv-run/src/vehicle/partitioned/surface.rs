@@ -266,12 +266,13 @@ pub(super) fn heat_surface(
         return Ok(());
     };
     let err = model_error(&s.name);
-    exchange.read_heat_flux(index, &mut t.flux_w_m2)?;
+    // Read in place from its topic (before any refresh: the zero flux the buffer starts with).
+    let flux = exchange.heat_flux(index)?.unwrap_or(&t.flux_w_m2);
     let mut stepped = false;
     while time_s - t.conduction_time_s > 1e-9 * rates.conduction_s {
         let dt = rates.conduction_s.min(time_s - t.conduction_time_s);
         t.conduction
-            .advance(&mut t.state, &mut t.trial, &t.flux_w_m2, dt)
+            .advance(&mut t.state, &mut t.trial, flux, dt)
             .map_err(&err)?;
         t.conduction_time_s += dt;
         stepped = true;

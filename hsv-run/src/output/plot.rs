@@ -179,6 +179,9 @@ fn legend_width(labels: &[&str], panel_width: u32) -> u32 {
 
 type Area<'a> = DrawingArea<BitMapBackend<'a>, plotters::coord::Shift>;
 
+/// Draws one panel of a grid figure.
+type DrawPanel<T> = fn(&Area<'_>, &T) -> std::result::Result<(), Box<dyn std::error::Error>>;
+
 /// A short sample of `style` from `(x, y)`, `length` pixels long.
 fn draw_sample(
     area: &Area<'_>,
@@ -314,7 +317,7 @@ fn draw_grid_png<T>(
     items: &[T],
     columns: usize,
     (width, height): (u32, u32),
-    draw: fn(&Area<'_>, &T) -> std::result::Result<(), Box<dyn std::error::Error>>,
+    draw: DrawPanel<T>,
 ) -> Result<()> {
     let columns = columns.clamp(1, items.len());
     let rows = items.len().div_ceil(columns);

@@ -1,4 +1,6 @@
-//! The model registry: every model known by name, from built-in crates (`inventory`) and plugins.
+//! The model registry: every model known by name, from built-in crates (`inventory`) and plugins
+//! (one file: the descriptors, the context a constructor receives and the registry that finds them
+//! are the one contract a model crate is written against).
 //!
 //! A model crate registers itself with [`register_model!`]; the binary links it with a
 //! `use hsv_model_x as _;` line. [`Registry::builtin`] collects the descriptors, sorts them by

@@ -1,6 +1,8 @@
 //! The structural grid of a lifting surface: a structured quadrilateral grid over the planform's
 //! mid-plane, with the section thickness at each node, element connectivity, nodal areas and
-//! volumes, the root (torque-tube) node set, and maps from aero/thermal mesh points to grid nodes.
+//! volumes, the root (torque-tube) node set, and maps from aero/thermal mesh points to grid nodes
+//! (one file: one type, [`SurfaceGrid`], whose construction, maps and tests share the node
+//! numbering below).
 //!
 //! **Layout.** Nodes sit at chord fractions `u_i` (i = 0 leading edge … `elements_chordwise`
 //! trailing edge; the double wedge's ridge is always a station when `elements_chordwise ≥ 2`,

@@ -2,7 +2,8 @@
 //! (Q_i = −Δp ∫ n · φ_i dA, the virtual-work generalized force of Thomson, *Theory of Vibration
 //! with Applications* (2010) Eq. (11.1-10)), rigid modes against `integrate_pressure`, rigid
 //! rotations about the torque tube (areas preserved, normals rotated, R_y(90°) images by hand),
-//! the elevon sign (DESIGN §4), and bilinear grid transfer (exact on linear fields).
+//! the elevon sign (DESIGN §4), and bilinear grid transfer, exact on linear fields (one file: the
+//! checks share the plate meshes and mode shapes built below).
 
 use std::f64::consts::FRAC_PI_2;
 

@@ -1,5 +1,6 @@
 //! The data manager with time: interpolated reads of converged history, iterates, rates checked
-//! at assembly, and checkpoints that restore bit-identical state (DESIGN.md §3 "Data manager").
+//! at assembly, and checkpoints that restore bit-identical state (DESIGN.md §3 "Data manager"; one
+//! file: the checks share the topic builders and the multi-topic exchange fixture below).
 
 use hsv_core::data::{
     DataCheckpoint, DataError, DataManager, DataManagerBuilder, Interpolation, Publisher,

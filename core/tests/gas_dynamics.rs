@@ -1,5 +1,6 @@
 //! Validation of `hsv_core::gas` against published compressible-flow tables and worked examples,
-//! plus property tests of the invariants every perfect-gas relation must keep.
+//! plus property tests of the invariants every perfect-gas relation must keep (one file: one test
+//! binary for one module, sharing the tolerance helpers below).
 //!
 //! Tolerances: a tabulated value is matched to half a unit in its last printed digit unless a
 //! comment says otherwise. All values are for γ = 1.4 unless stated.

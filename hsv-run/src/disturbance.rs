@@ -2,7 +2,8 @@
 //! altitude form) and discrete 1-cosine gusts, as a gust velocity field frozen in the air mass
 //! (Taylor's hypothesis): the field moves past the vehicle at the trim airspeed, so a region
 //! `lead_m` ahead of the centre of mass meets at time t what the centre of mass meets at
-//! t + lead_m / V.
+//! t + lead_m / V (one file: the tests check the sampled records against the intensity table and
+//! spectra defined here).
 //!
 //! Components are along the body axes (u forward, v right, w down), as MIL-F-8785C defines the
 //! Dryden spectra for the flight path. The forming filters are discretized exactly (zero-order

@@ -3,7 +3,8 @@
 //! a model of each of the five roles exported through the same `extern "C"` tables (in process,
 //! built by `plugin_header!` from the built-in constructors) gives the built-in model's answer
 //! bit for bit; and every failure at the boundary (not a library, not a plugin, wrong ABI or API
-//! version, a panic, a NaN) is a clear error that leaves the host running.
+//! version, a panic, a NaN) is a clear error that leaves the host running (one file: the checks
+//! share the plugin-loading and twin-registry fixtures below).
 
 use approx::assert_relative_eq;
 use hsv_core::aero::{AeroModel, AeroSolution, EdgeState, PanelMotion, integrate_pressure};

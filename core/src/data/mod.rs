@@ -1,5 +1,8 @@
 //! The exchange store regions talk through (the paper, §III): typed topics holding the latest
-//! iterate, a ring of converged stamped values read at any time, and checkpoints of it all.
+//! iterate, a ring of converged stamped values read at any time, and checkpoints of it all (one
+//! file: the root holds the errors, handles, stamps and the `Interpolate` trait with its value
+//! impls that every submodule shares; the store itself is in `manager`, `assembly`, `topic` and
+//! `checkpoint`).
 //!
 //! Regions never call each other. At assembly each region declares the topics it publishes and
 //! the topics it subscribes to; the builder resolves every name once into a typed handle and
@@ -205,6 +208,16 @@ pub enum DataError {
         time_s: f64,
         earlier: (usize, usize),
         later: (usize, usize),
+    },
+    #[error(
+        "topic `{topic}`: `{reader}` reads {expected} entries but the value read at t = {time_s} s holds {published}; its publisher and reader must agree on the length"
+    )]
+    LengthMismatch {
+        topic: String,
+        reader: String,
+        time_s: f64,
+        published: usize,
+        expected: usize,
     },
     #[error("a handle for `{type_name}` (slot {slot}) was not issued for this data manager")]
     ForeignHandle {

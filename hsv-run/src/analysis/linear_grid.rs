@@ -110,8 +110,14 @@ impl ShardedCase for GridPoint {
     }
 }
 
-/// A shard's points as written to `linear-grid-cases.json`.
+/// A shard's points as written to [`GRID_CASES_FILE`].
 pub type LinearGridShard = ShardOutput<LinearGridSpec, GridPoint>;
+
+/// Name of the per-point results file ([`LinearGridShard`]) of a linear-model grid: what
+/// `hsv-run merge` joins.
+pub const GRID_CASES_FILE: &str = "linear-grid-cases.json";
+/// Name of a whole grid's numpy archive ([`write_grid_npz`]).
+pub const GRID_NPZ_FILE: &str = "linear_models.npz";
 
 /// A matrix's entries row by row.
 fn row_major(m: &nalgebra::DMatrix<f64>) -> Vec<f64> {

@@ -304,8 +304,12 @@ impl FlutterColumn {
     }
 }
 
-/// A flutter shard's output (`flutter-cases.json`).
+/// A flutter shard's output ([`FLUTTER_CASES_FILE`]).
 pub type FlutterShard = ShardOutput<FlutterMapSpec, FlutterColumn>;
+
+/// Name of the per-column results file ([`FlutterShard`]) of a flutter shard: what
+/// `hsv-run merge` joins.
+pub const FLUTTER_CASES_FILE: &str = "flutter-cases.json";
 
 /// Marches the Mach columns of `shard` (on all cores): its share of the map's points.
 pub fn march_shard(

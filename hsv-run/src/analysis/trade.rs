@@ -2,7 +2,8 @@
 //! trim, a flight from trim, or the lifting surface's flutter map), compared with the
 //! highest-fidelity combination, with the cost of each; split into deterministic shards
 //! ([`super::shards`]) that merge into the same table. The jobs themselves are in
-//! [`flight_jobs`] (trim, simulate) and [`flutter_job`].
+//! [`flight_jobs`] (trim, simulate) and [`flutter_job`] (one file: the spec, its cases and the
+//! comparison into the table share the case numbering the shards and the merge rely on).
 //!
 //! A study is a list of [`Variation`]s (`main_body.aero=newtonian-scalar,shock-expansion`), each
 //! a `[regions.<region>] <role>` key and the model names it takes. Its cases are the Cartesian
@@ -359,8 +360,12 @@ pub fn run_case(
     result
 }
 
-/// The cases of one shard (or of the whole study), as written to `trade-cases.json`.
+/// The cases of one shard (or of the whole study), as written to [`CASES_FILE`].
 pub type TradeCases = ShardOutput<StudySpec, CaseResult>;
+
+/// Name of the per-case results file ([`TradeCases`]) in every trade or shard folder: what
+/// `hsv-run merge` joins.
+pub const CASES_FILE: &str = "trade-cases.json";
 
 /// Joins trade shard outputs ([`merge_shards`]).
 pub fn merge_cases(parts: Vec<(String, TradeCases)>) -> Result<(StudySpec, Vec<CaseResult>)> {

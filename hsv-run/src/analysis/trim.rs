@@ -1,7 +1,9 @@
 //! Trim of steady level flight (paper §IV.B, Eq. 2): Nelder-Mead on J = u̇² + ẇ² + q̇² over the
 //! angle of attack, the symmetric elevon and the fuel equivalence ratio, then a restart from a
 //! seeded random perturbation of up to 10 % of each parameter; the trim is accepted when both
-//! minima agree within 1 % (the paper's rule), otherwise both are reported.
+//! minima agree within 1 % (the paper's rule), otherwise both are reported (one file: the request,
+//! the Nelder-Mead search and the status rules are the paper's one procedure, joined by the private
+//! cost function).
 //!
 //! A vehicle without an engine cannot fly level: its steady flight is a glide, where the
 //! weight's component along the descending path balances the drag (tan γ = −D/L). Its third

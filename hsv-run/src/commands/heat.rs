@@ -1,7 +1,8 @@
 //! `hsv-run heat`: one lifting surface, uniformly at 293 K, exposed to steady flow for a while;
 //! the heat flux of a heat-flux model on the edge states of an aero model drives each requested
 //! conduction model, and the temperature history of the structure is written out. The loop is
-//! [`crate::analysis::heating::SurfaceHeating`]; this module is its CLI and outputs.
+//! [`crate::analysis::heating::SurfaceHeating`]; this module is its CLI and outputs (one file: one
+//! command, whose outputs are written from the histories its loop records).
 //!
 //! The heat flux is re-evaluated from the current wall temperatures every `--flux-interval-s`
 //! (paper Table 3: 10 ms) and the conduction model advances by `--dt-s` (paper: 1 ms; default

@@ -9,8 +9,10 @@ use clap::Args;
 use hsv_core::config::LoadedConfig;
 use hsv_core::registry::Registry;
 
+use super::shared::linear_grid::write_grid_folder;
+use super::shared::shard::absolute;
 use super::{ConfigArg, JsonFlag, load_config};
-use crate::analysis::linear_grid::{LinearGridSpec, linearize_shard, write_grid_npz};
+use crate::analysis::linear_grid::{LinearGridSpec, linearize_shard};
 use crate::analysis::linearize::linearize_at;
 use crate::analysis::shards::{Shard, ShardedStudy};
 use crate::dynamics::PerturbationRule;
@@ -70,11 +72,6 @@ fn matrix_csv(m: &nalgebra::DMatrix<f64>, rows: &[String], columns: &[String]) -
     }
     text
 }
-
-/// Name of the per-point results file of a linear-model grid (what `hsv-run merge` joins).
-pub const GRID_CASES_FILE: &str = "linear-grid-cases.json";
-/// Name of a whole grid's numpy archive.
-pub const GRID_NPZ_FILE: &str = "linear_models.npz";
 
 /// Trims, linearizes and writes the run folder (a grid's with --grid).
 pub fn run(args: LinearizeArgs, registry: &Registry) -> Result<()> {
@@ -244,7 +241,8 @@ pub fn run(args: LinearizeArgs, registry: &Registry) -> Result<()> {
 }
 
 /// `linearize --grid`: every point trimmed and linearized side by side, the points written to
-/// [`GRID_CASES_FILE`] and, for the whole grid (not a shard of it), to [`GRID_NPZ_FILE`].
+/// `linear-grid-cases.json` and, for the whole grid (not a shard of it), to
+/// `linear_models.npz` ([`write_grid_folder`]).
 fn run_grid(
     args: &LinearizeArgs,
     loaded: &LoadedConfig,
@@ -253,9 +251,7 @@ fn run_grid(
     altitudes_m: &[f64],
     rule: PerturbationRule,
 ) -> Result<()> {
-    let config = (args.config.config.as_deref())
-        .map(super::shard::absolute)
-        .transpose()?;
+    let config = (args.config.config.as_deref()).map(absolute).transpose()?;
     let spec = LinearGridSpec::new(machs, altitudes_m, rule, config, loaded)?;
     let shard = Shard::from_flag(args.shard.as_deref())?;
     let mut folder = RunFolder::create("linearize", args.out.as_deref(), args.force)?;
@@ -273,52 +269,4 @@ fn run_grid(
         );
     });
     write_grid_folder(&mut folder, &output, args.json.json)
-}
-
-/// Writes a grid's (or a shard's) points, the `.npz` when they are the whole grid, and the
-/// summary; prints where they are. `hsv-run merge` ends here too.
-pub fn write_grid_folder(
-    folder: &mut RunFolder,
-    output: &crate::analysis::linear_grid::LinearGridShard,
-    json: bool,
-) -> Result<()> {
-    let path = folder.join(GRID_CASES_FILE);
-    write_file(&path, serde_json::to_string_pretty(output)?)?;
-    folder.record(path);
-    let whole = output.shard.count == 1;
-    if whole {
-        let path = folder.join(GRID_NPZ_FILE);
-        write_grid_npz(&path, &output.spec, &output.cases)?;
-        folder.record(path);
-    }
-    let failed: Vec<serde_json::Value> = (output.cases.iter())
-        .filter_map(|p| {
-            let error = p.error.as_ref()?;
-            Some(serde_json::json!({"mach": p.mach, "altitude_m": p.altitude_m, "error": error}))
-        })
-        .collect();
-    let summary = serde_json::json!({
-        "command": "linearize",
-        "grid": {"mach": output.spec.machs, "altitude_m": output.spec.altitudes_m},
-        "shard": format!("{}/{}", output.shard.index, output.shard.count),
-        "points": output.cases.len(),
-        "failed": failed,
-    });
-    let written = folder.write_summary(summary, &RunStatus::Completed)?;
-    if json {
-        outln!("{}", serde_json::to_string_pretty(&written)?)?;
-        return Ok(());
-    }
-    outln!(
-        "{} of {} grid points linearized{}; outputs in {}",
-        output.cases.len() - failed.len(),
-        output.cases.len(),
-        if whole {
-            format!(" ({GRID_NPZ_FILE})")
-        } else {
-            "; join the shard folders with `hsv-run merge DIR...`".to_owned()
-        },
-        folder.path.display()
-    )?;
-    Ok(())
 }

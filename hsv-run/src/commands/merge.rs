@@ -1,7 +1,9 @@
 //! `hsv-run merge`: joins shard folders into the outputs one unsharded run gives, with the
 //! shared machinery of [`crate::analysis::shards`] (same study, every shard once, every case
-//! once): the table of a trade study (`hsv-run trade --shard K/N`), or the flutter map of
-//! `hsv-run flutter --shard K/N`, whose flutter boundary it finds on the merged grid.
+//! once) and the writers the sharded commands use ([`super::shared`]): the table of a trade
+//! study (`hsv-run trade --shard K/N`), the flutter map of `hsv-run flutter --shard K/N`, whose
+//! flutter boundary it finds on the merged grid, or the linear models of `hsv-run linearize
+//! --grid --shard K/N`.
 
 use std::path::PathBuf;
 
@@ -11,13 +13,15 @@ use hsv_core::registry::Registry;
 use serde::Serialize;
 use serde::de::DeserializeOwned;
 
-use super::linearize::{GRID_CASES_FILE, write_grid_folder};
-use super::shard::FLUTTER_CASES_FILE;
-use super::trade::{CASES_FILE, write_table};
+use super::shared::flutter_map::write_run;
+use super::shared::linear_grid::write_grid_folder;
+use super::shared::trade_table::write_table;
 use super::{JsonFlag, OutArgs, load_config};
-use crate::analysis::linear_grid::LinearGridShard;
-use crate::analysis::shards::{FlutterShard, Shard, ShardOutput, map_from_columns, merge_shards};
-use crate::analysis::trade::{TradeCases, compare, merge_cases, read_costs};
+use crate::analysis::linear_grid::{GRID_CASES_FILE, LinearGridShard};
+use crate::analysis::shards::{
+    FLUTTER_CASES_FILE, FlutterShard, Shard, ShardOutput, map_from_columns, merge_shards,
+};
+use crate::analysis::trade::{CASES_FILE, TradeCases, compare, merge_cases, read_costs};
 use crate::output::{RunFolder, write_file};
 
 /// Arguments of `hsv-run merge`.
@@ -125,7 +129,7 @@ fn merge_flutter(args: &MergeArgs, registry: &Registry) -> Result<()> {
         |_| map_from_columns(&spec, &setup, &registry, merged.cases),
         || serde_json::json!({"command": "merge"}),
     )?;
-    super::flutter::write_run(&mut folder, &setup, &map, args.json.json)
+    write_run(&mut folder, &setup, &map, args.json.json)
 }
 
 /// Linear-model grid shards: the merged points and the `.npz` an unsharded grid writes.

@@ -1,7 +1,7 @@
 //! The `hsv-run` commands, one module each: clap arguments plus a `run` function. What more
 //! than one command reads or prints lives here (the shared arguments, the flutter map's, the
-//! controller gains) or in [`shard`] (the cluster shards); a command imports no other command,
-//! except `merge`, which joins the sharded commands' outputs with their own writers.
+//! controller gains) or in [`shared`] (the cluster shards, and the outputs a command and
+//! `hsv-run merge` both write); a command imports no other command.
 
 pub mod aero;
 pub mod catalog;
@@ -15,7 +15,7 @@ pub mod linearize;
 pub mod merge;
 pub mod modes;
 pub mod rom;
-pub mod shard;
+pub mod shared;
 pub mod simulate;
 pub mod trade;
 pub mod trim;

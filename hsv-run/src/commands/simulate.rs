@@ -1,6 +1,8 @@
 //! `hsv-run simulate`: the partitioned flexible vehicle flown from its trim (paper §IV.C) under
 //! the control inputs (default: the paper's elevon doublet), written to a run folder: CSV
-//! history with units in the header, JSON summary, PNG plots of the paper's Figs. 11-13.
+//! history with units in the header, JSON summary, PNG plots of the paper's Figs. 11-13 (one file:
+//! the flags, the restart file and the outputs all serve the one `run`; the flight itself is
+//! [`crate::analysis::flight`]'s).
 
 use std::path::PathBuf;
 use std::time::Instant;

@@ -1,7 +1,7 @@
 //! `hsv-run trade`: a fidelity trade study — every combination of the varied region models run
 //! through one job (trim, simulate, flutter) on all cores, each compared with the
 //! highest-fidelity combination, with its cost; a shard of it (`--shard K/N`), or a Slurm job
-//! array that runs the shards (`--emit-slurm N`, [`super::shard`]). Writes `trade.csv`,
+//! array that runs the shards (`--emit-slurm N`, [`super::shared::shard`]). Writes `trade.csv`,
 //! `trade.json`, `trade.png` (error against cost, the Pareto front) and `trade-cases.json`
 //! (what `hsv-run merge` joins).
 
@@ -14,22 +14,16 @@ use hsv_core::config::LoadedConfig;
 use hsv_core::registry::Registry;
 use rayon::prelude::*;
 
-use super::shard::{ShardArgs, SlurmJob, absolute, emit_slurm};
+use super::shared::shard::{ShardArgs, SlurmJob, absolute, emit_slurm};
+use super::shared::trade_table::write_table;
 use super::{ConfigArg, JsonFlag, OutArgs, load_config};
 use crate::analysis::shards::config_fingerprint;
 use crate::analysis::trade::{
-    CaseResult, FlightSpec, FlutterGrid, StudySpec, TradeCases, TradeJob, Variation, compare,
-    flutter_region, read_costs, run_case,
+    CASES_FILE, CaseResult, FlightSpec, FlutterGrid, StudySpec, TradeCases, TradeJob, Variation,
+    compare, flutter_region, read_costs, run_case,
 };
 use crate::outln;
 use crate::output::{RunFolder, RunStatus, write_file};
-
-mod table;
-
-pub use table::{table_csv, table_json, write_table};
-
-/// Name of the per-case results file in every trade or shard folder.
-pub const CASES_FILE: &str = "trade-cases.json";
 
 /// Arguments of `hsv-run trade`.
 #[derive(Args, Debug, Clone)]

@@ -1,6 +1,8 @@
 //! The conduction grid: a plate (mid-plane quads with a thickness per node) extruded through
 //! its thickness into trilinear hexahedra, layer by layer, with each element's geometric
-//! conduction matrix, each node's lumped volume, and the map from wetted panels to face nodes.
+//! conduction matrix, each node's lumped volume, and the map from wetted panels to face nodes (one
+//! file: the element integration is private to the grid that assembles it, and the tests check both
+//! on the same small stacks).
 //!
 //! **Through the thickness.** At every plate node the stack runs from the lower outer face to
 //! the upper outer face along the node normal ("up" = the side facing −z, body axes): the outer

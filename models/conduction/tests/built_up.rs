@@ -1,5 +1,6 @@
 //! `full-order` and `pod` with a built-up structure (`skin_thickness_m`): two titanium-like skins
-//! at the faces of the plate with still air between them, heated through the lower face only.
+//! at the faces of the plate with still air between them, heated through the lower face only (one
+//! file: the checks share the slab, its flux and its closed forms below).
 //!
 //! A 1 m × 1 m plate 20 mm thick (one grid element, adiabatic sides, so conduction is
 //! one-dimensional through the thickness) of 2 mm constant-property skins (ρ = 4430 kg/m³,

@@ -1,5 +1,6 @@
 //! The online model: the truncated convolution of the step responses with the region's modal
-//! history, the interpolated correction factor and the cached steady value of the source.
+//! history, the interpolated correction factor and the cached steady value of the source (one file:
+//! one model type and the three aero traits it implements on the same scratch buffers).
 
 use std::path::{Path, PathBuf};
 use std::time::Instant;

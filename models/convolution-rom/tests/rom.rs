@@ -1,4 +1,5 @@
-//! `convolution-rom` on the sample right lifting surface against its sources.
+//! `convolution-rom` on the sample right lifting surface against its sources (one file: one test
+//! binary whose checks share the stand-in registry and builders below).
 //!
 //! Stand-ins registered in a test registry (as `pod`'s tests do): `stand-in-plate`, a structure
 //! of three vertical-displacement modes (plunge, pitch about the mid-chord, parabolic spanwise

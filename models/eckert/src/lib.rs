@@ -1,6 +1,7 @@
 //! The `eckert` heat-flux model: flat-plate convection at a reference temperature along each
 //! streamwise strip, Fay-Riddell stagnation heating on blunt (subsonic-edge) panels, minus
-//! re-radiation from the hot wall.
+//! re-radiation from the hot wall (one file: the correlations are the numbered steps of the model
+//! below, each beside its reference, and the model applies them panel by panel).
 //!
 //! For every panel, from the aero model's edge state (T_e, p_e, u_e, M_e), the running length x
 //! from the leading edge and the wall temperature T_w:

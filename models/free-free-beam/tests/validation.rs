@@ -1,5 +1,6 @@
 //! Validation of `free-free-beam` against closed-form and exact solutions of free-free beams,
-//! plus the modal properties every modal model must have.
+//! plus the modal properties every modal model must have (one file: the checks share the uniform,
+//! Table 1 and sample-config beams built below).
 //!
 //! References:
 //! - Bending roots βL = 4.7300, 7.8532, 10.9956 of cos βL cosh βL = 1 (free-free = clamped-clamped

@@ -1,6 +1,7 @@
 //! The full-order plate model on a [`SurfaceGrid`]: element matrices, supports, the thermal
 //! membrane solve, assembly of K(T) + K_G(σ(T)) and M, free-vibration modes and static
-//! deflections. The Ritz model ([`crate::RitzPlate`]) is built from it once.
+//! deflections. The Ritz model ([`crate::RitzPlate`]) is built from it once (one file: one model
+//! type, [`PlateModel`], with the DOF numbering and supports its assemblies are built on).
 //!
 //! Every element takes the mean temperature T_e of its four nodes: modulus E(T_e), free strain
 //! ε_e = α_sec(T_e) (T_e − 293 K). Element stiffnesses scale with s_e = E(T_e)/E(293 K)

@@ -1,5 +1,6 @@
 //! Validation of `scramjet-1d` and `scramjet-q1d` against published gas-dynamics tables and
-//! closed forms, and checks of the contract (spanwise fit, panel pressures, statuses, errors).
+//! closed forms, and checks of the contract: spanwise fit, panel pressures, statuses, errors (one
+//! file: the checks share the sample body, the section and the solver helpers below).
 //!
 //! Sources: Anderson, Modern Compressible Flow (3rd ed.), Table A.3 (Rayleigh flow), Table A.4
 //! (Fanno flow) and the oblique-shock θ-β-M results of ch. 4; NACA Report 1135 (Ames Research

@@ -1,4 +1,5 @@
-//! Validation of `shock-expansion` and `shock-expansion-piston` against published results.
+//! Validation of `shock-expansion` and `shock-expansion-piston` against published results (one
+//! file: both models are checked on the same extruded sections and coefficient helpers below).
 //!
 //! Geometry: two-dimensional sections extruded over y in [0, 1] m, leading edge at x = 0, chord
 //! along -x (body axes: x forward, z down), one streamwise strip per surface.

@@ -1,5 +1,5 @@
 //! `hsv-run flutter --shard K/N` and `--emit-slurm N`: the flutter map's Mach columns split
-//! over a cluster with the shared shard machinery ([`crate::commands::shard`]).
+//! over a cluster with the shared shard machinery ([`crate::commands::shared::shard`]).
 
 use anyhow::Result;
 use hsv_core::config::LoadedConfig;
@@ -8,8 +8,8 @@ use hsv_core::registry::Registry;
 use super::FlutterArgs;
 use crate::analysis::flutter::DerivativeMethod;
 use crate::analysis::flutter::sweep::FlutterSetup;
-use crate::analysis::shards::{FlutterMapSpec, ShardedStudy, march_shard};
-use crate::commands::shard::{FLUTTER_CASES_FILE, SlurmJob, absolute, emit_slurm};
+use crate::analysis::shards::{FLUTTER_CASES_FILE, FlutterMapSpec, ShardedStudy, march_shard};
+use crate::commands::shared::shard::{SlurmJob, absolute, emit_slurm};
 use crate::outln;
 use crate::output::{RunFolder, RunStatus, write_file};
 

@@ -1,4 +1,6 @@
-//! `hsv-run modes`: natural frequencies and mode shapes of the main body and the lifting surfaces.
+//! `hsv-run modes`: natural frequencies and mode shapes of the main body and the lifting surfaces
+//! (one file: the report types, their computation and their table change together; the files
+//! written are `modes/files.rs`'s).
 //!
 //! The main body's structure model is `regions.main_body.structure`, the lifting surfaces'
 //! `regions.lifting_surfaces.structure` (one instance per side). Lifting surfaces are analysed at

@@ -1,171 +1,47 @@
-//! Regions evaluated at the aeroelastic rate rather than at every Runge-Kutta stage: a region's
-//! loads are published at an accepted state every interval (default 1 ms: every step at the
-//! paper's 1 ms) and read by every stage in between by linear extrapolation in time from the
-//! last two publications.
-//!
-//! This is the paper's partitioned exchange of region data at the aeroelastic rate (Klock &
-//! Cesnik §III.A, Table 3: 1 ms; §III.C: "the OML pressure distribution is recalculated at
-//! discrete aeroelastic time steps"). The extrapolation is the second-order Adams-Bashforth-type
-//! predictor of explicit partitioned schemes (Farhat & Lesoinne 2000, Comput. Methods Appl.
-//! Mech. Engrg. 182: the "predictor" of the conventional serial staggered procedure), so the
-//! scheme stays second order in the region's loads; over the first step, with one publication,
-//! the loads are held. The publications go through the data manager ([`RegionExchange`]: one
-//! predicted topic per region, [`hsv_core::data`]), whose checkpoint a restart file carries.
-//!
-//! - **The main body** (`[simulation] body_loads_dt_s`, default 1 ms): aero and skin friction
-//!   on the deformed OML, the engine, and the monolithic model's surfaces. Its evaluation is
-//!   expensive and its dynamics slow (rigid body, beam modes up to 27 Hz): three of the four body
-//!   evaluations of a Runge-Kutta step are spared.
-//! - **The lifting surfaces** (`[simulation] surface_loads_dt_s`, default 0: at every stage, the
-//!   reference): each surface's applied aero and friction loads about its pivot in its own frame
-//!   and its aero generalized forces. Their Ritz vectors reach hundreds of Hz, so a held or
-//!   extrapolated pressure lags their fastest motion (ω Δt = 1.9 for a 300 Hz vector at 1 ms);
-//!   the rigid flight, which the elevon and the surfaces' mean loads drive, keeps its accuracy
-//!   (test in `hsv-run/tests/simulate.rs`). The elevon's rotation and the thermal generalized
-//!   forces are taken at each stage.
-//!
-//! The body's skin friction, which comes from the aerothermal model (Eckert's reference
-//! temperature), is evaluated again only every `body_friction_dt_s` among these publications
-//! (default the paper's aerothermal rate, Table 3: 10 ms) and extrapolated linearly from its last
-//! two evaluations in between, the same predictor: it is a small,
-//! slowly varying part of the body's load (its edge states follow α and the dynamic pressure, on
-//! the flight's time scale), and on the 1304-panel body it cost as much as the engine.
+//! The regions' publications exchanged through the data manager ([`hsv_core::data`]): the
+//! topics of [`RegionExchange`] (one predicted loads topic per region, the body's skin friction,
+//! each lifting surface's wall heat flux) and the in-place publish and read of each; their
+//! values are [`super::published`]'s, when a region is due is [`super::RegionLoadRate`]'s rule
+//! (module docs of [`super`]).
 
 use hsv_core::aero::Loads;
 use hsv_core::data::{
-    DataCheckpoint, DataError, DataManager, DataManagerBuilder, Interpolate, Publisher,
-    ShapeMismatch, Subscriber,
+    DataCheckpoint, DataError, DataManager, DataManagerBuilder, Publisher, Subscriber,
 };
-use nalgebra::{DVector, Vector3};
-use serde::{Deserialize, Serialize};
+use nalgebra::DVector;
 
-/// The body's skin friction rate by default, s: the paper's aerothermal step (Table 3).
-pub const DEFAULT_BODY_FRICTION_DT_S: f64 = 0.01;
-
-/// How often a region (the main body, the lifting surfaces) is evaluated.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
-pub enum RegionLoadRate {
-    /// At every state derivative (every Runge-Kutta stage): the reference.
-    EveryStage,
-    /// At the accepted state of the first step at least this long (s) after the last
-    /// evaluation, and at most once per step; extrapolated in between (module docs).
-    Interval(f64),
-}
-
-impl Default for RegionLoadRate {
-    /// The paper's aeroelastic rate (Table 3: 1 ms).
-    fn default() -> Self {
-        Self::Interval(1e-3)
-    }
-}
-
-impl RegionLoadRate {
-    /// The rate of a `[simulation]` interval (`body_loads_dt_s`, `surface_loads_dt_s`): 0 for
-    /// every stage, else the interval, s.
-    pub fn from_interval_s(interval_s: f64) -> Option<Self> {
-        if interval_s == 0.0 {
-            Some(Self::EveryStage)
-        } else if interval_s.is_finite() && interval_s > 0.0 {
-            Some(Self::Interval(interval_s))
-        } else {
-            None
-        }
-    }
-
-    /// Whether a step starting at `time_s` evaluates the region, the last evaluation having
-    /// been at `last_s` (none: always).
-    pub fn is_due(&self, time_s: f64, last_s: Option<f64>) -> bool {
-        match (self, last_s) {
-            (Self::EveryStage, _) | (_, None) => true,
-            // The relative slack absorbs the rounding of step start times k·Δt.
-            (Self::Interval(interval), Some(last)) => time_s - last >= interval * (1.0 - 1e-9),
-        }
-    }
-}
-
-/// One publication of a region (the body's, or a lifting surface's with its applied loads about
-/// the pivot in the surface's frame as the total and no separate aero part): the value of the
-/// region's loads topic; the data manager stamps it with its time.
-#[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize)]
-pub struct PublishedLoads {
-    /// The body: aero, skin friction, engine (and the monolithic model's surfaces) about the
-    /// centre of mass, body axes; a surface: its pressure and friction about its pivot in its
-    /// own frame. N and N m.
-    pub force_n: Vector3<f64>,
-    pub moment_nm: Vector3<f64>,
-    /// The body's aero (pressure and friction) part alone, N and N m (zero for a surface).
-    pub aero_force_n: Vector3<f64>,
-    pub aero_moment_nm: Vector3<f64>,
-    /// Generalized forces of the region's modes (a surface's: the aero part), N (per unit
-    /// modal coordinate).
-    pub generalized: DVector<f64>,
-}
-
-impl Interpolate for PublishedLoads {
-    fn lerp_into(&self, other: &Self, w: f64, out: &mut Self) -> Result<(), ShapeMismatch> {
-        self.force_n
-            .lerp_into(&other.force_n, w, &mut out.force_n)?;
-        self.moment_nm
-            .lerp_into(&other.moment_nm, w, &mut out.moment_nm)?;
-        self.aero_force_n
-            .lerp_into(&other.aero_force_n, w, &mut out.aero_force_n)?;
-        self.aero_moment_nm
-            .lerp_into(&other.aero_moment_nm, w, &mut out.aero_moment_nm)?;
-        self.generalized
-            .lerp_into(&other.generalized, w, &mut out.generalized)
-    }
-
-    fn extrapolate_into(&self, newer: &Self, w: f64, out: &mut Self) -> Result<(), ShapeMismatch> {
-        self.force_n
-            .extrapolate_into(&newer.force_n, w, &mut out.force_n)?;
-        self.moment_nm
-            .extrapolate_into(&newer.moment_nm, w, &mut out.moment_nm)?;
-        self.aero_force_n
-            .extrapolate_into(&newer.aero_force_n, w, &mut out.aero_force_n)?;
-        self.aero_moment_nm
-            .extrapolate_into(&newer.aero_moment_nm, w, &mut out.aero_moment_nm)?;
-        self.generalized
-            .extrapolate_into(&newer.generalized, w, &mut out.generalized)
-    }
-
-    fn copy_into(&self, out: &mut Self) {
-        out.force_n = self.force_n;
-        out.moment_nm = self.moment_nm;
-        out.aero_force_n = self.aero_force_n;
-        out.aero_moment_nm = self.aero_moment_nm;
-        self.generalized.copy_into(&mut out.generalized);
-    }
-}
-
-/// The body's skin friction at one evaluation, about the centre of mass, body axes, N and N m:
-/// the value of its topic.
-#[derive(Debug, Clone, Copy, PartialEq, Default, Serialize, Deserialize)]
-pub struct PublishedFriction {
-    pub force_n: Vector3<f64>,
-    pub moment_nm: Vector3<f64>,
-}
-
-impl Interpolate for PublishedFriction {
-    fn lerp_into(&self, other: &Self, w: f64, out: &mut Self) -> Result<(), ShapeMismatch> {
-        self.force_n
-            .lerp_into(&other.force_n, w, &mut out.force_n)?;
-        self.moment_nm
-            .lerp_into(&other.moment_nm, w, &mut out.moment_nm)
-    }
-
-    fn extrapolate_into(&self, newer: &Self, w: f64, out: &mut Self) -> Result<(), ShapeMismatch> {
-        self.force_n
-            .extrapolate_into(&newer.force_n, w, &mut out.force_n)?;
-        self.moment_nm
-            .extrapolate_into(&newer.moment_nm, w, &mut out.moment_nm)
-    }
-}
+use super::RegionLoadRate;
+use super::published::{PublishedFriction, PublishedLoads};
 
 /// The reader of every topic: the coupled derivative, which assembles the vehicle's loads.
 const READER: &str = "coupling";
 
 /// A publisher and its reader.
 type Channel<T> = (Publisher<T>, Subscriber<T>);
+
+/// A region's loads topic: its publisher, its reader and its name (for errors).
+struct LoadsChannel {
+    publisher: Publisher<PublishedLoads>,
+    reader: Subscriber<PublishedLoads>,
+    topic: String,
+}
+
+impl LoadsChannel {
+    /// The predicted topic `topic` published by `region` every `period_s` and read by the
+    /// coupling.
+    fn new(
+        builder: &mut DataManagerBuilder,
+        region: &str,
+        topic: String,
+        period_s: f64,
+    ) -> Result<Self, DataError> {
+        Ok(Self {
+            publisher: builder.publish_predicted(region, &topic, period_s)?,
+            reader: builder.subscribe(READER, &topic)?,
+            topic,
+        })
+    }
+}
 
 /// The regions' publications at their own rates, exchanged through the data manager (paper
 /// §III): one predicted topic per region (`main_body/loads`, `<surface>/loads`) and the body's
@@ -179,9 +55,9 @@ pub struct RegionExchange {
     data: DataManager,
     /// The exchange with nothing published: what forgetting restores.
     empty: DataCheckpoint,
-    body: Channel<PublishedLoads>,
+    body: LoadsChannel,
     friction: Channel<PublishedFriction>,
-    surfaces: Vec<Channel<PublishedLoads>>,
+    surfaces: Vec<LoadsChannel>,
     heat_fluxes: Vec<Channel<Vec<f64>>>,
     /// The value a read fills before it is copied out (no allocation after the first).
     scratch: PublishedLoads,
@@ -222,10 +98,12 @@ impl RegionExchange {
             RegionLoadRate::Interval(interval_s) => interval_s.max(body_period_s),
             RegionLoadRate::EveryStage => body_period_s,
         };
-        let body = (
-            builder.publish_predicted("main_body", "main_body/loads", body_period_s)?,
-            builder.subscribe(READER, "main_body/loads")?,
-        );
+        let body = LoadsChannel::new(
+            &mut builder,
+            "main_body",
+            "main_body/loads".to_owned(),
+            body_period_s,
+        )?;
         let friction = (
             builder.publish_predicted("main_body", "main_body/skin_friction", friction_period_s)?,
             builder.subscribe(READER, "main_body/skin_friction")?,
@@ -234,10 +112,7 @@ impl RegionExchange {
             .iter()
             .map(|name| {
                 let topic = format!("{name}/loads");
-                Ok((
-                    builder.publish_predicted(name, &topic, declared_period_s(surface))?,
-                    builder.subscribe(READER, &topic)?,
-                ))
+                LoadsChannel::new(&mut builder, name, topic, declared_period_s(surface))
             })
             .collect::<Result<Vec<_>, DataError>>()?;
         let heat_fluxes = surface_names
@@ -319,13 +194,19 @@ impl RegionExchange {
 
     /// The time of the body's latest publication, s.
     pub fn body_time_s(&self) -> Option<f64> {
-        self.data.read_converged(self.body.1).ok().map(|s| s.time_s)
+        self.data
+            .read_converged(self.body.reader)
+            .ok()
+            .map(|s| s.time_s)
     }
 
     /// The time of the first surface's latest publication, s (the surfaces publish together).
     pub fn surfaces_time_s(&self) -> Option<f64> {
-        let (_, reader) = self.surfaces.first()?;
-        self.data.read_converged(*reader).ok().map(|s| s.time_s)
+        let surface = self.surfaces.first()?;
+        self.data
+            .read_converged(surface.reader)
+            .ok()
+            .map(|s| s.time_s)
     }
 
     /// Publishes the body's loads at `time_s`.
@@ -338,7 +219,7 @@ impl RegionExchange {
     ) -> Result<(), DataError> {
         publish_loads(
             &mut self.data,
-            self.body.0,
+            self.body.publisher,
             time_s,
             total,
             aero,
@@ -355,13 +236,13 @@ impl RegionExchange {
         applied: &Loads,
         generalized: &[f64],
     ) -> Result<(), DataError> {
-        let Some(&(publisher, _)) = self.surfaces.get(index) else {
+        let Some(surface) = self.surfaces.get(index) else {
             return Ok(());
         };
         let none = Loads::default();
         publish_loads(
             &mut self.data,
-            publisher,
+            surface.publisher,
             time_s,
             applied,
             &none,
@@ -370,7 +251,8 @@ impl RegionExchange {
     }
 
     /// The body's loads at `time_s` into the outputs (module docs' predictor; held with one
-    /// publication); false (outputs untouched) with none.
+    /// publication); false (outputs untouched) with none. A publication whose generalized
+    /// forces are not `generalized.len()` long is refused ([`DataError::LengthMismatch`]).
     pub fn read_body(
         &mut self,
         time_s: f64,
@@ -378,8 +260,15 @@ impl RegionExchange {
         aero: &mut Loads,
         generalized: &mut [f64],
     ) -> Result<bool, DataError> {
-        let reader = self.body.1;
-        self.read_loads(reader, time_s, total, Some(aero), generalized)
+        read_loads(
+            &self.data,
+            &self.body,
+            &mut self.scratch,
+            time_s,
+            total,
+            Some(aero),
+            generalized,
+        )
     }
 
     /// Surface `index`'s applied loads and aero generalized forces at `time_s` (as
@@ -391,37 +280,18 @@ impl RegionExchange {
         applied: &mut Loads,
         generalized: &mut [f64],
     ) -> Result<bool, DataError> {
-        let Some(&(_, reader)) = self.surfaces.get(index) else {
+        let Some(surface) = self.surfaces.get(index) else {
             return Ok(false);
         };
-        self.read_loads(reader, time_s, applied, None, generalized)
-    }
-
-    fn read_loads(
-        &mut self,
-        reader: Subscriber<PublishedLoads>,
-        time_s: f64,
-        total: &mut Loads,
-        aero: Option<&mut Loads>,
-        generalized: &mut [f64],
-    ) -> Result<bool, DataError> {
-        match self.data.read_at(reader, time_s, &mut self.scratch) {
-            Err(DataError::NothingConverged { .. }) => return Ok(false),
-            Err(e) => return Err(e),
-            Ok(_) => {}
-        }
-        let l = &self.scratch;
-        if l.generalized.len() != generalized.len() {
-            return Ok(false);
-        }
-        total.force_n = l.force_n;
-        total.moment_nm = l.moment_nm;
-        if let Some(aero) = aero {
-            aero.force_n = l.aero_force_n;
-            aero.moment_nm = l.aero_moment_nm;
-        }
-        generalized.copy_from_slice(l.generalized.as_slice());
-        Ok(true)
+        read_loads(
+            &self.data,
+            surface,
+            &mut self.scratch,
+            time_s,
+            applied,
+            None,
+            generalized,
+        )
     }
 
     /// Publishes the body's skin friction evaluated at `time_s`.
@@ -463,6 +333,43 @@ impl RegionExchange {
     }
 }
 
+/// One region's loads at `time_s` (the topic's predictor) into the outputs through `scratch`;
+/// false (outputs untouched) with nothing published. Generalized forces of another length
+/// than `generalized` are refused naming the topic: publisher and reader were wired to
+/// different mode counts, a defect no later read would repair.
+fn read_loads(
+    data: &DataManager,
+    channel: &LoadsChannel,
+    scratch: &mut PublishedLoads,
+    time_s: f64,
+    total: &mut Loads,
+    aero: Option<&mut Loads>,
+    generalized: &mut [f64],
+) -> Result<bool, DataError> {
+    match data.read_at(channel.reader, time_s, scratch) {
+        Err(DataError::NothingConverged { .. }) => return Ok(false),
+        Err(e) => return Err(e),
+        Ok(_) => {}
+    }
+    if scratch.generalized.len() != generalized.len() {
+        return Err(DataError::LengthMismatch {
+            topic: channel.topic.clone(),
+            reader: READER.to_owned(),
+            time_s,
+            published: scratch.generalized.len(),
+            expected: generalized.len(),
+        });
+    }
+    total.force_n = scratch.force_n;
+    total.moment_nm = scratch.moment_nm;
+    if let Some(aero) = aero {
+        aero.force_n = scratch.aero_force_n;
+        aero.moment_nm = scratch.aero_moment_nm;
+    }
+    generalized.copy_from_slice(scratch.generalized.as_slice());
+    Ok(true)
+}
+
 /// Publishes and commits one region's loads at `time_s`, in place (the head's buffers reused).
 fn publish_loads(
     data: &mut DataManager,
@@ -489,6 +396,8 @@ fn publish_loads(
 
 #[cfg(test)]
 mod tests {
+    use nalgebra::Vector3;
+
     use super::*;
 
     fn loads(x: f64) -> Loads {
@@ -624,33 +533,43 @@ mod tests {
         );
         assert_eq!(h.checkpoint(), saved);
     }
-}
 
-#[cfg(test)]
-mod rate_tests {
-    use super::RegionLoadRate;
-
+    /// Generalized forces published with another length than the reader's buffer are a
+    /// wiring defect: the read is refused with an error naming the topic and both lengths,
+    /// and the outputs are left untouched.
     #[test]
-    fn an_interval_of_two_steps_evaluates_every_other_step() {
-        let rate = RegionLoadRate::Interval(1e-3);
-        let dt = 5e-4;
-        let mut last = None;
-        let due: Vec<bool> = (0..6)
-            .map(|k| {
-                let t = k as f64 * dt;
-                let d = rate.is_due(t, last);
-                if d {
-                    last = Some(t);
-                }
-                d
-            })
-            .collect();
-        assert_eq!(due, [true, false, true, false, true, false]);
+    fn a_publication_of_the_wrong_length_is_refused_naming_the_topic() {
+        let mut h = exchange();
+        h.publish_body(0.0, &loads(4.0), &loads(1.0), &[4.0])
+            .expect("published");
+        let (mut total, mut aero, mut q) = (Loads::default(), Loads::default(), [7.0; 2]);
+        let err = h
+            .read_body(5e-4, &mut total, &mut aero, &mut q)
+            .expect_err("one generalized force published, two read");
         assert_eq!(
-            RegionLoadRate::from_interval_s(0.0),
-            Some(RegionLoadRate::EveryStage)
+            err,
+            DataError::LengthMismatch {
+                topic: "main_body/loads".to_owned(),
+                reader: READER.to_owned(),
+                time_s: 5e-4,
+                published: 1,
+                expected: 2,
+            }
         );
-        assert_eq!(RegionLoadRate::from_interval_s(-1.0), None);
-        assert_eq!(RegionLoadRate::from_interval_s(f64::NAN), None);
+        let message = err.to_string();
+        for part in ["main_body/loads", "reads 2 entries", "holds 1"] {
+            assert!(message.contains(part), "{message}");
+        }
+        assert_eq!(
+            (total, q),
+            (Loads::default(), [7.0; 2]),
+            "outputs untouched"
+        );
+        h.publish_surface(0, 0.0, &loads(1.0), &[1.0; 3])
+            .expect("published");
+        let err = h
+            .read_surface(0, 0.0, &mut total, &mut [0.0; 4])
+            .expect_err("three published, four read");
+        assert!(err.to_string().contains("left_surface/loads"), "{err}");
     }
 }

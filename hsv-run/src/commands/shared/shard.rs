@@ -1,8 +1,8 @@
-//! The shard machinery `hsv-run trade` and `hsv-run flutter` share (not a command itself; it
-//! imports none): sweeps past one machine, `--shard K/N` (run a
-//! deterministic share of the cases, [`crate::analysis::shards`]) and `--emit-slurm N` (a Slurm
-//! job array running the N shards, and a submit script that queues `hsv-run merge` after
-//! them). The cluster's scheduler runs the shards; nothing here schedules.
+//! The cluster arguments and scripts `hsv-run trade` and `hsv-run flutter` share: sweeps past
+//! one machine, `--shard K/N` (run a deterministic share of the cases,
+//! [`crate::analysis::shards`]) and `--emit-slurm N` (a Slurm job array running the N shards,
+//! and a submit script that queues `hsv-run merge` after them). The cluster's scheduler runs
+//! the shards; nothing here schedules.
 
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
@@ -13,9 +13,6 @@ use clap::Args;
 use crate::analysis::shards::Shard;
 use crate::outln;
 use crate::output::{RunFolder, RunStatus, write_file};
-
-/// Name of the per-column results file of a flutter shard.
-pub const FLUTTER_CASES_FILE: &str = "flutter-cases.json";
 
 /// `--shard K/N` and `--emit-slurm N` with the Slurm options.
 #[derive(Args, Debug, Clone, Default)]

@@ -1,5 +1,6 @@
 //! The trade table's outputs: `trade.csv`, `trade.json`, `trade.png` (error against cost, the
-//! Pareto front), `summary.json` and the table on standard output; shared with `hsv-run merge`.
+//! Pareto front), `summary.json` and the table on standard output, as `hsv-run trade` and
+//! `hsv-run merge` of trade shards write them.
 
 use std::fmt::Write as _;
 use std::path::Path;
@@ -14,7 +15,7 @@ use crate::output::{
 };
 
 /// Writes `trade.csv`, `trade.json`, `trade.png` and `summary.json`, and prints the table (or
-/// the summary with `json`). Shared with `hsv-run merge`.
+/// the summary with `json`).
 pub fn write_table(folder: &mut RunFolder, table: &TradeTable, json: bool) -> Result<()> {
     let csv = folder.join("trade.csv");
     write_file(&csv, table_csv(table))?;

@@ -9,8 +9,8 @@ use std::path::{Path, PathBuf};
 use crate::aero::ReferenceValues;
 use crate::gas::PerfectGas;
 use crate::geometry::{
-    GeometryConfig, LiftingSurfaceConfig, Side, VehicleGeometry, body_mesh, build_vehicle,
-    lifting_surface_mesh,
+    GeometryConfig, LiftingSurfaceConfig, Side, VehicleGeometry, VerticalFinConfig, body_mesh,
+    build_vehicle, lifting_surface_mesh, vertical_fin_mesh,
 };
 use crate::mesh::{PanelMesh, RegionKind};
 use crate::region::{ModelSettings, RegionGeometry, RegionInfo, merge_tables};
@@ -208,16 +208,30 @@ pub struct RegionsConfig {
     /// aero models then load the engine's ramp and nozzle as outer surfaces.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub propulsion: Option<RegionModels>,
+    /// Present (`[regions.vertical_fin]`, with the `[vertical_fin]` planform): the vehicle has a
+    /// fixed vertical fin, a region of its own; absent: none.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub vertical_fin: Option<RegionModels>,
 }
 
 /// The regions of the vehicle, in assembly order.
-pub const REGION_NAMES: [&str; 4] = ["main_body", "left_surface", "right_surface", "propulsion"];
+pub const REGION_NAMES: [&str; 5] = [
+    "main_body",
+    "left_surface",
+    "right_surface",
+    "propulsion",
+    "vertical_fin",
+];
 
 impl RegionsConfig {
-    /// Whether the vehicle has region `name`: every region but `propulsion` always; the
-    /// propulsion region when the config has its table.
+    /// Whether the vehicle has region `name`: the body and the lifting surfaces always; the
+    /// propulsion region and the vertical fin when the config has their tables.
     pub fn has(&self, name: &str) -> bool {
-        name != "propulsion" || self.propulsion.is_some()
+        match name {
+            "propulsion" => self.propulsion.is_some(),
+            "vertical_fin" => self.vertical_fin.is_some(),
+            _ => true,
+        }
     }
 
     /// The models of region `name` (one of [`REGION_NAMES`]), overrides applied; `None` for
@@ -228,6 +242,7 @@ impl RegionsConfig {
             "left_surface" => Some(self.lifting_surfaces.overlaid(&self.left_surface)),
             "right_surface" => Some(self.lifting_surfaces.overlaid(&self.right_surface)),
             "propulsion" => self.propulsion.clone(),
+            "vertical_fin" => self.vertical_fin.clone(),
             _ => None,
         }
     }
@@ -240,6 +255,7 @@ impl RegionsConfig {
             "left_surface" => &self.left_surface,
             "right_surface" => &self.right_surface,
             "propulsion" => self.propulsion.as_ref()?,
+            "vertical_fin" => self.vertical_fin.as_ref()?,
             _ => return None,
         };
         if own.models.contains_key(model) {
@@ -261,6 +277,9 @@ pub struct HsvConfig {
     pub gas: PerfectGas,
     pub geometry: GeometryConfig,
     pub lifting_surface: LiftingSurfaceConfig,
+    /// `[vertical_fin]`: the planform of the vertical fin region (`[regions.vertical_fin]`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub vertical_fin: Option<VerticalFinConfig>,
     #[serde(default)]
     pub regions: RegionsConfig,
     /// Per-model settings, `[models.<name>]`; checked by each model's constructor.
@@ -401,6 +420,18 @@ impl LoadedConfig {
                     side,
                 };
                 (RegionKind::LiftingSurface, Some(side), geometry, mesh)
+            }
+            "vertical_fin" => {
+                let fin = c.vertical_fin.as_ref().ok_or_else(|| ConfigError {
+                    file: self.file.clone(),
+                    key_path: "vertical_fin".to_owned(),
+                    message: "the vertical_fin region needs its planform: a `[vertical_fin]` \
+                              table"
+                        .to_owned(),
+                })?;
+                let mesh = vertical_fin_mesh(fin).map_err(mesh_error)?;
+                let geometry = RegionGeometry::VerticalFin(fin.clone());
+                (RegionKind::LiftingSurface, None, geometry, mesh)
             }
             _ => {
                 let kind = if name == "propulsion" {
@@ -557,6 +588,24 @@ fn check_values(config: &HsvConfig, file: &str) -> Result<(), ConfigError> {
             return Err(error(key, "must be at least 1".to_owned()));
         }
     }
+    // The fin's planform and its region come together: one without the other is a typing slip.
+    match (&config.vertical_fin, &config.regions.vertical_fin) {
+        (Some(_), None) => {
+            return Err(error(
+                "vertical_fin",
+                "a fin planform without its region: add `[regions.vertical_fin]` with the fin's \
+                 aero model (or remove the table)"
+                    .to_owned(),
+            ));
+        }
+        (None, Some(_)) => {
+            return Err(error(
+                "regions.vertical_fin",
+                "the vertical_fin region needs its planform: a `[vertical_fin]` table".to_owned(),
+            ));
+        }
+        _ => {}
+    }
     let reference = &config.reference;
     for (key, value, what) in [
         ("reference.area_m2", reference.area_m2, "reference area, m²"),
@@ -607,6 +656,7 @@ impl LoadedConfig {
             ("left_surface", Some(&regions.left_surface)),
             ("right_surface", Some(&regions.right_surface)),
             ("propulsion", regions.propulsion.as_ref()),
+            ("vertical_fin", regions.vertical_fin.as_ref()),
         ];
         let mut problems = Vec::new();
         for (region, models) in tables {
@@ -716,6 +766,55 @@ mod tests {
         let text = SAMPLE_CONFIG_TOML.replace("[lifting_surface]", "[lifting_surfaces]");
         let err = parse_config(&text, "my.toml").unwrap_err().to_string();
         assert!(err.contains("lifting_surface"), "{err}");
+    }
+
+    /// The sample's commented fin block, uncommented (as its comment says to).
+    fn sample_with_fin() -> String {
+        let mut inside = false;
+        let mut out = String::new();
+        for line in SAMPLE_CONFIG_TOML.lines() {
+            inside = (inside || line.starts_with("# >>> vertical fin"))
+                && !line.starts_with("# <<< vertical fin");
+            let commented_toml = inside && line.starts_with('#') && !line.starts_with("# ");
+            out.push_str(if commented_toml { &line[1..] } else { line });
+            out.push('\n');
+        }
+        out
+    }
+
+    #[test]
+    fn the_vertical_fin_is_a_region_by_configuration_alone() {
+        let sample = parse_config(SAMPLE_CONFIG_TOML, "s.toml").expect("sample");
+        assert!(!sample.config.regions.has("vertical_fin"));
+        let fin = parse_config(&sample_with_fin(), "fin.toml").expect("with the fin");
+        assert!(fin.config.regions.has("vertical_fin"));
+        let region = fin.region("vertical_fin").expect("the fin region");
+        assert!(matches!(region.geometry, RegionGeometry::VerticalFin(_)));
+        assert_eq!(region.side, None);
+        // The planform without its region, and the region without its planform, are refused
+        // naming the missing table.
+        let text = sample_with_fin();
+        let header = text.find("\n[regions.vertical_fin]\n").expect("the region");
+        let aero_line = header + "\n[regions.vertical_fin]\n".len();
+        let after = aero_line + text[aero_line..].find('\n').expect("its aero line");
+        let planform_only = format!("{}{}", &text[..header], &text[after..]);
+        let err = parse_config(&planform_only, "fin.toml")
+            .unwrap_err()
+            .to_string();
+        assert!(
+            err.contains("fin.toml") && err.contains("vertical_fin") && err.contains("[regions"),
+            "{err}"
+        );
+        let start = text.find("\n[vertical_fin]\n").expect("the table");
+        let end = start + text[start..].find("\n\n").expect("a blank line after it");
+        let region_only = format!("{}{}", &text[..start], &text[end..]);
+        let err = parse_config(&region_only, "fin.toml")
+            .unwrap_err()
+            .to_string();
+        assert!(
+            err.contains("regions.vertical_fin") && err.contains("[vertical_fin]"),
+            "{err}"
+        );
     }
 
     #[test]

@@ -10,7 +10,7 @@ use std::collections::BTreeMap;
 use crate::aero::ReferenceValues;
 use crate::error::ModelError;
 use crate::gas::PerfectGas;
-use crate::geometry::{GeometryConfig, LiftingSurfaceConfig, Side};
+use crate::geometry::{GeometryConfig, LiftingSurfaceConfig, Side, VerticalFinConfig};
 use crate::mesh::{PanelMesh, RegionKind};
 
 /// The parametric geometry a region was built from, for models that build their own grids.
@@ -23,6 +23,8 @@ pub enum RegionGeometry {
         planform: LiftingSurfaceConfig,
         side: Side,
     },
+    /// The fixed vertical fin: the `[vertical_fin]` planform on the upper centreline.
+    VerticalFin(VerticalFinConfig),
     /// A mesh with no parametric description (an STL file).
     Mesh,
 }
@@ -38,7 +40,8 @@ pub struct ModelSettings {
 /// Everything a model constructor may know about the region it is built for.
 #[derive(Debug, Clone)]
 pub struct RegionInfo {
-    /// The region's config name: `main_body`, `left_surface`, `right_surface`, `propulsion`.
+    /// The region's config name: `main_body`, `left_surface`, `right_surface`, `propulsion`,
+    /// `vertical_fin`.
     pub name: String,
     pub kind: RegionKind,
     /// Which side, for a lifting surface.
@@ -115,6 +118,7 @@ impl RegionInfo {
         let has = match &self.geometry {
             RegionGeometry::Body(_) => "the body geometry",
             RegionGeometry::LiftingSurface { .. } => "a lifting-surface planform",
+            RegionGeometry::VerticalFin(_) => "a vertical-fin planform",
             RegionGeometry::Mesh => "a mesh without parametric geometry",
         };
         ModelError::WrongRegion {

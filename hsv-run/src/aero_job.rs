@@ -9,7 +9,7 @@ use hsv_core::aero::{
 };
 use hsv_core::config::LoadedConfig;
 use hsv_core::flow::{FlightCondition, Freestream};
-use hsv_core::geometry::build_vehicle;
+use hsv_core::geometry::{build_vehicle, vertical_fin_mesh};
 use hsv_core::mesh::{PanelMesh, RegionKind};
 use hsv_core::region::RegionInfo;
 use hsv_core::registry::{ModelContext, Registry, Role};
@@ -25,13 +25,20 @@ pub struct AeroMesh {
     pub has_engine_surfaces: bool,
 }
 
-/// The sample (or configured) vehicle: body and both lifting surfaces in one mesh.
+/// The sample (or configured) vehicle: body, both lifting surfaces and the vertical fin (when
+/// the config has one) in one mesh.
 pub fn vehicle_mesh(loaded: &LoadedConfig) -> Result<AeroMesh> {
     let vehicle = build_vehicle(&loaded.config.geometry, &loaded.config.lifting_surface)
         .with_context(|| format!("{}: building the vehicle geometry", loaded.file))?;
     let mut mesh = vehicle.body;
     mesh.merge(&vehicle.left_surface);
     mesh.merge(&vehicle.right_surface);
+    if let Some(fin) = &loaded.config.vertical_fin {
+        mesh.merge(
+            &vertical_fin_mesh(fin)
+                .with_context(|| format!("{}: building the vertical fin", loaded.file))?,
+        );
+    }
     Ok(AeroMesh {
         mesh,
         source: format!("vehicle from {}", loaded.file),

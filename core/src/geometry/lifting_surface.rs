@@ -77,17 +77,19 @@ impl Side {
     }
 }
 
-/// Validated lifting-surface planform quantities.
-struct Planform {
-    root_chord: f64,
-    tip_chord: f64,
-    span: f64,
-    tan_sweep: f64,
-    tc: f64,
-    ridge: f64,
-    root_le_s: f64,
-    root_y: f64,
-    pivot_z: f64,
+/// Validated planform quantities of a trapezoidal double-wedge surface (the lifting surfaces
+/// and the vertical fin).
+pub(super) struct Planform {
+    pub(super) root_chord: f64,
+    pub(super) tip_chord: f64,
+    pub(super) span: f64,
+    pub(super) tan_sweep: f64,
+    pub(super) tc: f64,
+    pub(super) ridge: f64,
+    /// Nose to the root leading edge, m.
+    pub(super) root_le_s: f64,
+    pub(super) root_y: f64,
+    pub(super) pivot_z: f64,
 }
 
 impl Planform {
@@ -197,18 +199,47 @@ pub fn lifting_surface_mesh(
     side: Side,
 ) -> Result<PanelMesh, VehicleError> {
     let pf = Planform::new(cfg)?;
-    let us = chord_stations(cfg.panels_chordwise, pf.ridge);
-    let ns = cfg.panels_spanwise;
-    let etas: Vec<f64> = (0..=ns).map(|j| j as f64 / ns as f64).collect();
     let sign = side.sign();
-    let mirror = |p: Point3<f64>| Point3::new(p.x, sign * p.y, p.z);
     let name = side.name();
+    closed_surface_mesh(
+        &pf,
+        (cfg.panels_chordwise, cfg.panels_spanwise),
+        [
+            format!("{name}-surface-upper"),
+            format!("{name}-surface-lower"),
+            format!("{name}-surface-tip"),
+            format!("{name}-surface-root"),
+        ],
+        &|p| Point3::new(p.x, sign * p.y, p.z),
+        &|v| Vector3::new(v.x, sign * v.y, v.z),
+        match side {
+            Side::Left => "left lifting-surface",
+            Side::Right => "right lifting-surface",
+        },
+    )
+}
+
+/// The closed mesh of `pf` built on the right side (span along +y, upper surface towards -z),
+/// then placed by `place` (points) and `orient` (the outward directions): `names` are the upper,
+/// lower, tip and root surfaces; the root cap is [`RegionKind::Other`].
+pub(super) fn closed_surface_mesh(
+    pf: &Planform,
+    (panels_chordwise, panels_spanwise): (usize, usize),
+    names: [String; 4],
+    place: &dyn Fn(Point3<f64>) -> Point3<f64>,
+    orient: &dyn Fn(Vector3<f64>) -> Vector3<f64>,
+    what: &'static str,
+) -> Result<PanelMesh, VehicleError> {
+    let us = chord_stations(panels_chordwise, pf.ridge);
+    let ns = panels_spanwise;
+    let etas: Vec<f64> = (0..=ns).map(|j| j as f64 / ns as f64).collect();
+    let [upper_name, lower_name, tip_name, root_name] = names;
 
     let mut b = Builder::default();
-    let upper = b.surface(format!("{name}-surface-upper"), RegionKind::LiftingSurface);
-    let lower = b.surface(format!("{name}-surface-lower"), RegionKind::LiftingSurface);
-    let tip = b.surface(format!("{name}-surface-tip"), RegionKind::LiftingSurface);
-    let root = b.surface(format!("{name}-surface-root"), RegionKind::Other);
+    let upper = b.surface(upper_name, RegionKind::LiftingSurface);
+    let lower = b.surface(lower_name, RegionKind::LiftingSurface);
+    let tip = b.surface(tip_name, RegionKind::LiftingSurface);
+    let root = b.surface(root_name, RegionKind::Other);
 
     for (is_upper, surface, outward) in [(true, upper, -Vector3::z()), (false, lower, Vector3::z())]
     {
@@ -216,29 +247,26 @@ pub fn lifting_surface_mesh(
             .iter()
             .map(|&u| {
                 etas.iter()
-                    .map(|&eta| mirror(pf.point(u, eta, is_upper)))
+                    .map(|&eta| place(pf.point(u, eta, is_upper)))
                     .collect()
             })
             .collect();
-        b.grid(&nodes, |_| surface, outward, true);
+        b.grid(&nodes, |_| surface, orient(outward), true);
     }
-    let outboard = Vector3::y() * sign;
+    let outboard = Vector3::y();
     for (eta, surface, outward) in [(1.0, tip, outboard), (0.0, root, -outboard)] {
         let nodes: Vec<Vec<Point3<f64>>> = us
             .iter()
             .map(|&u| {
                 vec![
-                    mirror(pf.point(u, eta, true)),
-                    mirror(pf.point(u, eta, false)),
+                    place(pf.point(u, eta, true)),
+                    place(pf.point(u, eta, false)),
                 ]
             })
             .collect();
-        b.grid(&nodes, |_| surface, outward, false);
+        b.grid(&nodes, |_| surface, orient(outward), false);
     }
-    b.finish(match side {
-        Side::Left => "left lifting-surface",
-        Side::Right => "right lifting-surface",
-    })
+    b.finish(what)
 }
 
 /// Root end of the torque tube of `side`, m.

@@ -1,5 +1,6 @@
 //! The vehicle's geometry, one file per part: the body profile and mesh (`body`), the lifting
-//! surfaces (`lifting_surface`), and the polygon-mesh builder both use (`polygon_mesh`).
+//! surfaces (`lifting_surface`), the vertical fin (`vertical_fin`), and the polygon-mesh builder
+//! they use (`polygon_mesh`).
 //!
 //! **Body frame.** Origin at the nose tip; x forward (so every point of the vehicle has x ≤ 0 and
 //! the tail is at x = -length), y right, z down; z = 0 is the horizontal line through the nose
@@ -12,11 +13,13 @@ mod lifting_surface;
 mod polygon_mesh;
 #[cfg(test)]
 mod tests;
+mod vertical_fin;
 
 pub use body::{BodyProfile, GeometryConfig, body_mesh, body_profile};
 pub use checks::VehicleError;
 use checks::invalid;
 pub use lifting_surface::{LiftingSurfaceConfig, Side, lifting_surface_mesh, pivot_point};
+pub use vertical_fin::{VerticalFinConfig, vertical_fin_mesh};
 
 use nalgebra::Point3;
 

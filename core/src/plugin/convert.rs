@@ -1,6 +1,7 @@
 //! Core types to and from the plain data of ABI 2: the host flattens meshes, flight conditions
 //! and regions into buffers; the plugin side rebuilds the same core types from them, checking
-//! every count and index so a bad buffer is an error, never undefined behaviour.
+//! every count and index so a bad buffer is an error, never undefined behaviour (one file: each
+//! type's flattening sits beside its rebuild, so the two directions stay in step).
 
 use std::collections::BTreeMap;
 
@@ -185,13 +186,14 @@ pub(crate) fn edge_from(values: &[f64]) -> EdgeState {
     }
 }
 
-/// `{"body": ..}`, `{"lifting_surface": .., "side": ..}` or `"mesh"`.
+/// `{"body": ..}`, `{"lifting_surface": .., "side": ..}`, `{"vertical_fin": ..}` or `"mesh"`.
 pub(crate) fn geometry_json(geometry: &RegionGeometry) -> String {
     let value = match geometry {
         RegionGeometry::Body(body) => serde_json::json!({ "body": body }),
         RegionGeometry::LiftingSurface { planform, side } => {
             serde_json::json!({ "lifting_surface": planform, "side": side })
         }
+        RegionGeometry::VerticalFin(fin) => serde_json::json!({ "vertical_fin": fin }),
         RegionGeometry::Mesh => serde_json::json!("mesh"),
     };
     value.to_string()
@@ -209,6 +211,11 @@ fn geometry_from_json(text: &str) -> Result<RegionGeometry, String> {
     struct Body {
         body: crate::geometry::GeometryConfig,
     }
+    #[derive(serde::Deserialize)]
+    #[serde(deny_unknown_fields)]
+    struct Fin {
+        vertical_fin: crate::geometry::VerticalFinConfig,
+    }
     let value: serde_json::Value =
         serde_json::from_str(text).map_err(|e| format!("region geometry is not JSON: {e}"))?;
     if value.as_str() == Some("mesh") {
@@ -218,6 +225,11 @@ fn geometry_from_json(text: &str) -> Result<RegionGeometry, String> {
         let body: Body =
             serde_json::from_value(value).map_err(|e| format!("region body geometry: {e}"))?;
         return Ok(RegionGeometry::Body(body.body));
+    }
+    if value.get("vertical_fin").is_some() {
+        let fin: Fin =
+            serde_json::from_value(value).map_err(|e| format!("region fin geometry: {e}"))?;
+        return Ok(RegionGeometry::VerticalFin(fin.vertical_fin));
     }
     let surface: Surface =
         serde_json::from_value(value).map_err(|e| format!("region geometry: {e}"))?;
@@ -587,5 +599,35 @@ mod tests {
         buffers.strip_panels[0] = mesh.panels.len() + 3;
         let err = unsafe { mesh_from_abi(&buffers.abi(), &mut rebuilt) }.unwrap_err();
         assert!(err.contains("strip panel index"), "{err}");
+    }
+
+    /// Every region geometry a plugin can be handed survives its JSON round trip.
+    #[test]
+    fn region_geometries_round_trip() {
+        let fin = crate::geometry::VerticalFinConfig {
+            root_chord_m: 4.0,
+            tip_chord_m: 1.6,
+            height_m: 3.0,
+            leading_edge_sweep_deg: 38.66,
+            thickness_to_chord: 0.028,
+            max_thickness_chord_fraction: 0.5,
+            root_leading_edge_aft_of_nose_m: 25.0,
+            root_z_m: -1.415,
+            panels_chordwise: 10,
+            panels_spanwise: 8,
+        };
+        for geometry in [
+            crate::testing::sample_region("right_surface")
+                .geometry
+                .clone(),
+            crate::testing::sample_region("main_body").geometry.clone(),
+            RegionGeometry::VerticalFin(fin),
+            RegionGeometry::Mesh,
+        ] {
+            assert_eq!(
+                geometry_from_json(&geometry_json(&geometry)).expect("parses"),
+                geometry
+            );
+        }
     }
 }

@@ -474,6 +474,13 @@ pub fn run(args: SimulateArgs, registry: &Registry) -> Result<()> {
         "body_friction_dt_s": rate_seconds(friction_rate),
         "surface_loads_dt_s": rate_seconds(surface_rate),
         "warnings": warnings,
+        // Which regions flew, with their aero models (a glide has no propulsion region, a
+        // vehicle with a fin one more).
+        "aero_models": vehicle
+            .aero_diagnostics()
+            .iter()
+            .map(|(region, model, _)| (region.clone(), model.clone()))
+            .collect::<std::collections::BTreeMap<_, _>>(),
         "controller": controller_name,
         "controller_design": design_report,
         "saturated_samples": samples.iter().filter(|s| s.elevon_position_saturated

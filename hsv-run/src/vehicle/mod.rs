@@ -68,6 +68,17 @@ pub struct RegionNeeds {
     pub friction: bool,
 }
 
+/// What every analysis needs of the fixed vertical fin, when the vehicle has one: aero and skin
+/// friction (the fin has no structure, heating or controls of its own: a rigid, massless surface
+/// on the body, whose loads the body takes).
+pub fn fin_needs() -> RegionNeeds {
+    RegionNeeds {
+        roles: vec![Role::Aero],
+        structure: Vec::new(),
+        friction: true,
+    }
+}
+
 /// What an analysis needs of every region, by region name.
 #[derive(Debug, Clone, PartialEq)]
 pub struct AnalysisNeeds {
@@ -117,6 +128,7 @@ impl AnalysisNeeds {
                         friction: false,
                     },
                 ),
+                ("vertical_fin", fin_needs()),
             ],
         }
     }

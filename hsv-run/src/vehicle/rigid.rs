@@ -27,7 +27,8 @@ use super::{AnalysisNeeds, AssemblyError, RegionModelSet, RegionNeeds};
 use hsv_core::registry::Role;
 
 /// What the rigid vehicle needs of its regions: aero on the body and both surfaces, mass
-/// properties from every structure, an engine if the vehicle has a propulsion region.
+/// properties from every structure, an engine if the vehicle has a propulsion region, aero on
+/// the vertical fin if it has one.
 pub fn rigid_needs(analysis: &str) -> AnalysisNeeds {
     let with_mass = |roles: Vec<Role>| RegionNeeds {
         roles,
@@ -51,6 +52,7 @@ pub fn rigid_needs(analysis: &str) -> AnalysisNeeds {
                     friction: false,
                 },
             ),
+            ("vertical_fin", super::fin_needs()),
         ],
     }
 }
@@ -102,13 +104,13 @@ impl Accelerations {
     }
 }
 
-/// One lifting surface: its undeflected mesh, planform, side and aero model.
+/// One lifting surface, or the fixed vertical fin: its undeflected mesh, aero model, and for an
+/// all-movable surface the planform and side the elevon rotates it by.
 struct Surface {
     friction: Option<RegionFriction>,
     mesh: PanelMesh,
     deflected: PanelMesh,
-    planform: LiftingSurfaceConfig,
-    side: Side,
+    elevon: Option<(LiftingSurfaceConfig, Side)>,
     aero: Box<dyn AeroModel>,
 }
 
@@ -168,15 +170,20 @@ impl RigidVehicle {
                             .ok_or_else(|| missing(&region, "a propulsion model"))?,
                     );
                 }
-                (RegionGeometry::LiftingSurface { planform, side }, _) => {
+                (RegionGeometry::LiftingSurface { .. } | RegionGeometry::VerticalFin(_), _) => {
+                    let elevon = match &set.info.geometry {
+                        RegionGeometry::LiftingSurface { planform, side } => {
+                            Some((planform.clone(), *side))
+                        }
+                        _ => None,
+                    };
                     let aero = set.aero.ok_or_else(|| missing(&region, "an aero model"))?;
                     let n = set.info.mesh.panels.len();
                     surfaces.push(Surface {
                         friction: set.friction.map(|m| RegionFriction::new(m, n)),
                         deflected: set.info.mesh.clone(),
                         mesh: set.info.mesh,
-                        planform: planform.clone(),
-                        side: *side,
+                        elevon,
                         aero,
                     });
                 }
@@ -267,14 +274,17 @@ impl RigidVehicle {
         };
         let mut surface_aero = Loads::default();
         for s in &mut self.surfaces {
-            deflect_lifting_surface(
-                &s.mesh,
-                &s.planform,
-                s.side,
-                elevon.deflection_rad(s.side),
-                &mut s.deflected,
-            )
-            .map_err(|e| hsv_core::ModelError::inconsistent("elevon", e.to_string()))?;
+            // The fixed fin has no elevon: its `deflected` mesh stays the undeflected one.
+            if let Some((planform, side)) = &s.elevon {
+                deflect_lifting_surface(
+                    &s.mesh,
+                    planform,
+                    *side,
+                    elevon.deflection_rad(*side),
+                    &mut s.deflected,
+                )
+                .map_err(|e| hsv_core::ModelError::inconsistent("elevon", e.to_string()))?;
+            }
             s.aero.evaluate(
                 &s.deflected,
                 &flight,

@@ -131,9 +131,10 @@ impl PartitionedVehicle {
         }
     }
 
-    /// The monolithic model's surfaces: OML following the body's modes, rotated by the elevon;
-    /// their aero loads go straight to the body and to its generalized forces.
-    pub(super) fn follower_loads(
+    /// The surfaces that follow the body (the monolithic model's lifting surfaces, rotated by the
+    /// elevon, and the fixed vertical fin): OML following the body's modes whose aero loads go
+    /// straight to the body and to its generalized forces.
+    pub(super) fn evaluate_followers(
         &mut self,
         state: &VehicleState,
         controls: &FlightControls,
@@ -145,41 +146,42 @@ impl PartitionedVehicle {
         let surface = |r: RegionKind| r == RegionKind::LiftingSurface;
         for f in &mut self.followers {
             let err = model_error(&f.name);
-            let deflection = elevon.deflection_rad(f.side);
             f.shapes
                 .deform(&f.base, &state.body_modes.q, &mut f.deformed);
-            deflect_lifting_surface(
-                &f.deformed,
-                &f.planform,
-                f.side,
-                deflection,
-                &mut f.deflected,
-            )
-            .map_err(|e| err(ModelError::inconsistent("elevon", e.to_string())))?;
-            let rotation =
-                rotation_about_axis(&pivot_axis(), elevon_rotation_angle_rad(deflection))
-                    .map_err(|e| err(ModelError::inconsistent("elevon", e.to_string())))?;
             f.shapes
                 .panel_velocities(&f.base, &state.body_modes.q_dot, &mut f.velocities);
-            for v in &mut f.velocities {
-                *v = rotation * *v;
+            if let Some((planform, side)) = &f.elevon {
+                let deflection = elevon.deflection_rad(*side);
+                deflect_lifting_surface(&f.deformed, planform, *side, deflection, &mut f.deflected)
+                    .map_err(|e| err(ModelError::inconsistent("elevon", e.to_string())))?;
+                let rotation =
+                    rotation_about_axis(&pivot_axis(), elevon_rotation_angle_rad(deflection))
+                        .map_err(|e| err(ModelError::inconsistent("elevon", e.to_string())))?;
+                for v in &mut f.velocities {
+                    *v = rotation * *v;
+                }
             }
+            // The fixed fin flies its deformed OML as it is (`FollowerSurface::flown_mesh`).
+            let mesh = if f.elevon.is_some() {
+                &f.deflected
+            } else {
+                &f.deformed
+            };
             let motion = PanelMotion {
                 elastic_velocity_m_s: Some(&f.velocities),
             };
             f.aero
-                .evaluate(&f.deflected, flight, &motion, &mut f.solution)
+                .evaluate(mesh, flight, &motion, &mut f.solution)
                 .map_err(&err)?;
-            let mut loads =
-                integrate_pressure(&f.deflected, &f.solution.pressure_pa, p_inf, &cg, surface);
+            let mut loads = integrate_pressure(mesh, &f.solution.pressure_pa, p_inf, &cg, surface);
             if let Some(friction) = &mut f.friction {
                 loads = loads
                     + friction
-                        .loads(&f.deflected, flight, &f.solution, &motion, &cg, surface)
+                        .loads(mesh, flight, &f.solution, &motion, &cg, surface)
                         .map_err(&err)?;
             }
             generalized_forces(
-                &f.deflected,
+                mesh,
                 &f.shapes,
                 &f.solution.pressure_pa,
                 p_inf,
@@ -187,6 +189,7 @@ impl PartitionedVehicle {
                 &mut f.generalized,
             )
             .map_err(|e| err(ModelError::inconsistent("coupling", e.to_string())))?;
+            f.loads = loads;
             self.loads.body = self.loads.body + loads;
             self.aero_loads = self.aero_loads + loads;
             for (q, g) in self

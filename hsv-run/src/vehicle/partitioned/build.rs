@@ -50,7 +50,8 @@ impl PartitionedVehicle {
             {
                 mass = Some(mass.map_or(m, |t| t.combined(&m)));
             }
-            if monolithic && is_surface {
+            let is_fin = matches!(set.info.geometry, RegionGeometry::VerticalFin(_));
+            if (monolithic && is_surface) || is_fin {
                 follower_sets.push(set);
                 continue;
             }
@@ -156,8 +157,11 @@ impl PartitionedVehicle {
         let mut followers = Vec::new();
         for set in follower_sets {
             let name = set.info.name.clone();
-            let RegionGeometry::LiftingSurface { planform, side } = &set.info.geometry else {
-                continue;
+            let elevon = match &set.info.geometry {
+                RegionGeometry::LiftingSurface { planform, side } => {
+                    Some((planform.clone(), *side))
+                }
+                _ => None,
             };
             let beam = body_structure
                 .as_ref()
@@ -174,8 +178,8 @@ impl PartitionedVehicle {
                     .aero
                     .ok_or_else(|| assembly_error(&name, "an aero model".into()))?,
                 friction: set.friction.map(|m| RegionFriction::new(m, n_panels)),
-                planform: planform.clone(),
-                side: *side,
+                elevon,
+                loads: Loads::default(),
                 velocities: vec![Vector3::zeros(); n_panels],
                 solution: AeroSolution::default(),
                 deformed: set.info.mesh.clone(),

@@ -116,9 +116,9 @@ impl PartitionedVehicle {
             }
         }
         for f in &self.followers {
-            mesh.merge(&f.deflected);
+            mesh.merge(f.flown_mesh());
             pressure.extend_from_slice(&f.solution.pressure_pa);
-            wall.extend(std::iter::repeat_n(f64::NAN, f.deflected.panels.len()));
+            wall.extend(std::iter::repeat_n(f64::NAN, f.flown_mesh().panels.len()));
         }
         pressure.resize(mesh.panels.len(), f64::NAN);
         (mesh, pressure, wall)

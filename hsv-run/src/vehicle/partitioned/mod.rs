@@ -103,6 +103,7 @@ pub fn partitioned_needs(analysis: &str) -> AnalysisNeeds {
                     friction: false,
                 },
             ),
+            ("vertical_fin", super::fin_needs()),
         ],
     }
 }
@@ -244,7 +245,8 @@ pub fn monolithic_needs(analysis: &str) -> AnalysisNeeds {
     needs
 }
 
-/// A lifting surface of the monolithic model: OML that follows the body's modes.
+/// OML that follows the body's modes and whose loads the body takes: a lifting surface of the
+/// monolithic model, and the fixed vertical fin of either model.
 struct FollowerSurface {
     name: String,
     base: PanelMesh,
@@ -254,11 +256,25 @@ struct FollowerSurface {
     shapes: ModeShapes,
     aero: Box<dyn AeroModel>,
     friction: Option<RegionFriction>,
-    planform: LiftingSurfaceConfig,
-    side: Side,
+    /// The planform and side the elevon rotates an all-movable surface by; `None` for the fin.
+    elevon: Option<(LiftingSurfaceConfig, Side)>,
     velocities: Vec<Vector3<f64>>,
     solution: AeroSolution,
     generalized: Vec<f64>,
+    /// Its aero loads (pressure and friction) about the centre of mass at the last evaluation.
+    loads: Loads,
+}
+
+impl FollowerSurface {
+    /// The OML its aero last flew: deflected by the elevon, or for the fixed fin as the body's
+    /// modes deformed it.
+    fn flown_mesh(&self) -> &PanelMesh {
+        if self.elevon.is_some() {
+            &self.deflected
+        } else {
+            &self.deformed
+        }
+    }
 }
 
 /// The controls at one instant.

@@ -193,7 +193,7 @@ impl PartitionedVehicle {
         }
         if let Some(loads) = body_loads {
             self.set_body_loads(loads?);
-            self.follower_loads(state, controls, &flight)?;
+            self.evaluate_followers(state, controls, &flight)?;
             if held.is_none() && self.body.friction.is_some() {
                 self.exchange
                     .publish_friction(time_s, &self.body.friction_loads)?;
@@ -307,7 +307,7 @@ impl PartitionedVehicle {
         // The monolithic model's surfaces belong to the body region (published with it).
         if let Some(loads) = body_loads {
             self.set_body_loads(loads?);
-            self.follower_loads(state, controls, flight)?;
+            self.evaluate_followers(state, controls, flight)?;
         }
         Ok(())
     }
@@ -382,6 +382,16 @@ impl PartitionedVehicle {
     /// latest derivative evaluation: aero, engine and the surfaces' root loads, body axes.
     pub fn body_loads(&self) -> Loads {
         self.loads.body
+    }
+
+    /// The aero loads (pressure and friction, N and N m about the centre of mass, body axes) of
+    /// each region that follows the body (the vertical fin; the monolithic model's lifting
+    /// surfaces) at its latest evaluation, by region name.
+    pub fn follower_loads(&self) -> Vec<(String, Loads)> {
+        self.followers
+            .iter()
+            .map(|f| (f.name.clone(), f.loads))
+            .collect()
     }
 
     /// Each region's aero model and the validity diagnostics of its latest evaluation.

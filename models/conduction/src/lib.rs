@@ -7,6 +7,7 @@
 pub mod full_order;
 pub mod grid;
 pub mod pod;
+mod settings;
 pub mod training;
 
 use std::path::PathBuf;

@@ -1,7 +1,7 @@
-//! Identification: step responses from the source aero model (or a user's CSV), the
-//! correction-factor table, the fingerprint of what they were built from, and the JSON cache.
-
-use std::path::Path;
+//! The identification: the source aero model's step responses by central differences, the
+//! correction-factor tables, and the `Identification` the online model reads. The step-response
+//! CSV import is in `step_csv.rs`, the fingerprint and JSON cache in `cache.rs` (their public
+//! items are re-exported here).
 
 use hsv_core::aero::{AeroModel, AeroSolution, PanelMotion};
 use hsv_core::coupling::ModalProjection;
@@ -13,11 +13,9 @@ use nalgebra::{DVector, Vector3};
 
 use crate::{NAME, Settings};
 
-/// Version of the cache format.
-pub const FORMAT: u32 = 2;
-
-/// Header columns of a step-response CSV before the `force_1..force_n` columns.
-pub const CSV_COLUMNS: [&str; 4] = ["input", "mode", "step", "time_s"];
+pub use crate::cache::FORMAT;
+pub(crate) use crate::cache::{fingerprint, load, save};
+pub use crate::step_csv::{CSV_COLUMNS, read_step_csv};
 
 /// The flight condition the step responses were identified at.
 #[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]
@@ -81,7 +79,7 @@ pub struct ResponseBlock {
 }
 
 impl ResponseBlock {
-    fn zeros(n_outputs: usize, n_inputs: usize, samples: usize, dt_s: f64) -> Self {
+    pub(crate) fn zeros(n_outputs: usize, n_inputs: usize, samples: usize, dt_s: f64) -> Self {
         Self {
             n_outputs,
             dt_s,
@@ -98,7 +96,7 @@ impl ResponseBlock {
         &self.steps[start..start + self.n_outputs]
     }
 
-    fn step_mut(&mut self, sample: usize, input: usize, n_inputs: usize) -> &mut [f64] {
+    pub(crate) fn step_mut(&mut self, sample: usize, input: usize, n_inputs: usize) -> &mut [f64] {
         let start = (sample * n_inputs + input) * self.n_outputs;
         &mut self.steps[start..start + self.n_outputs]
     }
@@ -569,241 +567,4 @@ fn tabulate_rate_correction(
     identification.forces.rate_correction = force_factors;
     identification.pressures.rate_correction = pressure_factors;
     Ok(())
-}
-
-/// Reads a step-response CSV (format in the crate docs) into a force block normalized by the
-/// reference p∞ (and a∞ for velocity steps).
-pub fn read_step_csv(
-    path: &str,
-    text: &str,
-    n_modes: usize,
-    reference: &ReferenceCondition,
-) -> Result<ResponseBlock, ModelError> {
-    let error = |line: usize, message: String| {
-        ModelError::inconsistent(NAME, format!("step CSV `{path}`, line {line}: {message}"))
-    };
-    let mut lines = text
-        .lines()
-        .enumerate()
-        .map(|(i, l)| (i + 1, l.trim()))
-        .filter(|(_, l)| !l.is_empty() && !l.starts_with('#'));
-    let (header_line, header) = lines
-        .next()
-        .ok_or_else(|| error(1, "no header line".to_owned()))?;
-    let columns: Vec<&str> = header.split(',').map(str::trim).collect();
-    let expected: Vec<String> = CSV_COLUMNS
-        .iter()
-        .map(|c| (*c).to_owned())
-        .chain((1..=n_modes).map(|k| format!("force_{k}")))
-        .collect();
-    if columns != expected {
-        return Err(error(
-            header_line,
-            format!(
-                "header `{header}`; expected `{}` (one force column per mode of the region's \
-                 structure)",
-                expected.join(",")
-            ),
-        ));
-    }
-    // Rows per input (modal coordinates, then velocities): (time, step, forces).
-    let n_inputs = 2 * n_modes;
-    let mut blocks: Vec<Vec<(f64, f64, Vec<f64>)>> = vec![Vec::new(); n_inputs];
-    for (line, row) in lines {
-        let cells: Vec<&str> = row.split(',').map(str::trim).collect();
-        if cells.len() != expected.len() {
-            return Err(error(
-                line,
-                format!("{} cells, expected {}", cells.len(), expected.len()),
-            ));
-        }
-        let number = |i: usize| {
-            cells[i]
-                .parse::<f64>()
-                .ok()
-                .filter(|v| v.is_finite())
-                .ok_or_else(|| error(line, format!("`{}` is not a finite number", cells[i])))
-        };
-        let mode = cells[1]
-            .parse::<usize>()
-            .ok()
-            .filter(|m| (1..=n_modes).contains(m))
-            .ok_or_else(|| error(line, format!("mode `{}` is not in 1..={n_modes}", cells[1])))?;
-        let input = match cells[0] {
-            "displacement" => mode - 1,
-            "velocity" => n_modes + mode - 1,
-            other => {
-                return Err(error(
-                    line,
-                    format!("input `{other}`; expected `displacement` or `velocity`"),
-                ));
-            }
-        };
-        let step = number(2)?;
-        if step == 0.0 {
-            return Err(error(
-                line,
-                "step 0: the response per unit step is undefined".into(),
-            ));
-        }
-        let time = number(3)?;
-        let values = (4..cells.len())
-            .map(number)
-            .collect::<Result<Vec<_>, _>>()?;
-        blocks[input].push((time, step, values));
-    }
-    let samples = blocks[0].len();
-    for (input, block) in blocks.iter().enumerate() {
-        let name = if input < n_modes {
-            format!("displacement of mode {}", input + 1)
-        } else {
-            format!("velocity of mode {}", input - n_modes + 1)
-        };
-        if block.is_empty() && input < n_modes {
-            return Err(error(header_line, format!("no rows for the {name}")));
-        }
-        if !block.is_empty() && block.len() != samples {
-            return Err(error(
-                header_line,
-                format!(
-                    "{} rows for the {name}, {samples} for the displacement of mode 1; every \
-                     block needs the same times",
-                    block.len()
-                ),
-            ));
-        }
-    }
-    let dt_s = if samples > 1 {
-        blocks[0][1].0 - blocks[0][0].0
-    } else {
-        0.0
-    };
-    if samples > 1 && dt_s <= 0.0 {
-        return Err(error(header_line, format!("time step {dt_s} s is not > 0")));
-    }
-    for block in blocks.iter().filter(|b| !b.is_empty()) {
-        for (i, (time, step, _)) in block.iter().enumerate() {
-            let want = dt_s * i as f64;
-            if (time - want).abs() > 1e-6 * dt_s.max(1e-12) + 1e-12 {
-                return Err(error(
-                    header_line,
-                    format!(
-                        "sample {i} at {time} s; times must run 0, dt, 2 dt, ... with dt = \
-                         {dt_s} s in every block"
-                    ),
-                ));
-            }
-            if *step != block[0].1 {
-                return Err(error(
-                    header_line,
-                    "the step size changes within a block".to_owned(),
-                ));
-            }
-        }
-    }
-    let mut out = ResponseBlock::zeros(n_modes, n_inputs, samples, dt_s);
-    for (input, block) in blocks.iter().enumerate() {
-        for (sample, (_, step, values)) in block.iter().enumerate() {
-            // Normalized input step: q, or q̇ / a∞.
-            let input_step = if input < n_modes {
-                *step
-            } else {
-                step / reference.speed_of_sound_m_s
-            };
-            for (s, v) in out.step_mut(sample, input, n_inputs).iter_mut().zip(values) {
-                *s = v / (reference.pressure_pa * input_step);
-            }
-        }
-    }
-    Ok(out)
-}
-
-/// FNV-1a over 64-bit words (little-endian bytes): a stable fingerprint of large inputs (mesh,
-/// modes, CSV).
-fn fnv1a(words: impl Iterator<Item = u64>) -> u64 {
-    hsv_core::cache::fnv1a(words.flat_map(u64::to_le_bytes))
-}
-
-fn mesh_hash(mesh: &PanelMesh) -> u64 {
-    let vertices = mesh
-        .vertices
-        .iter()
-        .flat_map(|v| [v.x.to_bits(), v.y.to_bits(), v.z.to_bits()]);
-    let panels = mesh.panels.iter().flat_map(|p| {
-        p.vertices
-            .iter()
-            .map(|&v| v as u64)
-            .chain([u64::from(p.vertex_count), u64::from(p.surface)])
-    });
-    fnv1a(vertices.chain(panels))
-}
-
-fn shapes_hash(shapes: &ModeShapes) -> u64 {
-    let phi = &shapes.vertex_displacement;
-    fnv1a(
-        [phi.nrows() as u64, phi.ncols() as u64]
-            .into_iter()
-            .chain(phi.iter().map(|v| v.to_bits())),
-    )
-}
-
-/// What an identification is built from, as one string: the settings (the cache location
-/// aside), the source's and structure's names and settings, the mesh, the mode shapes, the
-/// CSV's contents and the gas.
-pub(crate) fn fingerprint(
-    settings: &Settings,
-    source_settings: &toml::Table,
-    structure_settings: &toml::Table,
-    mesh: &PanelMesh,
-    shapes: &ModeShapes,
-    csv: Option<&str>,
-    gas: &PerfectGas,
-) -> Result<String, ModelError> {
-    let mut identifying = settings.clone();
-    identifying.cache_file.clear();
-    let csv_hash = csv.map(|text| fnv1a(text.bytes().map(u64::from)));
-    serde_json::to_string(&(
-        FORMAT,
-        &identifying,
-        source_settings,
-        structure_settings,
-        format!("{:016x}", mesh_hash(mesh)),
-        format!("{:016x}", shapes_hash(shapes)),
-        csv_hash.map(|h| format!("{h:016x}")),
-        gas,
-    ))
-    .map_err(|e| ModelError::inconsistent(NAME, format!("fingerprint: {e}")))
-}
-
-/// The cached identification at `path` if it exists, its seal matches, it was built from
-/// `fingerprint` and its arrays have the shapes its counts say; a damaged one is reported and
-/// rebuilt.
-pub(crate) fn load(path: &Path, fingerprint: &str) -> Option<Identification> {
-    let damaged = |reason: String| hsv_core::cache::CacheError::Damaged {
-        path: path.to_owned(),
-        reason,
-    };
-    match hsv_core::cache::load::<Identification>(path) {
-        Ok(id) if id.format == FORMAT && id.fingerprint == fingerprint => match id.check_shapes() {
-            Ok(()) => Some(id),
-            Err(reason) => {
-                hsv_core::cache::warn_rebuilding(&damaged(reason));
-                None
-            }
-        },
-        Ok(_) => None,
-        Err(e) => {
-            if e.is_damaged() {
-                hsv_core::cache::warn_rebuilding(&e);
-            }
-            None
-        }
-    }
-}
-
-/// Writes `identification` to `path` as a sealed cache, atomically (regions or flutter points
-/// identifying at the same time never leave a torn file).
-pub(crate) fn save(path: &Path, identification: &Identification) -> Result<(), ModelError> {
-    hsv_core::cache::save(path, identification)
-        .map_err(|e| ModelError::inconsistent(NAME, e.to_string()))
 }

@@ -81,9 +81,11 @@
 //! value by construction only to the correction table's interpolation error, so the exact source
 //! is returned where no history is available.
 
+mod cache;
 pub mod check;
 pub mod identify;
 mod rom;
+mod step_csv;
 
 use hsv_core::aero::AeroModel;
 use hsv_core::error::ModelError;

@@ -16,6 +16,7 @@ use hsv_core::registry::{ModelContext, Registry};
 use hsv_core::thermal::{ConductionModel, HeatFluxModel};
 use nalgebra::DVector;
 
+use crate::vehicle::thermal::SurfaceThermal;
 use crate::vehicle::{AssemblyError, Region, RegionDiagnostics, RegionError};
 
 /// The models of a heating run, by registered name.
@@ -37,23 +38,16 @@ pub struct HeatingSteps {
     pub initial_k: f64,
 }
 
-/// One lifting surface heating in a steady flow (module docs).
+/// One lifting surface heating in a steady flow (module docs): the surface thermal region the
+/// flight heats its surfaces with ([`SurfaceThermal`]), driven by one steady flow.
 pub struct SurfaceHeating {
     region: RegionInfo,
     models: HeatingModels,
     flight: FlightCondition,
     edge: AeroSolution,
-    heat_flux: Box<dyn HeatFluxModel>,
-    conduction: Box<dyn ConductionModel>,
+    thermal: SurfaceThermal,
     steps: HeatingSteps,
-    /// The conduction state (plain data: temperatures or POD coefficients).
-    state: DVector<f64>,
-    time_s: f64,
     step: usize,
-    wall_k: Vec<f64>,
-    heat_flux_w_m2: Vec<f64>,
-    node_k: Vec<f64>,
-    trial: DVector<f64>,
     temperatures: Option<Publisher<Vec<f64>>>,
     diagnostics: RegionDiagnostics,
 }
@@ -93,39 +87,22 @@ impl SurfaceHeating {
             cause: Box::new(e),
         };
         let n_panels = region.mesh.panels.len();
-        if conduction.n_surface_panels() != n_panels {
-            return Err(model_error(hsv_core::ModelError::inconsistent(
-                &models.conduction,
-                format!(
-                    "takes {} surface panels, the region's mesh has {n_panels}",
-                    conduction.n_surface_panels()
-                ),
-            )));
-        }
+        let mut thermal =
+            SurfaceThermal::new(heat_flux, conduction, n_panels).map_err(model_error)?;
         let mut edge = AeroSolution::default();
         aero.evaluate(&region.mesh, &flight, &PanelMotion::default(), &mut edge)
             .map_err(model_error)?;
-        let state = conduction
-            .uniform_state(steps.initial_k)
-            .map_err(model_error)?;
-        let n_nodes = conduction.n_nodes();
+        thermal.start(steps.initial_k).map_err(model_error)?;
         Ok(Self {
-            trial: state.clone(),
-            state,
-            wall_k: vec![0.0; n_panels],
-            heat_flux_w_m2: vec![0.0; n_panels],
-            node_k: vec![0.0; n_nodes],
             region,
             models,
             flight,
             edge,
-            heat_flux,
-            conduction,
+            thermal,
             steps: HeatingSteps {
                 flux_every: steps.flux_every.max(1),
                 ..steps
             },
-            time_s: 0.0,
             step: 0,
             temperatures: None,
             diagnostics: RegionDiagnostics::default(),
@@ -137,24 +114,15 @@ impl SurfaceHeating {
     pub fn advance(&mut self, dt_s: f64) -> Result<(), RegionError> {
         let start = Instant::now();
         if self.step.is_multiple_of(self.steps.flux_every) {
-            self.conduction
-                .surface_temperatures(&self.state, &mut self.wall_k);
-            self.heat_flux
-                .heat_flux(
-                    &self.region.mesh,
-                    &self.flight,
-                    &self.edge,
-                    &self.wall_k,
-                    &mut self.heat_flux_w_m2,
-                )
+            self.thermal
+                .update_heat_flux(&self.region.mesh, &self.flight, &self.edge)
                 .map_err(|e| self.error(&self.models.heat_flux, e))?;
             self.diagnostics.evaluations += 1;
         }
-        self.conduction
-            .advance(&mut self.state, &mut self.trial, &self.heat_flux_w_m2, dt_s)
+        self.thermal
+            .step(dt_s, None)
             .map_err(|e| self.error(&self.models.conduction, e))?;
         self.step += 1;
-        self.time_s += dt_s;
         self.diagnostics.steps += 1;
         self.diagnostics.wall_time_s += start.elapsed().as_secs_f64();
         Ok(())
@@ -163,14 +131,14 @@ impl SurfaceHeating {
     fn error(&self, model: &str, e: hsv_core::ModelError) -> RegionError {
         RegionError {
             region: self.region.name.clone(),
-            time_s: self.time_s,
+            time_s: self.thermal.time_s(),
             message: format!("`{model}`: {e}"),
         }
     }
 
     /// Time in the flow, s.
     pub fn time_s(&self) -> f64 {
-        self.time_s
+        self.thermal.time_s()
     }
 
     /// The region this run heats.
@@ -184,26 +152,22 @@ impl SurfaceHeating {
 
     /// The conduction model (its size, grid).
     pub fn conduction(&self) -> &dyn ConductionModel {
-        self.conduction.as_ref()
+        self.thermal.conduction()
     }
 
     /// The conduction state.
     pub fn state(&self) -> &DVector<f64> {
-        &self.state
+        self.thermal.state()
     }
 
     /// Structure node temperatures of the current state, K.
     pub fn node_temperatures_k(&mut self) -> &[f64] {
-        self.conduction
-            .node_temperatures(&self.state, &mut self.node_k);
-        &self.node_k
+        self.thermal.node_temperatures_k()
     }
 
     /// Wall temperature of each panel of the current state, K.
     pub fn wall_temperatures_k(&mut self) -> &[f64] {
-        self.conduction
-            .surface_temperatures(&self.state, &mut self.wall_k);
-        &self.wall_k
+        self.thermal.wall_temperatures_k()
     }
 
     /// Where the one aero evaluation of the edge states left its model's range (counts).
@@ -213,7 +177,7 @@ impl SurfaceHeating {
 
     /// The heat flux of the latest update, W/m² per panel.
     pub fn heat_flux_w_m2(&self) -> &[f64] {
-        &self.heat_flux_w_m2
+        self.thermal.heat_flux_w_m2()
     }
 }
 
@@ -232,22 +196,21 @@ impl Region for SurfaceHeating {
 
     fn step_to(&mut self, time_s: f64, data: &mut DataManager) -> Result<(), RegionError> {
         // Steps end exactly at `time_s`: the last one is shortened when needed.
-        while time_s - self.time_s > 1e-9 * self.steps.dt_s {
-            let dt = self.steps.dt_s.min(time_s - self.time_s);
+        while time_s - self.time_s() > 1e-9 * self.steps.dt_s {
+            let dt = self.steps.dt_s.min(time_s - self.time_s());
             self.advance(dt)?;
         }
         if let Some(topic) = self.temperatures {
-            self.conduction
-                .node_temperatures(&self.state, &mut self.node_k);
-            let node_k = &self.node_k;
-            data.publish_with(topic, self.time_s, |v: &mut Vec<f64>| {
+            let time_s = self.thermal.time_s();
+            let node_k = self.thermal.node_temperatures_k();
+            data.publish_with(topic, time_s, |v: &mut Vec<f64>| {
                 v.clear();
                 v.extend_from_slice(node_k);
             })
             .and_then(|_| data.mark_converged(topic).map(|_| ()))
             .map_err(|e| RegionError {
                 region: self.region.name.clone(),
-                time_s: self.time_s,
+                time_s,
                 message: e.to_string(),
             })?;
         }

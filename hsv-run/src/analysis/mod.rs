@@ -3,6 +3,7 @@
 pub mod flight;
 pub mod flutter;
 pub mod heating;
+pub mod inputs;
 pub mod linear_grid;
 pub mod linearize;
 pub mod shards;

@@ -10,8 +10,9 @@
 //!   quaternion attitude, altitude-dependent gravity).
 //! - [`modal`]: modal equations M q̈ + C q̇ + K q = Q − C_rb a for the free-free body (mean axes)
 //!   and for each lifting surface driven by the motion of its root.
-//! - [`equations_of_motion`]: the assembled vehicle state, loads and derivative, and the flat state-vector
-//!   layout (quaternion or 3-2-1 Euler attitude) the integrator and linearization work on.
+//! - [`equations_of_motion`]: the assembled vehicle state, loads and derivative.
+//! - [`state_layout`]: the flat state-vector layout (quaternion or 3-2-1 Euler attitude) the
+//!   integrator and linearization work on.
 //! - [`integrate`]: classical fourth-order Runge-Kutta on a preallocated workspace.
 //! - [`linearize`]: A, B, C, D by central differences with the paper's perturbation rule, and
 //!   the paper's sixth-order forward difference of a sampled time history.
@@ -24,6 +25,7 @@ pub mod integrate;
 pub mod linearize;
 pub mod modal;
 pub mod rigid_body;
+pub mod state_layout;
 
 pub use equations_of_motion::{
     AttitudeCoordinates, StateLayout, VehicleDerivative, VehicleDynamics, VehicleLoads,

@@ -11,6 +11,7 @@ pub mod partitioned;
 pub mod region_rate;
 pub mod rigid;
 pub mod staggered;
+pub mod thermal;
 
 use hsv_core::aero::AeroModel;
 use hsv_core::config::{LoadedConfig, REGION_NAMES, RegionModels};

@@ -11,11 +11,13 @@
 //! - [`stability`]: eigenvalues and eigenvectors of A with frequency and damping per root, mode
 //!   tracking by eigenvector correlation (MAC), and Brent's root finder for the crossing.
 //! - [`sweep`]: the heated surface (from 293 K, heated by the flow at each Mach number for the
-//!   requested time) analysed over a Mach grid and times, and the flutter Mach number per time
-//!   by bracketing on the grid and Brent's method between.
+//!   requested time) analysed over a Mach grid and times.
+//! - [`boundary`]: the flutter and divergence Mach numbers per time from the swept grid
+//!   (bracketing on the grid, Brent's method between) and the mode tracking across it.
 //! - [`panel`]: the classical check of the same path, a simply supported rectangular panel
 //!   under first-order piston theory without aerodynamic damping (Dowell's λ).
 
+pub mod boundary;
 pub mod panel;
 pub mod stability;
 pub mod surface;

@@ -11,12 +11,9 @@ impl PartitionedVehicle {
         self.rebuild_exchange()?;
         for s in &mut self.surfaces {
             if let Some(t) = &mut s.thermal {
-                t.state = t
-                    .conduction
-                    .uniform_state(rates.initial_k)
+                t.region
+                    .start(rates.initial_k)
                     .map_err(model_error(&s.name))?;
-                t.trial.clone_from(&t.state);
-                t.conduction_time_s = 0.0;
                 t.stiffness_time_s = 0.0;
             }
         }
@@ -83,14 +80,14 @@ impl PartitionedVehicle {
     ) {
         for s in &mut self.surfaces {
             if let Some(t) = &mut s.thermal {
-                t.conduction.node_temperatures(&t.state, &mut t.node_k);
-                let n = t.node_k.len().max(1) as f64;
+                let node_k = t.region.node_temperatures_k();
+                let n = node_k.len().max(1) as f64;
                 visit(
                     &s.name,
                     SurfaceTemperatures {
-                        min_k: t.node_k.iter().copied().fold(f64::INFINITY, f64::min),
-                        max_k: t.node_k.iter().copied().fold(f64::NEG_INFINITY, f64::max),
-                        mean_k: t.node_k.iter().sum::<f64>() / n,
+                        min_k: node_k.iter().copied().fold(f64::INFINITY, f64::min),
+                        max_k: node_k.iter().copied().fold(f64::NEG_INFINITY, f64::max),
+                        mean_k: node_k.iter().sum::<f64>() / n,
                     },
                 );
             }
@@ -108,10 +105,7 @@ impl PartitionedVehicle {
             mesh.merge(&s.deflected);
             pressure.extend_from_slice(&s.solution.pressure_pa);
             match &mut s.thermal {
-                Some(t) => {
-                    t.conduction.surface_temperatures(&t.state, &mut t.wall_k);
-                    wall.extend_from_slice(&t.wall_k);
-                }
+                Some(t) => wall.extend_from_slice(t.region.wall_temperatures_k()),
                 None => wall.extend(std::iter::repeat_n(f64::NAN, s.deflected.panels.len())),
             }
         }

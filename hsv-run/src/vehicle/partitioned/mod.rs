@@ -161,23 +161,14 @@ impl Default for HeatingRates {
     }
 }
 
-/// One surface's thermal model and state: heat flux from its latest aero solution, conduction,
-/// and the structure's stiffness updated from the temperature field.
-struct SurfaceThermal {
-    heat_flux: Box<dyn hsv_core::thermal::HeatFluxModel>,
-    conduction: Box<dyn hsv_core::thermal::ConductionModel>,
-    /// The conduction state: simulation state of the region.
-    state: DVector<f64>,
-    trial: DVector<f64>,
-    wall_k: Vec<f64>,
-    /// The wall heat flux, W/m² per panel, as the aerothermal step computes it before it is
-    /// published on the surface's `wall_heat_flux` topic (the conduction reads the topic).
-    flux_w_m2: Vec<f64>,
-    node_k: Vec<f64>,
+/// One surface heating in flight: its thermal region ([`crate::vehicle::thermal`]: the heat
+/// flux from its latest aero solution, published on its `wall_heat_flux` topic, and the
+/// conduction under it) and the structure's stiffness updated from the temperature field.
+struct HeatedSurface {
+    region: crate::vehicle::thermal::SurfaceThermal,
     /// The temperature field moved onto the structure's nodes (last stiffness update).
     onto_structure: hsv_core::coupling::StructureTemperatures,
-    /// Time up to which conduction has been stepped, and of the last stiffness update.
-    conduction_time_s: f64,
+    /// Time of the last stiffness update, s.
     stiffness_time_s: f64,
     /// Set when the stiffness was updated and the vehicle's modal matrices must follow.
     stiffness_changed: bool,
@@ -442,7 +433,7 @@ struct Body {
 }
 
 struct Surface {
-    thermal: Option<SurfaceThermal>,
+    thermal: Option<HeatedSurface>,
     friction: Option<RegionFriction>,
     /// Skin friction about the pivot (body frame) evaluated at the open step's first stage, the
     /// accepted state, and held by its other stages (see [`surface_region_loads`]).

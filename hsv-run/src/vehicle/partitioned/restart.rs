@@ -14,10 +14,10 @@ impl PartitionedVehicle {
                 .iter()
                 .map(|s| {
                     s.thermal.as_ref().map(|t| ThermalRestart {
-                        state: t.state.clone(),
+                        state: t.region.state().clone(),
                         structure_k: t.onto_structure.mean_k.clone(),
                         structure_difference_k: t.onto_structure.difference_k.clone(),
-                        conduction_time_s: t.conduction_time_s,
+                        conduction_time_s: t.region.time_s(),
                         stiffness_time_s: t.stiffness_time_s,
                     })
                 })
@@ -93,20 +93,21 @@ impl PartitionedVehicle {
             s.history.clone_from(&r.histories[i]);
             match (&mut s.thermal, &r.thermal[i]) {
                 (Some(t), Some(saved)) => {
-                    if saved.state.len() != t.state.len() {
+                    if saved.state.len() != t.region.state().len() {
                         return Err(VehicleError::Input(format!(
                             "restart file: {} thermal states for `{}`, whose conduction model has {}",
                             saved.state.len(),
                             s.name,
-                            t.state.len()
+                            t.region.state().len()
                         )));
                     }
-                    t.state.clone_from(&saved.state);
+                    t.region
+                        .restore(&saved.state, saved.conduction_time_s)
+                        .map_err(model_error(&s.name))?;
                     t.onto_structure.mean_k.clone_from(&saved.structure_k);
                     t.onto_structure
                         .difference_k
                         .clone_from(&saved.structure_difference_k);
-                    t.conduction_time_s = saved.conduction_time_s;
                     t.stiffness_time_s = saved.stiffness_time_s;
                     if t.stiffness_time_s > 0.0 {
                         if let Some(thermal) = s.structure.thermal_stiffness_mut() {

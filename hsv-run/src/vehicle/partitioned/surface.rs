@@ -12,7 +12,7 @@ pub(super) fn surface_thermal(
     conduction: Box<dyn hsv_core::thermal::ConductionModel>,
     structure: &dyn StructureModel,
     n_panels: usize,
-) -> Result<SurfaceThermal, AssemblyError> {
+) -> Result<HeatedSurface, AssemblyError> {
     let thermal = structure
         .thermal_stiffness()
         .ok_or_else(|| assembly_error(name, "temperature-dependent stiffness".into()))?;
@@ -20,27 +20,12 @@ pub(super) fn surface_thermal(
         hsv_core::coupling::StructureTemperatures::new(conduction.as_ref(), thermal).map_err(
             |e| assembly_error(name, format!("conduction `{}`: {e}", conduction.name())),
         )?;
-    if conduction.n_surface_panels() != n_panels {
-        return Err(assembly_error(
-            name,
-            format!(
-                "conduction `{}` takes {} surface panels, the region's mesh has {n_panels}",
-                conduction.name(),
-                conduction.n_surface_panels()
-            ),
-        ));
-    }
-    let n_nodes = conduction.n_nodes();
-    Ok(SurfaceThermal {
-        state: DVector::zeros(conduction.n_states()),
-        trial: DVector::zeros(conduction.n_states()),
-        heat_flux,
-        conduction,
-        wall_k: vec![0.0; n_panels],
-        flux_w_m2: vec![0.0; n_panels],
-        node_k: vec![0.0; n_nodes],
+    let model = conduction.name().to_owned();
+    let region = crate::vehicle::thermal::SurfaceThermal::new(heat_flux, conduction, n_panels)
+        .map_err(|e| assembly_error(name, format!("conduction `{model}`: {e}")))?;
+    Ok(HeatedSurface {
+        region,
         onto_structure,
-        conduction_time_s: 0.0,
         stiffness_time_s: 0.0,
         stiffness_changed: false,
     })
@@ -239,15 +224,8 @@ pub(super) fn refresh_heat_flux(
     let Some(t) = &mut s.thermal else {
         return Ok(());
     };
-    t.conduction.surface_temperatures(&t.state, &mut t.wall_k);
-    t.heat_flux
-        .heat_flux(
-            &s.deflected,
-            flight,
-            &s.solution,
-            &t.wall_k,
-            &mut t.flux_w_m2,
-        )
+    t.region
+        .update_heat_flux(&s.deflected, flight, &s.solution)
         .map_err(&err)?;
     Ok(())
 }
@@ -266,20 +244,15 @@ pub(super) fn heat_surface(
         return Ok(());
     };
     let err = model_error(&s.name);
-    // Read in place from its topic (before any refresh: the zero flux the buffer starts with).
-    let flux = exchange.heat_flux(index)?.unwrap_or(&t.flux_w_m2);
-    let mut stepped = false;
-    while time_s - t.conduction_time_s > 1e-9 * rates.conduction_s {
-        let dt = rates.conduction_s.min(time_s - t.conduction_time_s);
-        t.conduction
-            .advance(&mut t.state, &mut t.trial, flux, dt)
-            .map_err(&err)?;
-        t.conduction_time_s += dt;
-        stepped = true;
-    }
+    // Read in place from its topic (before any refresh: the zero flux the region starts with).
+    let flux = exchange.heat_flux(index)?;
+    let stepped = t
+        .region
+        .advance_to(time_s, rates.conduction_s, flux)
+        .map_err(&err)?;
     if stepped && time_s - t.stiffness_time_s >= rates.stiffness_s - 1e-12 {
         t.onto_structure
-            .update(t.conduction.as_ref(), &t.state)
+            .update(t.region.conduction(), t.region.state())
             .map_err(|e| {
                 err(ModelError::inconsistent(
                     "temperature transfer",
@@ -391,7 +364,7 @@ impl PartitionedVehicle {
         for (index, s) in self.surfaces.iter().enumerate() {
             if let Some(t) = &s.thermal {
                 self.exchange
-                    .publish_heat_flux(index, time_s, &t.flux_w_m2)?;
+                    .publish_heat_flux(index, time_s, t.region.heat_flux_w_m2())?;
             }
         }
         Ok(())

@@ -15,7 +15,8 @@
 //!    the accepted state are evaluated side by side and published (the body every step; the
 //!    surfaces too with `surface_loads_dt_s`; module [`vehicle::region_rate`]).
 //! 4. [`dynamics::integrate`] (`ExponentialRk4::step`) takes four stage derivatives; each calls
-//!    the vehicle's `derivative` (`interface.rs`): the regions' loads at the stage
+//!    the vehicle's `stage_derivative` with the open step `begin_step` returned (`interface.rs`):
+//!    the regions' loads at the stage
 //!    (`region_loads`, `step.rs`), then the body-surface interface closed by the configured
 //!    fixed point (`close_interface`) over the equations of motion
 //!    ([`dynamics::equations_of_motion`]).

@@ -488,9 +488,8 @@ fn the_heat_flux_comes_from_the_accepted_state_not_the_last_stage() {
     let start = heated_trimmed;
     let (mut staged, state, controls) = start();
     let (mut unstaged, _, _) = start();
-    for vehicle in [&mut staged, &mut unstaged] {
-        vehicle.begin_step(&state, &controls, 0.0).expect("opens");
-    }
+    let opened = [&mut staged, &mut unstaged]
+        .map(|vehicle| vehicle.begin_step(&state, &controls, 0.0).expect("opens"));
     let far_stage = FlightControls {
         elevon: ElevonCommand {
             symmetric_rad: controls.elevon.symmetric_rad + 10f64.to_radians(),
@@ -500,10 +499,10 @@ fn the_heat_flux_comes_from_the_accepted_state_not_the_last_stage() {
     };
     let mut derivative = staged.dynamics().zero_derivative();
     staged
-        .derivative_at(0.01, &state, &far_stage, &mut derivative)
+        .stage_derivative(&opened[0], 0.01, &state, &far_stage, &mut derivative)
         .expect("stage");
-    for vehicle in [&mut staged, &mut unstaged] {
-        vehicle.commit_step(&state, 0.01).expect("commits");
+    for (vehicle, open) in [&mut staged, &mut unstaged].into_iter().zip(opened) {
+        vehicle.commit_step(open, &state, 0.01).expect("commits");
     }
     let (heated, reference) = (
         staged.surface_temperatures(),

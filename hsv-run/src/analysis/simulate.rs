@@ -10,7 +10,7 @@ use nalgebra::DVector;
 
 use crate::control::ControlLoop;
 use crate::dynamics::{AttitudeCoordinates, ExponentialRk4, VehicleState};
-use crate::vehicle::partitioned::{PartitionedVehicle, VehicleError};
+use crate::vehicle::partitioned::{OpenStep, PartitionedVehicle, VehicleError};
 use crate::vehicle::staggered::StaggeredInterface;
 
 pub use super::inputs::{InputError, InputTable, Inputs};
@@ -317,7 +317,7 @@ impl Stepper {
         control.begin_step(k, t, dt, state, &vehicle.gust_body_m_s())?;
         // The body region at the accepted state, read by the step's stages (its rate).
         let start_controls = control.controls_at(t)?;
-        vehicle.begin_step(state, &start_controls, t)?;
+        let open = vehicle.begin_step(state, &start_controls, t)?;
         let Self {
             layout,
             x,
@@ -328,14 +328,14 @@ impl Stepper {
         } = self;
         if let Some((interface, start, last)) = staggered {
             staggered_step(
-                vehicle, control, layout, rk4, scratch, derivative, interface, start, last, x, t,
-                dt,
+                vehicle, &open, control, layout, rk4, scratch, derivative, interface, start, last,
+                x, t, dt,
             )?;
         } else {
             let mut f = |time: f64, x: &DVector<f64>, dx: &mut DVector<f64>| {
                 layout.unpack(x, scratch)?;
                 let controls = control.controls_at(time)?;
-                vehicle.derivative_at(time, scratch, &controls, derivative)?;
+                vehicle.stage_derivative(&open, time, scratch, &controls, derivative)?;
                 layout.pack_derivative(x, derivative, dx)?;
                 Ok::<(), VehicleError>(())
             };
@@ -344,7 +344,7 @@ impl Stepper {
         }
         layout.unpack(x, state)?;
         // The accepted step: models with memory commit their history, the surfaces heat.
-        vehicle.commit_step(state, end)
+        vehicle.commit_step(open, state, end)
     }
 }
 
@@ -354,6 +354,7 @@ impl Stepper {
 #[allow(clippy::too_many_arguments)]
 fn staggered_step(
     vehicle: &mut PartitionedVehicle,
+    open: &OpenStep,
     control: &mut ControlLoop,
     layout: &crate::dynamics::StateLayout,
     rk4: &mut ExponentialRk4,
@@ -385,7 +386,14 @@ fn staggered_step(
                     crate::vehicle::staggered::STAGES
                 ))
             })?;
-            vehicle.staggered_derivative(time, scratch, &controls, guess, produced, derivative)?;
+            vehicle.staggered_derivative(
+                (open, time),
+                scratch,
+                &controls,
+                guess,
+                produced,
+                derivative,
+            )?;
             layout.pack_derivative(x, derivative, dx)?;
             stage += 1;
             Ok::<(), VehicleError>(())

@@ -294,7 +294,6 @@ impl PartitionedVehicle {
             exchange,
             stage_one: None,
             stage_one_state: VehicleState::default(),
-            in_step: false,
             disturbances: Disturbances::default(),
             surface_flights: Vec::new(),
         })

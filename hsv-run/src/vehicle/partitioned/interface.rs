@@ -62,7 +62,7 @@ impl PartitionedVehicle {
     /// to `produced`.
     pub fn staggered_derivative(
         &mut self,
-        time_s: f64,
+        (step, time_s): (&OpenStep, f64),
         state: &VehicleState,
         controls: &FlightControls,
         guess: &[f64],
@@ -71,7 +71,7 @@ impl PartitionedVehicle {
     ) -> Result<(), VehicleError> {
         self.time_s = time_s;
         let flight = self.flight(state)?;
-        self.region_loads(state, controls, &flight)?;
+        self.region_loads(state, controls, &flight, step.reads_publications)?;
         self.set_interface_guess(guess);
         let body_without_roots = self.loads.body;
         self.add_root_loads(state, &body_without_roots)?;
@@ -213,9 +213,26 @@ impl PartitionedVehicle {
         Ok(change)
     }
 
+    /// The derivative of a Runge-Kutta stage of the open `step` at time `time_s`: as
+    /// [`Self::derivative_at`], with each region that runs at its own rate read from its
+    /// publications (module [`crate::vehicle::region_rate`]).
+    pub fn stage_derivative(
+        &mut self,
+        step: &OpenStep,
+        time_s: f64,
+        state: &VehicleState,
+        controls: &FlightControls,
+        out: &mut VehicleDerivative,
+    ) -> Result<(), VehicleError> {
+        self.time_s = time_s;
+        let flight = self.flight(state)?;
+        self.region_loads(state, controls, &flight, step.reads_publications)?;
+        self.close_interface(state, out)
+    }
+
     /// The state derivative at time `time_s` (the time models with memory read their history up
-    /// to and the wind field is sampled at), `state` and `controls`, into `out`: a Runge-Kutta
-    /// stage's evaluation ([`Self::derivative`] at that time).
+    /// to and the wind field is sampled at), `state` and `controls`, into `out`, every region
+    /// evaluated ([`Self::derivative`] at that time).
     pub fn derivative_at(
         &mut self,
         time_s: f64,
@@ -237,7 +254,7 @@ impl PartitionedVehicle {
         out: &mut VehicleDerivative,
     ) -> Result<(), VehicleError> {
         let flight = self.flight(state)?;
-        self.region_loads(state, controls, &flight)?;
+        self.region_loads(state, controls, &flight, false)?;
         self.close_interface(state, out)
     }
 

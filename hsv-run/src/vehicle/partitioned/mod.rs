@@ -268,6 +268,21 @@ impl FollowerSurface {
     }
 }
 
+/// A time step opened at an accepted state by [`PartitionedVehicle::begin_step`] and not yet
+/// committed: what its stage derivatives ([`PartitionedVehicle::stage_derivative`],
+/// [`PartitionedVehicle::staggered_derivative`]) take to read the regions published at their
+/// own rates, and what [`PartitionedVehicle::commit_step`] takes back. Plain data: the open
+/// step is an argument, not a flag inside the vehicle.
+#[derive(Debug, PartialEq)]
+#[must_use = "a step opened must be committed with `commit_step`"]
+pub struct OpenStep {
+    /// Start of the step, s.
+    pub start_s: f64,
+    /// Whether a region runs at its own rate, so the stages read publications (and hold the
+    /// surfaces' skin friction); false when every region is evaluated at every stage.
+    pub reads_publications: bool,
+}
+
 /// The controls at one instant.
 #[derive(Debug, Clone, Copy, PartialEq, Default, serde::Serialize, serde::Deserialize)]
 pub struct FlightControls {
@@ -514,9 +529,8 @@ pub struct PartitionedVehicle {
     body_mode_names: Vec<String>,
     /// Body modal amplitudes of the last steady evaluation.
     trim_modes: Vec<f64>,
-    /// How often the body region is evaluated within a step, its publications, and whether a
-    /// step is open (between [`PartitionedVehicle::begin_step`] and `commit_step`): only then
-    /// do derivatives read the published body loads.
+    /// How often the body region is evaluated within a step (its publications are read by the
+    /// stages of an open step: [`OpenStep`]).
     body_rate: RegionLoadRate,
     /// How often the body's skin friction is re-evaluated among the body's publications in a
     /// run (module [`super::region_rate`]); outside a run, at every evaluation.
@@ -531,7 +545,6 @@ pub struct PartitionedVehicle {
     /// must match to use them instead of evaluating them again.
     stage_one: Option<(f64, FlightControls)>,
     stage_one_state: VehicleState,
-    in_step: bool,
     /// The wind field the regions fly through (calm unless a flight sets one).
     disturbances: Disturbances,
     /// Each surface's flight condition in that field at the last evaluation (scratch).

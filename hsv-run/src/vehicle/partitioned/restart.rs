@@ -80,7 +80,6 @@ impl PartitionedVehicle {
         // The exchange declares the heat flux's interval: at the run's, then its state.
         self.rebuild_exchange()?;
         self.exchange.restore(&r.region_loads)?;
-        self.in_step = false;
         self.stage_one = None;
         self.q_ddot.clone_from(&r.q_ddot);
         if r.body_q_ddot.is_empty() {

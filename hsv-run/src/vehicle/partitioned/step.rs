@@ -13,9 +13,15 @@ impl PartitionedVehicle {
         &self.mass
     }
 
-    /// Commits an accepted step ending at `time_s` with `state` into the surfaces' modal
-    /// histories (aero models with memory; nothing for the others).
-    pub fn commit_step(&mut self, state: &VehicleState, time_s: f64) -> Result<(), VehicleError> {
+    /// Commits the accepted `step` ending at `time_s` with `state`: the surfaces' modal
+    /// histories (aero models with memory; nothing for the others) and the heating.
+    pub fn commit_step(
+        &mut self,
+        step: OpenStep,
+        state: &VehicleState,
+        time_s: f64,
+    ) -> Result<(), VehicleError> {
+        let OpenStep { .. } = step;
         self.time_s = time_s;
         let flight = self.flight(state)?;
         self.update_surface_flights(state, &flight)?;
@@ -35,7 +41,6 @@ impl PartitionedVehicle {
         }
         self.advance_heating(time_s)?;
         self.time_s = time_s;
-        self.in_step = false;
         self.stage_one = None;
         Ok(())
     }
@@ -95,15 +100,15 @@ impl PartitionedVehicle {
 
     /// Opens the step starting at `time_s` from the accepted `state`: the heat flux where due;
     /// then each region that runs at its own rate (the body by default, the surfaces with
-    /// `surface_loads_dt_s`) is evaluated and published here when due, and the step's
-    /// derivatives read its publications (extrapolated) until [`Self::commit_step`].
+    /// `surface_loads_dt_s`) is evaluated and published here when due. The step's stage
+    /// derivatives ([`Self::stage_derivative`] with the returned [`OpenStep`]) read its
+    /// publications (extrapolated) until [`Self::commit_step`] takes the step back.
     pub fn begin_step(
         &mut self,
         state: &VehicleState,
         controls: &FlightControls,
         time_s: f64,
-    ) -> Result<(), VehicleError> {
-        self.in_step = false;
+    ) -> Result<OpenStep, VehicleError> {
         self.stage_one = None;
         // The field a step reads (its stages and every region ahead of the centre of mass).
         self.disturbances
@@ -111,7 +116,11 @@ impl PartitionedVehicle {
         if self.body_rate == RegionLoadRate::EveryStage
             && self.surface_rate == RegionLoadRate::EveryStage
         {
-            return self.refresh_heat_fluxes(state, controls, time_s, false);
+            self.refresh_heat_fluxes(state, controls, time_s, false)?;
+            return Ok(OpenStep {
+                start_s: time_s,
+                reads_publications: false,
+            });
         }
         for s in &mut self.surfaces {
             s.held_friction = None;
@@ -142,8 +151,10 @@ impl PartitionedVehicle {
         // The heat flux where due, from the surfaces' aero at this state (just evaluated, or
         // evaluated for it).
         self.refresh_heat_fluxes(state, controls, time_s, surfaces_evaluated)?;
-        self.in_step = true;
-        Ok(())
+        Ok(OpenStep {
+            start_s: time_s,
+            reads_publications: true,
+        })
     }
 
     /// The body (when due) and the surfaces (when wanted) at the step starting at `time_s`,
@@ -269,19 +280,21 @@ impl PartitionedVehicle {
     }
 
     /// Loads of every region except the root loads' inertia term (which waits for q̈): the
-    /// main body with its engine, and each lifting surface, run side by side (rayon). Inside a
-    /// step a region that runs at its own rate reads its publications instead, and the first
-    /// stage reads the surfaces `begin_step` evaluated at its state.
+    /// main body with its engine, and each lifting surface, run side by side (rayon). At a
+    /// stage of an open step (`in_step`) a region that runs at its own rate reads its
+    /// publications instead, and the first stage reads the surfaces `begin_step` evaluated at
+    /// its state.
     pub(super) fn region_loads(
         &mut self,
         state: &VehicleState,
         controls: &FlightControls,
         flight: &FlightCondition,
+        in_step: bool,
     ) -> Result<(), VehicleError> {
-        let surfaces_read = self.in_step
+        let surfaces_read = in_step
             && (self.read_surface_loads(&controls.elevon)?
                 || self.stage_one_surfaces(state, controls));
-        let body_read = self.in_step
+        let body_read = in_step
             && self.exchange.read_body(
                 self.time_s,
                 &mut self.loads.body,
@@ -298,7 +311,7 @@ impl PartitionedVehicle {
             RegionsWanted {
                 body: !body_read,
                 surfaces: !surfaces_read,
-                hold_friction: self.in_step,
+                hold_friction: in_step,
             },
         );
         if let Some(done) = surfaces_done {

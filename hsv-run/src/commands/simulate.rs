@@ -348,6 +348,9 @@ pub fn run(args: SimulateArgs, registry: &Registry) -> Result<()> {
     let n_steps = plan.steps;
     let mut samples: Vec<Sample> = Vec::with_capacity(n_steps / run_settings.record_every + 2);
     let mut body_modes: Vec<Vec<f64>> = Vec::with_capacity(samples.capacity());
+    // Each coupling interface's residual per sample (issue 25: recorded per interface).
+    let interface_names = vehicle.interface_names();
+    let mut interface_residuals: Vec<Vec<f64>> = Vec::with_capacity(samples.capacity());
     let mut progress = (!args.quiet).then(|| Progress::new("simulate", n_steps));
     let start = Instant::now();
     let mut frames: Vec<(f64, String)> = Vec::new();
@@ -363,6 +366,7 @@ pub fn run(args: SimulateArgs, registry: &Registry) -> Result<()> {
         |sample, state, vehicle| {
             samples.push(sample.clone());
             body_modes.push(state.body_modes.q.iter().copied().collect());
+            interface_residuals.push(vehicle.interface_residuals().to_vec());
             if vtk_every > 0.0 && sample.time_s >= next_frame_s - 1e-9 && frame_error.is_none() {
                 let name = format!("vehicle_{:04}.vtk", frames.len());
                 let (mesh, pressure, wall) = vehicle.oml_snapshot();
@@ -448,7 +452,12 @@ pub fn run(args: SimulateArgs, registry: &Registry) -> Result<()> {
         Ok(_) => RunStatus::Completed,
         Err(e) => RunStatus::Failed(e.to_string()),
     };
-    write_history(&mut folder, &samples, &body_modes)?;
+    write_history(
+        &mut folder,
+        &samples,
+        &body_modes,
+        (&interface_names, &interface_residuals),
+    )?;
     let summary = serde_json::json!({
         "mach": mach,
         "altitude_m": altitude_m,
@@ -529,6 +538,7 @@ fn write_history(
     folder: &mut RunFolder,
     samples: &[Sample],
     body_modes: &[Vec<f64>],
+    (interfaces, residuals): (&[String], &[Vec<f64>]),
 ) -> Result<()> {
     let column = |f: fn(&Sample) -> f64| samples.iter().map(f).collect::<Vec<f64>>();
     let time = column(|s| s.time_s);
@@ -544,10 +554,24 @@ fn write_history(
     let mode_columns: Vec<Vec<f64>> = (0..n_modes)
         .map(|k| body_modes.iter().map(|q| q[k]).collect())
         .collect();
+    let residual_names: Vec<String> = interfaces
+        .iter()
+        .map(|name| format!("coupling_residual_{name}"))
+        .collect();
+    let residual_columns: Vec<Vec<f64>> = (0..interfaces.len())
+        .map(|k| {
+            residuals
+                .iter()
+                .map(|r| r.get(k).copied().unwrap_or(f64::NAN))
+                .collect()
+        })
+        .collect();
     let mut headers: Vec<&str> = columns.iter().map(|(h, _)| *h).collect();
     headers.extend(mode_names.iter().map(String::as_str));
+    headers.extend(residual_names.iter().map(String::as_str));
     let mut data: Vec<&[f64]> = columns.iter().map(|(_, c)| c.as_slice()).collect();
     data.extend(mode_columns.iter().map(Vec::as_slice));
+    data.extend(residual_columns.iter().map(Vec::as_slice));
     let csv = folder.join("history.csv");
     write_csv(&csv, &headers, &data)?;
     folder.record(csv);

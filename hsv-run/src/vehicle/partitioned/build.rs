@@ -251,6 +251,7 @@ impl PartitionedVehicle {
             .collect();
         let interface_len = q_ddot.iter().map(|q| q.len()).sum::<usize>() + body_modal.n_modes();
         let surface_names: Vec<String> = surfaces.iter().map(|s| s.name.clone()).collect();
+        let n_surfaces = surfaces.len();
         let exchange = RegionExchange::new(
             &surface_names,
             RegionLoadRate::default(),
@@ -280,6 +281,7 @@ impl PartitionedVehicle {
             settings,
             loads,
             report: CouplingReport::default(),
+            interface_residuals: vec![0.0; n_surfaces + 1],
             warm_start: None,
             heating: HeatingRates::default(),
             time_s: 0.0,

@@ -163,7 +163,8 @@ impl PartitionedVehicle {
     }
 
     /// The surfaces' root loads on the body for the current q̈ guess, added to the body loads
-    /// about the centre of mass; returns the largest relative change of a root force.
+    /// about the centre of mass; each surface's relative root-force change goes to its
+    /// interface residual, and the largest is returned.
     pub(super) fn add_root_loads(
         &mut self,
         state: &VehicleState,
@@ -191,7 +192,9 @@ impl PartitionedVehicle {
             let force = rotation * root.force_n;
             let moment = rotation * root.moment_nm;
             let scale = force.norm().max(s.root_force_n.norm()).max(1.0);
-            change = change.max((force - s.root_force_n).norm() / scale);
+            let surface_change = (force - s.root_force_n).norm() / scale;
+            self.interface_residuals[i] = surface_change;
+            change = change.max(surface_change);
             s.root_force_n = force;
             self.loads.surface_root_loads[i] = Loads {
                 force_n: force,
@@ -284,6 +287,9 @@ impl PartitionedVehicle {
                 .zip(self.body_q_ddot.iter())
                 .fold(0.0_f64, |m, (a, b)| m.max((a - b).abs()))
                 / self.body_q_ddot_scale;
+            if let Some(body) = self.interface_residuals.last_mut() {
+                *body = body_change;
+            }
             residual = residual.max(body_change);
             if n_surfaces == 0 || (iteration > 1 && residual <= self.settings.tolerance) {
                 self.report = CouplingReport {
@@ -319,13 +325,8 @@ impl PartitionedVehicle {
         };
         Err(VehicleError::Coupling {
             iterations: self.settings.max_iterations,
-            interfaces: self
-                .surfaces
-                .iter()
-                .map(|s| s.name.as_str())
-                .collect::<Vec<_>>()
-                .join(", "),
-            residuals: vec![residual],
+            interfaces: self.interface_names().join(", "),
+            residuals: self.interface_residuals.clone(),
             tolerance: self.settings.tolerance,
         })
     }

@@ -419,8 +419,9 @@ pub enum VehicleError {
     #[error("{0}")]
     Input(String),
     #[error(
-        "body-surface coupling did not converge in {iterations} iterations at the pivots of \
-         {interfaces}: last relative root-load changes {residuals:?} (tolerance {tolerance})"
+        "body-surface coupling did not converge in {iterations} iterations at the interfaces \
+         {interfaces}: last relative changes {residuals:?} (root forces, body η̈; tolerance \
+         {tolerance})"
     )]
     Coupling {
         iterations: usize,
@@ -519,6 +520,10 @@ pub struct PartitionedVehicle {
     /// [`super::staggered`]).
     staggered: Option<super::staggered::StaggeredSettings>,
     report: CouplingReport,
+    /// Each interface's residual at the last fixed-point iteration: every surface's relative
+    /// root-force change, then the body's η̈ change (relative to the η̈ that moves a pivot by
+    /// 1 g); [`PartitionedVehicle::interface_names`] names them.
+    interface_residuals: Vec<f64>,
     warm_start: Option<VehicleState>,
     heating: HeatingRates,
     /// Simulation time of the next derivative, s (for models with memory).

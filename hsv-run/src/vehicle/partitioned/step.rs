@@ -224,6 +224,23 @@ impl PartitionedVehicle {
         self.report
     }
 
+    /// The interfaces of the body-surface coupling, in [`Self::interface_residuals`]' order:
+    /// each lifting surface's root, then the main body's modes.
+    pub fn interface_names(&self) -> Vec<String> {
+        self.surfaces
+            .iter()
+            .map(|s| s.name.clone())
+            .chain(std::iter::once("main_body".to_owned()))
+            .collect()
+    }
+
+    /// Each interface's residual at the last derivative's final fixed-point iteration (the
+    /// implicit scheme): a surface's relative root-force change, the body's relative η̈
+    /// change; [`CouplingReport::residual`] is the largest.
+    pub fn interface_residuals(&self) -> &[f64] {
+        &self.interface_residuals
+    }
+
     /// The flight condition of a rigid state at the centre of mass: airspeed, α, β relative
     /// to the air (the disturbances' wind there) and rates about it.
     pub fn flight(&self, state: &VehicleState) -> Result<FlightCondition, VehicleError> {

@@ -1,4 +1,6 @@
-//! The vehicle config file: its types, loading, and errors that name the file and key path.
+//! The vehicle config file: its types, loading, and errors that name the file and key path (one
+//! file: the tables, their parse and the checks across tables are read together; the tests at
+//! its end, about a fifth of it, exercise them on the embedded sample).
 //!
 //! Every table is `deny_unknown_fields`, so a misspelt key is an error that names the key path
 //! and the allowed keys, never a silently ignored setting.

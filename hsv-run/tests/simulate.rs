@@ -1,6 +1,7 @@
 //! Time simulation of the partitioned vehicle from trim (paper §IV.C): a trimmed state stays
 //! put, the elevon doublet's altitude response is non-minimum phase (paper Fig. 11), and input
-//! tables are checked; restarts are bit-identical and a glide conserves energy with its loads.
+//! tables are checked; restarts are bit-identical and a glide conserves energy with its loads
+//! (one file: the checks share the trimmed vehicles and the flight helpers below).
 
 use hsv_run::analysis::simulate::{InputTable, Inputs, Integrator, RunSettings, Sample, simulate};
 use hsv_run::vehicle::partitioned::{FlightControls, PartitionedVehicle};

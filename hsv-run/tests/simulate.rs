@@ -520,9 +520,11 @@ static GLOBAL: hsv_core::testing::CountingAllocator = hsv_core::testing::Countin
 fn the_time_loop_allocates_nothing_once_its_buffers_exist() {
     use hsv_run::vehicle::partitioned::{HeatingRates, SurfaceModel};
     // The heated partitioned vehicle (coarse surfaces) with the body at its 1 ms rate, the
-    // surfaces heating, their stiffness updated every 50 ms and a sample recorded every step:
-    // after the first steps have sized every buffer, the loop must not touch the heap. One
-    // rayon thread, so every allocation happens on the thread the counter watches.
+    // surfaces heating, their stiffness updated every 20 ms and a sample recorded every step:
+    // after the first steps have sized every buffer, the loop must not touch the heap. (A
+    // topic's buffers exist once it holds its two values: the structure temperatures, published
+    // at each stiffness update, by step 20.) One rayon thread, so every allocation happens on
+    // the thread the counter watches.
     let pool = rayon::ThreadPoolBuilder::new()
         .num_threads(1)
         .build()
@@ -550,7 +552,7 @@ fn the_time_loop_allocates_nothing_once_its_buffers_exist() {
                 .start_heating(&HeatingRates {
                     conduction_s: 0.01,
                     heat_flux_s: 0.02,
-                    stiffness_s: 0.05,
+                    stiffness_s: 0.02,
                     initial_k: 293.0,
                 })
                 .expect("heating");

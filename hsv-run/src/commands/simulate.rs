@@ -153,7 +153,7 @@ impl DisturbanceArgs {
 }
 
 /// Tag of the restart file format.
-const RESTART_FORMAT: &str = "hsv-restart-2";
+const RESTART_FORMAT: &str = "hsv-restart-3";
 
 /// What `--resume` continues from: written as `restart.json` at the end of every run. Its
 /// `step`, `state`, `vehicle` and `control` are the run's [`RunState`] (flattened: the same keys

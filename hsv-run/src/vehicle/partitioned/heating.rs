@@ -20,13 +20,14 @@ impl PartitionedVehicle {
         Ok(())
     }
 
-    /// Advances every heated surface to `time_s`: conduction steps under the heat flux of the
-    /// step's start ([`Self::begin_step`]), and the structure's stiffness (and the modal
-    /// equations) from the temperature field every stiffness interval.
+    /// Advances every heated surface to `time_s`: its thermal region's conduction steps under
+    /// the heat flux of the step's start ([`Self::begin_step`]) and, every stiffness interval,
+    /// the temperature field published on its `structure_temperatures` topic, which its
+    /// structure reads into its stiffness (and the modal equations follow).
     pub(super) fn advance_heating(&mut self, time_s: f64) -> Result<(), VehicleError> {
         let rates = self.heating;
         let exchange = &self.exchange;
-        // Each surface heats on its own (conduction, its stiffness): side by side.
+        // Each surface heats on its own (conduction, the field onto its structure): side by side.
         let heat = |(i, s): (usize, &mut Surface)| heat_surface(s, exchange, i, time_s, &rates);
         if side_by_side() {
             self.surfaces
@@ -35,6 +36,29 @@ impl PartitionedVehicle {
                 .try_for_each(heat)?;
         } else {
             self.surfaces.iter_mut().enumerate().try_for_each(heat)?;
+        }
+        for (i, s) in self.surfaces.iter().enumerate() {
+            if let Some(t) = &s.thermal
+                && t.stiffness_changed
+            {
+                self.exchange.publish_structure_temperatures(
+                    i,
+                    time_s,
+                    &t.onto_structure.mean_k,
+                    &t.onto_structure.difference_k,
+                )?;
+            }
+        }
+        // Each structure reads its field (a stiffness update: side by side).
+        let exchange = &self.exchange;
+        let read = |(i, s): (usize, &mut Surface)| read_structure_temperatures(s, exchange, i);
+        if side_by_side() {
+            self.surfaces
+                .par_iter_mut()
+                .enumerate()
+                .try_for_each(read)?;
+        } else {
+            self.surfaces.iter_mut().enumerate().try_for_each(read)?;
         }
         for (i, s) in self.surfaces.iter_mut().enumerate() {
             if let Some(t) = &mut s.thermal

@@ -170,7 +170,9 @@ struct HeatedSurface {
     onto_structure: hsv_core::coupling::StructureTemperatures,
     /// Time of the last stiffness update, s.
     stiffness_time_s: f64,
-    /// Set when the stiffness was updated and the vehicle's modal matrices must follow.
+    /// Set when the field was moved onto the structure again: it is published on the
+    /// surface's `structure_temperatures` topic, the structure reads it into its stiffness and
+    /// the vehicle's modal matrices follow.
     stiffness_changed: bool,
 }
 

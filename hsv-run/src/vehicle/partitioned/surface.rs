@@ -230,9 +230,10 @@ pub(super) fn refresh_heat_flux(
     Ok(())
 }
 
-/// Surface `index`'s heating up to `time_s`: conduction steps under the heat flux it last
-/// published (`exchange`, [`refresh_heat_flux`] at the steps' starts), and the stiffness from
-/// the temperature field at its rate (flagged for the vehicle's modal matrices).
+/// Surface `index`'s thermal region up to `time_s`: conduction steps under the heat flux it last
+/// published (`exchange`, [`refresh_heat_flux`] at the steps' starts), and at the stiffness
+/// rate the temperature field moved onto the structure's nodes (flagged to be published on its
+/// `structure_temperatures` topic, which the structure reads: [`read_structure_temperatures`]).
 pub(super) fn heat_surface(
     s: &mut Surface,
     exchange: &RegionExchange,
@@ -259,11 +260,33 @@ pub(super) fn heat_surface(
                     e.to_string(),
                 ))
             })?;
-        if let Some(thermal) = s.structure.thermal_stiffness_mut() {
-            t.onto_structure.apply(thermal).map_err(&err)?;
-        }
         t.stiffness_changed = true;
         t.stiffness_time_s = time_s;
+    }
+    Ok(())
+}
+
+/// Surface `index`'s structure takes the temperatures its thermal region published
+/// (`exchange`), when it published new ones: its temperature-dependent stiffness.
+pub(super) fn read_structure_temperatures(
+    s: &mut Surface,
+    exchange: &RegionExchange,
+    index: usize,
+) -> Result<(), VehicleError> {
+    let Some(t) = &s.thermal else {
+        return Ok(());
+    };
+    if !t.stiffness_changed {
+        return Ok(());
+    }
+    let err = model_error(&s.name);
+    if let (Some((_, temperatures)), Some(thermal)) = (
+        exchange.structure_temperatures(index)?,
+        s.structure.thermal_stiffness_mut(),
+    ) {
+        thermal
+            .set_temperature_field(&temperatures.mean_k, &temperatures.difference_k)
+            .map_err(&err)?;
     }
     Ok(())
 }

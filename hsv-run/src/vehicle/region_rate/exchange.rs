@@ -11,7 +11,7 @@ use hsv_core::data::{
 use nalgebra::DVector;
 
 use super::RegionLoadRate;
-use super::published::{PublishedFriction, PublishedLoads};
+use super::published::{PublishedFriction, PublishedLoads, PublishedTemperatures};
 
 /// The reader of every topic: the coupled derivative, which assembles the vehicle's loads.
 const READER: &str = "coupling";
@@ -59,6 +59,9 @@ pub struct RegionExchange {
     friction: Channel<PublishedFriction>,
     surfaces: Vec<LoadsChannel>,
     heat_fluxes: Vec<Channel<Vec<f64>>>,
+    /// Each surface's structure temperatures (`<surface>/structure_temperatures`), published by
+    /// its thermal region at every stiffness update and read by its structure.
+    structure_temperatures: Vec<Channel<PublishedTemperatures>>,
     /// The value a read fills before it is copied out (no allocation after the first).
     scratch: PublishedLoads,
 }
@@ -125,6 +128,16 @@ impl RegionExchange {
                 ))
             })
             .collect::<Result<Vec<_>, DataError>>()?;
+        let structure_temperatures = surface_names
+            .iter()
+            .map(|name| {
+                let topic = format!("{name}/structure_temperatures");
+                Ok((
+                    builder.publish(&format!("{name}/thermal"), &topic)?,
+                    builder.subscribe(name, &topic)?,
+                ))
+            })
+            .collect::<Result<Vec<_>, DataError>>()?;
         let data = builder.build()?;
         Ok(Self {
             empty: data.checkpoint(),
@@ -133,6 +146,7 @@ impl RegionExchange {
             friction,
             surfaces,
             heat_fluxes,
+            structure_temperatures,
             scratch: PublishedLoads::default(),
         })
     }
@@ -172,6 +186,45 @@ impl RegionExchange {
         };
         match self.data.read_converged(reader) {
             Ok(latest) => Ok(Some(latest.value.as_slice())),
+            Err(DataError::NothingConverged { .. }) => Ok(None),
+            Err(e) => Err(e),
+        }
+    }
+
+    /// Publishes surface `index`'s structure temperatures (K per structure node: mean and face
+    /// difference) at `time_s`, in place.
+    pub fn publish_structure_temperatures(
+        &mut self,
+        index: usize,
+        time_s: f64,
+        mean_k: &[f64],
+        difference_k: &[f64],
+    ) -> Result<(), DataError> {
+        let Some(&(publisher, _)) = self.structure_temperatures.get(index) else {
+            return Ok(());
+        };
+        self.data
+            .publish_with(publisher, time_s, |t: &mut PublishedTemperatures| {
+                t.mean_k.clear();
+                t.mean_k.extend_from_slice(mean_k);
+                t.difference_k.clear();
+                t.difference_k.extend_from_slice(difference_k);
+            })?;
+        self.data.mark_converged(publisher)?;
+        Ok(())
+    }
+
+    /// Surface `index`'s latest structure temperatures and their time, read in place; None
+    /// before the first.
+    pub fn structure_temperatures(
+        &self,
+        index: usize,
+    ) -> Result<Option<(f64, &PublishedTemperatures)>, DataError> {
+        let Some(&(_, reader)) = self.structure_temperatures.get(index) else {
+            return Ok(None);
+        };
+        match self.data.read_converged(reader) {
+            Ok(latest) => Ok(Some((latest.time_s, latest.value))),
             Err(DataError::NothingConverged { .. }) => Ok(None),
             Err(e) => Err(e),
         }

@@ -38,7 +38,7 @@ pub mod published;
 use serde::{Deserialize, Serialize};
 
 pub use exchange::RegionExchange;
-pub use published::{PublishedFriction, PublishedLoads};
+pub use published::{PublishedFriction, PublishedLoads, PublishedTemperatures};
 
 /// The body's skin friction rate by default, s: the paper's aerothermal step (Table 3).
 pub const DEFAULT_BODY_FRICTION_DT_S: f64 = 0.01;

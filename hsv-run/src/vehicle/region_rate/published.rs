@@ -1,4 +1,5 @@
-//! What a region publishes: the values of the loads and skin-friction topics of
+//! What a region publishes: the values of the loads, skin-friction and structure-temperature
+//! topics of
 //! [`super::RegionExchange`], and how the data manager interpolates and extrapolates them
 //! ([`Interpolate`]: component by component).
 
@@ -81,5 +82,32 @@ impl Interpolate for PublishedFriction {
             .extrapolate_into(&newer.force_n, w, &mut out.force_n)?;
         self.moment_nm
             .extrapolate_into(&newer.moment_nm, w, &mut out.moment_nm)
+    }
+}
+
+/// One publication of a surface's thermal region for its structure: the temperature field moved
+/// onto the structure's nodes ([`hsv_core::coupling::StructureTemperatures`]), K, which the
+/// structure's temperature-dependent stiffness reads.
+#[derive(Debug, PartialEq, Default, Serialize, Deserialize)]
+pub struct PublishedTemperatures {
+    /// Mean (mid-plane) temperature of each structure node, K.
+    pub mean_k: Vec<f64>,
+    /// Upper-less-lower face temperature difference of each structure node, K.
+    pub difference_k: Vec<f64>,
+}
+
+/// By hand so `clone_from` reuses both fields' buffers: the data manager copies a publication
+/// into its history that way, and the time loop allocates nothing.
+impl Clone for PublishedTemperatures {
+    fn clone(&self) -> Self {
+        Self {
+            mean_k: self.mean_k.clone(),
+            difference_k: self.difference_k.clone(),
+        }
+    }
+
+    fn clone_from(&mut self, source: &Self) {
+        self.mean_k.clone_from(&source.mean_k);
+        self.difference_k.clone_from(&source.difference_k);
     }
 }

@@ -14,8 +14,7 @@ use super::*;
 #[allow(clippy::too_many_arguments)]
 pub(super) fn body_region_loads(
     b: &mut Body,
-    engine: Option<&mut Box<dyn PropulsionModel>>,
-    engine_solution: &mut PropulsionSolution,
+    engine: Option<&mut Engine>,
     state: &VehicleState,
     controls: &FlightControls,
     flight: &FlightCondition,
@@ -45,7 +44,6 @@ pub(super) fn body_region_loads(
         velocities,
         solution,
         generalized,
-        engine_generalized,
         ..
     } = b;
     let (mesh, shapes) = (&*mesh, &*shapes);
@@ -81,40 +79,17 @@ pub(super) fn body_region_loads(
             Ok(body_aero)
         },
         || -> Result<Loads, VehicleError> {
-            // Engine on the deformed underside; its moment comes about the reference point.
-            let Some(engine) = engine else {
-                engine_generalized.iter_mut().for_each(|q| *q = 0.0);
-                return Ok(Loads::default());
-            };
-            let engine_err = model_error("propulsion");
-            engine
-                .evaluate(
-                    &EngineInputs {
-                        flight,
-                        body: mesh,
-                        fuel_equivalence_ratio: controls.fuel_equivalence_ratio,
-                    },
-                    engine_solution,
-                )
-                .map_err(&engine_err)?;
-            let e = engine_solution.loads;
-            if engine_solution.panel_pressure_pa.len() == mesh.panels.len() {
-                generalized_forces(
-                    mesh,
-                    shapes,
-                    &engine_solution.panel_pressure_pa,
-                    p_inf,
-                    |r| r == RegionKind::Propulsion,
-                    engine_generalized,
-                )
-                .map_err(|e| engine_err(ModelError::inconsistent("coupling", e.to_string())))?;
-            } else {
-                engine_generalized.iter_mut().for_each(|q| *q = 0.0);
+            // The propulsion region on the deformed underside (none: a glide).
+            match engine {
+                Some(engine) => engine_region_loads(
+                    engine,
+                    (mesh, shapes),
+                    flight,
+                    controls,
+                    (cg, reference_point_m),
+                ),
+                None => Ok(Loads::default()),
             }
-            Ok(Loads {
-                force_n: e.force_n,
-                moment_nm: e.moment_nm + (reference_point_m - cg).cross(&e.force_n),
-            })
         },
     );
     Ok((body_aero?, engine_loads?))
@@ -127,7 +102,8 @@ impl PartitionedVehicle {
         self.aero_loads = body_aero;
         let b = &self.body;
         for (k, q) in self.loads.body_generalized_force.iter_mut().enumerate() {
-            *q = b.generalized[k] + b.engine_generalized[k];
+            // Without an engine its generalized forces are zeros, as they were summed before.
+            *q = b.generalized[k] + self.engine.as_ref().map_or(0.0, |e| e.generalized[k]);
         }
     }
 

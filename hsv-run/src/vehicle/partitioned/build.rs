@@ -79,7 +79,6 @@ impl PartitionedVehicle {
                         aero,
                         solution: AeroSolution::default(),
                         generalized: vec![0.0; n],
-                        engine_generalized: vec![0.0; n],
                     });
                 }
                 (_, "propulsion") => {
@@ -273,8 +272,7 @@ impl PartitionedVehicle {
             surfaces,
             followers,
             surface_model,
-            engine,
-            engine_solution: PropulsionSolution::default(),
+            engine: engine.map(|model| Engine::new(model, body_modal.n_modes())),
             mass,
             reference_point_m,
             gas,

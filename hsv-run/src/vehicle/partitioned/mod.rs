@@ -1,6 +1,6 @@
 //! The partitioned flexible vehicle (paper §III): the types its regions share and, in the
 //! submodules, one file per job — `build` (assembly), `step` (the step's protocol and the
-//! regions' rates), `body` and `surface` (the regions' loads), `interface` (the coupled
+//! regions' rates), `body`, `engine` and `surface` (the regions' loads), `interface` (the coupled
 //! derivative), `heating`, `restart` and `steady` (equilibrium, trim's interface). The
 //! partitioned and monolithic models, in-flight heating and restart share the regions' buffers:
 //! the loads every region computes from the vehicle state, and the state derivative with the
@@ -61,6 +61,7 @@ use hsv_core::registry::Role;
 
 mod body;
 mod build;
+mod engine;
 mod heating;
 mod interface;
 mod restart;
@@ -69,6 +70,7 @@ mod step;
 mod surface;
 
 use body::*;
+use engine::*;
 use surface::*;
 
 /// What the partitioned vehicle needs of its regions.
@@ -447,7 +449,6 @@ struct Body {
     velocities: Vec<Vector3<f64>>,
     solution: AeroSolution,
     generalized: Vec<f64>,
-    engine_generalized: Vec<f64>,
 }
 
 struct Surface {
@@ -496,10 +497,9 @@ pub struct PartitionedVehicle {
     /// The monolithic model's surfaces (empty for the partitioned vehicle).
     followers: Vec<FollowerSurface>,
     surface_model: SurfaceModel,
-    /// The propulsion region's engine; `None` for a vehicle without one (a glide), whose
-    /// body aero then loads the engine's ramp and nozzle panels.
-    engine: Option<Box<dyn PropulsionModel>>,
-    engine_solution: PropulsionSolution,
+    /// The propulsion region; `None` for a vehicle without one (a glide), whose body aero then
+    /// loads the engine's ramp and nozzle panels.
+    engine: Option<Engine>,
     mass: MassProperties,
     reference_point_m: Point3<f64>,
     gas: PerfectGas,

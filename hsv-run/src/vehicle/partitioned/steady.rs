@@ -44,8 +44,14 @@ impl crate::vehicle::rigid::SteadyFlight for PartitionedVehicle {
         let loads = crate::vehicle::rigid::RigidLoads {
             total: self.loads.body,
             drag_n: wind.drag_n,
-            thrust_n: self.engine_solution.loads.force_n.x,
-            engine_status: self.engine_solution.status,
+            thrust_n: self
+                .engine
+                .as_ref()
+                .map_or(0.0, |e| e.solution.loads.force_n.x),
+            engine_status: self
+                .engine
+                .as_ref()
+                .map_or_else(Default::default, |e| e.solution.status),
             ..Default::default()
         };
         Ok((

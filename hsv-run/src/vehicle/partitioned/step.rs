@@ -357,7 +357,6 @@ impl PartitionedVehicle {
         let time_s = self.time_s;
         let body = &mut self.body;
         let engine = self.engine.as_mut();
-        let engine_solution = &mut self.engine_solution;
         let surfaces = &mut self.surfaces;
         let surface_flights = &self.surface_flights;
         let surface_forces = &mut self.loads.surface_generalized_forces;
@@ -367,7 +366,6 @@ impl PartitionedVehicle {
                     body_region_loads(
                         body,
                         engine,
-                        engine_solution,
                         state,
                         controls,
                         flight,

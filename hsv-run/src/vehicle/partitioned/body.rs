@@ -1,5 +1,6 @@
-//! The main-body region: aero and skin friction on the beam-deformed OML, the engine on its
-//! underside, the body's generalized forces, and the monolithic model's follower surfaces.
+//! The main-body region: aero and skin friction on the beam-deformed OML beside the engine on
+//! its underside (`engine`), and the body's generalized forces; the surfaces that follow the
+//! body are `follower`'s.
 //!
 //! Without an engine (no propulsion region: a glide) the body's aero model also loads the
 //! engine's ramp and nozzle, as outer surfaces of the flow it computes there; the duct is
@@ -105,78 +106,5 @@ impl PartitionedVehicle {
             // Without an engine its generalized forces are zeros, as they were summed before.
             *q = b.generalized[k] + self.engine.as_ref().map_or(0.0, |e| e.generalized[k]);
         }
-    }
-
-    /// The surfaces that follow the body (the monolithic model's lifting surfaces, rotated by the
-    /// elevon, and the fixed vertical fin): OML following the body's modes whose aero loads go
-    /// straight to the body and to its generalized forces.
-    pub(super) fn evaluate_followers(
-        &mut self,
-        state: &VehicleState,
-        controls: &FlightControls,
-        flight: &FlightCondition,
-    ) -> Result<(), VehicleError> {
-        let cg = self.mass.center_of_mass_m;
-        let p_inf = flight.freestream.pressure_pa;
-        let elevon = controls.elevon;
-        let surface = |r: RegionKind| r == RegionKind::LiftingSurface;
-        for f in &mut self.followers {
-            let err = model_error(&f.name);
-            f.shapes
-                .deform(&f.base, &state.body_modes.q, &mut f.deformed);
-            f.shapes
-                .panel_velocities(&f.base, &state.body_modes.q_dot, &mut f.velocities);
-            if let Some((planform, side)) = &f.elevon {
-                let deflection = elevon.deflection_rad(*side);
-                deflect_lifting_surface(&f.deformed, planform, *side, deflection, &mut f.deflected)
-                    .map_err(|e| err(ModelError::inconsistent("elevon", e.to_string())))?;
-                let rotation =
-                    rotation_about_axis(&pivot_axis(), elevon_rotation_angle_rad(deflection))
-                        .map_err(|e| err(ModelError::inconsistent("elevon", e.to_string())))?;
-                for v in &mut f.velocities {
-                    *v = rotation * *v;
-                }
-            }
-            // The fixed fin flies its deformed OML as it is (`FollowerSurface::flown_mesh`).
-            let mesh = if f.elevon.is_some() {
-                &f.deflected
-            } else {
-                &f.deformed
-            };
-            let motion = PanelMotion {
-                elastic_velocity_m_s: Some(&f.velocities),
-            };
-            f.aero
-                .evaluate(mesh, flight, &motion, &mut f.solution)
-                .map_err(&err)?;
-            let mut loads = integrate_pressure(mesh, &f.solution.pressure_pa, p_inf, &cg, surface);
-            if let Some(friction) = &mut f.friction {
-                loads = loads
-                    + friction
-                        .loads(mesh, flight, &f.solution, &motion, &cg, surface)
-                        .map_err(&err)?;
-            }
-            generalized_forces(
-                mesh,
-                &f.shapes,
-                &f.solution.pressure_pa,
-                p_inf,
-                surface,
-                &mut f.generalized,
-            )
-            .map_err(|e| err(ModelError::inconsistent("coupling", e.to_string())))?;
-            f.loads = loads;
-            self.loads.body = self.loads.body + loads;
-            self.aero_loads = self.aero_loads + loads;
-            for (q, g) in self
-                .loads
-                .body_generalized_force
-                .iter_mut()
-                .zip(&f.generalized)
-            {
-                *q += g;
-            }
-        }
-        Ok(())
     }
 }

@@ -1,10 +1,11 @@
 //! The partitioned flexible vehicle (paper §III): the types its regions share and, in the
 //! submodules, one file per job — `build` (assembly), `step` (the step's protocol and the
-//! regions' rates), `body`, `engine` and `surface` (the regions' loads), `interface` (the coupled
-//! derivative), `heating`, `restart` and `steady` (equilibrium, trim's interface). The
-//! partitioned and monolithic models, in-flight heating and restart share the regions' buffers:
-//! the loads every region computes from the vehicle state, and the state derivative with the
-//! body-surface coupling closed by a fixed-point iteration with Aitken relaxation.
+//! regions' rates), `body`, `engine`, `follower` and `surface` (the regions' loads),
+//! `interface` (the coupled derivative), `heating`, `restart` and `steady` (equilibrium, trim's
+//! interface). The partitioned and monolithic models, in-flight heating and restart share the
+//! regions' buffers: the loads every region computes from the vehicle state, and the state
+//! derivative with the body-surface coupling closed by a fixed-point iteration with Aitken
+//! relaxation.
 //!
 //! Per derivative evaluation:
 //! 1. flight condition from the rigid state (airspeed, α, β, rates about the centre of mass);
@@ -62,6 +63,7 @@ use hsv_core::registry::Role;
 mod body;
 mod build;
 mod engine;
+mod follower;
 mod heating;
 mod interface;
 mod restart;

@@ -196,3 +196,30 @@ def test_bad_disturbances_name_their_key(vehicle):
         hsv.Simulation(vehicle, disturbances={"dryden": {"severity": "severe", "sigma_m_s": 1.0}})
     with pytest.raises(hsv.HsvError, match="wind"):
         hsv.Simulation(vehicle, disturbances={"wind": 3})
+
+
+def test_regions_are_added_and_removed_by_configuration_alone():
+    """Issue 25 item 5 from Python: a dict config without `[regions.propulsion]` trims for a
+    glide, and one with the fin's two tables has a stable Dutch roll where the sample's yaw
+    diverges (the CLI's closed-form checks are in hsv-run/tests/vertical_fin.rs)."""
+    glide = hsv.sample_config()
+    del glide["regions"]["propulsion"]
+    trim = hsv.Vehicle(glide).trim(rigid=True)["trim"]
+    assert trim["flight_path_angle_deg"] < -1.0, trim
+
+    fin = hsv.sample_config()
+    fin["vertical_fin"] = {
+        "root_chord_m": 4.0, "tip_chord_m": 1.6, "height_m": 3.0,
+        "leading_edge_sweep_deg": 38.66, "thickness_to_chord": 0.028,
+        "max_thickness_chord_fraction": 0.5, "root_leading_edge_aft_of_nose_m": 25.0,
+        "root_z_m": -1.415, "panels_chordwise": 10, "panels_spanwise": 8,
+    }
+    fin["regions"]["vertical_fin"] = {"aero": "shock-expansion-piston"}
+
+    def lateral(vehicle):
+        return [m for m in vehicle.linearize()["modes"] if m["content"]["lateral"] > 0.5]
+
+    assert any(m["real_per_s"] > 0.5 for m in lateral(hsv.Vehicle()))
+    with_fin = lateral(hsv.Vehicle(fin))
+    assert all(m["real_per_s"] < 0.0 for m in with_fin), with_fin
+    assert any(m["imaginary_rad_s"] > 0.1 for m in with_fin), with_fin

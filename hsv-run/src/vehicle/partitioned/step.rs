@@ -21,7 +21,12 @@ impl PartitionedVehicle {
         state: &VehicleState,
         time_s: f64,
     ) -> Result<(), VehicleError> {
-        let OpenStep { .. } = step;
+        if time_s.is_nan() || time_s < step.start_s {
+            return Err(VehicleError::Input(format!(
+                "a step opened at t = {} s cannot end at t = {time_s} s",
+                step.start_s
+            )));
+        }
         self.time_s = time_s;
         let flight = self.flight(state)?;
         self.update_surface_flights(state, &flight)?;

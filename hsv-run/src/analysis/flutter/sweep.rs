@@ -33,6 +33,9 @@ use super::surface::{DerivativeMethod, SurfaceDynamics, SurfaceOptions};
 use super::{FlutterError, check_positive};
 use crate::analysis::heating::{HeatingModels, HeatingSteps, SurfaceHeating};
 use crate::progress::Progress;
+use crate::vehicle::Region;
+use crate::vehicle::region_rate::PublishedTemperatures;
+use hsv_core::data::{DataError, DataManager, DataManagerBuilder, Publisher, Subscriber};
 
 pub use super::boundary::{
     FlutterBoundary, FlutterMap, GrowsFrom, MACH_TOLERANCE, SearchedPoint, map_from_marches,
@@ -152,10 +155,24 @@ pub fn flight_at(setup: &FlutterSetup, mach: f64) -> Result<FlightCondition, Flu
     Ok(FlightCondition::steady(freestream, setup.alpha_rad, 0.0))
 }
 
-/// The temperature state of a march, moved onto the structure.
+/// The temperature state of a march, moved onto the structure. The surface's thermal region
+/// and its structure exchange through a data manager, as in flight: the region advances to a
+/// time ([`Region::step_to`], publishing its node temperatures), the field moved onto the
+/// structure's nodes is published on `<surface>/structure_temperatures`, and the structure
+/// reads its stiffness from that topic.
 struct Thermal {
     heating: SurfaceHeating,
     onto_structure: StructureTemperatures,
+    data: DataManager,
+    to_structure: (
+        Publisher<PublishedTemperatures>,
+        Subscriber<PublishedTemperatures>,
+    ),
+}
+
+/// A data-manager error of the march, as the flutter error it is.
+fn exchange_error(e: DataError) -> FlutterError {
+    FlutterError::Inconsistent(format!("the march's data exchange: {e}"))
 }
 
 impl Thermal {
@@ -189,29 +206,39 @@ impl Thermal {
                     setup.models.conduction, setup.models.structure
                 ))
             })?;
+        let mut heating = heating;
+        let name = setup.region.name.clone();
+        let topic = format!("{name}/structure_temperatures");
+        let mut builder = DataManagerBuilder::new();
+        heating.declare(&mut builder).map_err(exchange_error)?;
+        let to_structure = (
+            builder
+                .publish(&format!("{name}/thermal"), &topic)
+                .map_err(exchange_error)?,
+            builder.subscribe(&name, &topic).map_err(exchange_error)?,
+        );
+        let data = builder.build().map_err(exchange_error)?;
         Ok(Self {
             heating,
             onto_structure,
+            data,
+            to_structure,
         })
     }
 
-    /// Heats to `time_s` (steps of the run's dt, the last shortened).
-    fn advance_to(&mut self, time_s: f64, dt_s: f64) -> Result<(), FlutterError> {
-        while time_s - self.heating.time_s() > 1e-9 * dt_s {
-            let dt = dt_s.min(time_s - self.heating.time_s());
-            self.heating.advance(dt).map_err(|e| {
-                let message = e.to_string();
-                // A wall past the solidus (heat flux), or a structure past the end of its
-                // material's thermal data, which for Ti-6Al-4V ends at 1869.8 K, 7 K below the
-                // solidus: both are the melting surface.
-                if message.contains("melted") || message.contains("(k, c_p) data") {
-                    FlutterError::Melting(message)
-                } else {
-                    FlutterError::Region(e)
-                }
-            })?;
-        }
-        Ok(())
+    /// Heats to `time_s` (steps of the region's dt, the last shortened).
+    fn advance_to(&mut self, time_s: f64) -> Result<(), FlutterError> {
+        self.heating.step_to(time_s, &mut self.data).map_err(|e| {
+            let message = e.to_string();
+            // A wall past the solidus (heat flux), or a structure past the end of its
+            // material's thermal data, which for Ti-6Al-4V ends at 1869.8 K, 7 K below the
+            // solidus: both are the melting surface.
+            if message.contains("melted") || message.contains("(k, c_p) data") {
+                FlutterError::Melting(message)
+            } else {
+                FlutterError::Region(e)
+            }
+        })
     }
 
     /// Sets the current field on the structure; returns (min, max, mean) node temperature, K.
@@ -227,8 +254,18 @@ impl Thermal {
                 "structure model `{name}` has no temperature-dependent stiffness"
             )));
         };
-        self.onto_structure
-            .apply(thermal)
+        let (publisher, reader) = self.to_structure;
+        let field = &self.onto_structure;
+        self.data
+            .publish_with(publisher, self.heating.time_s(), |t| {
+                t.mean_k.clone_from(&field.mean_k);
+                t.difference_k.clone_from(&field.difference_k);
+            })
+            .and_then(|_| self.data.mark_converged(publisher))
+            .map_err(exchange_error)?;
+        let read = self.data.read_converged(reader).map_err(exchange_error)?;
+        thermal
+            .set_temperature_field(&read.value.mean_k, &read.value.difference_k)
             .map_err(|e| FlutterError::model(name, e))?;
         Ok(temperature_range(self.onto_structure.conduction_node_k()))
     }
@@ -336,7 +373,7 @@ pub fn march(
             points.push(failed_point(mach, time_s, e, *range));
             continue;
         }
-        if let Err(e) = thermal.advance_to(time_s, setup.heating.dt_s) {
+        if let Err(e) = thermal.advance_to(time_s) {
             let range = temperature_range(thermal.heating.node_temperatures_k());
             points.push(failed_point(mach, time_s, &e, range));
             stopped = Some((e, range));

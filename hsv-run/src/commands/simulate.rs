@@ -554,9 +554,17 @@ fn write_history(
     let mode_columns: Vec<Vec<f64>> = (0..n_modes)
         .map(|k| body_modes.iter().map(|q| q[k]).collect())
         .collect();
-    let residual_names: Vec<String> = interfaces
-        .iter()
-        .map(|name| format!("coupling_residual_{name}"))
+    let mut headers: Vec<&str> = columns.iter().map(|(h, _)| *h).collect();
+    headers.extend(mode_names.iter().map(String::as_str));
+    let mut data: Vec<&[f64]> = columns.iter().map(|(_, c)| c.as_slice()).collect();
+    data.extend(mode_columns.iter().map(Vec::as_slice));
+    let csv = folder.join("history.csv");
+    write_csv(&csv, &headers, &data)?;
+    folder.record(csv);
+    // The coupling residual of each interface, beside the history (whose columns are also the
+    // Python and FMU outputs): `coupling_residual` there is their largest.
+    let residual_names: Vec<String> = std::iter::once("time_s".to_owned())
+        .chain(interfaces.iter().map(|name| format!("{name}_residual")))
         .collect();
     let residual_columns: Vec<Vec<f64>> = (0..interfaces.len())
         .map(|k| {
@@ -566,14 +574,11 @@ fn write_history(
                 .collect()
         })
         .collect();
-    let mut headers: Vec<&str> = columns.iter().map(|(h, _)| *h).collect();
-    headers.extend(mode_names.iter().map(String::as_str));
-    headers.extend(residual_names.iter().map(String::as_str));
-    let mut data: Vec<&[f64]> = columns.iter().map(|(_, c)| c.as_slice()).collect();
-    data.extend(mode_columns.iter().map(Vec::as_slice));
+    let mut data: Vec<&[f64]> = vec![time.as_slice()];
     data.extend(residual_columns.iter().map(Vec::as_slice));
-    let csv = folder.join("history.csv");
-    write_csv(&csv, &headers, &data)?;
+    let names: Vec<&str> = residual_names.iter().map(String::as_str).collect();
+    let csv = folder.join("coupling_residuals.csv");
+    write_csv(&csv, &names, &data)?;
     folder.record(csv);
     // A panel of labelled series against time, and of the one partitioned series.
     let lines = |title: &str, y_label: &str, series: Vec<(&str, Vec<f64>)>| LinePlot {

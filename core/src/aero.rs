@@ -1,11 +1,14 @@
 //! The aerodynamics role: panel pressures and boundary-layer edge states, and their integration
-//! into forces, moments and coefficients.
+//! into forces, moments and coefficients; a reduced-order model's optional capability in
+//! [`reduced_order`].
 
 use nalgebra::{Point3, Vector3};
 
 use crate::error::ModelError;
 use crate::flow::FlightCondition;
 use crate::mesh::{PanelMesh, RegionKind};
+
+pub mod reduced_order;
 
 /// Inviscid flow state at the outer edge of the boundary layer over one panel; what heat-flux
 /// models start from.
@@ -173,8 +176,8 @@ pub trait AeroModel: Send {
 
     /// Identification from a source model and the check against it, if the model is a reduced
     /// model of another (a convolution ROM); `None` by default. Commands ask for it with
-    /// [`crate::reduced_order::require`].
-    fn reduced_order(&mut self) -> Option<&mut dyn crate::reduced_order::ReducedOrderAero> {
+    /// [`reduced_order::require`].
+    fn reduced_order(&mut self) -> Option<&mut dyn reduced_order::ReducedOrderAero> {
         None
     }
 }

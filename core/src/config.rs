@@ -157,7 +157,7 @@ pub struct RegionModels {
 
 impl RegionModels {
     /// The model each role key names: (key, role, name), in the table's key order.
-    pub fn named(&self) -> [(&'static str, crate::registry::Role, Option<&str>); 5] {
+    pub fn named(&self) -> [(&'static str, crate::role::Role, Option<&str>); 5] {
         let names = [
             &self.aero,
             &self.heat_flux,
@@ -629,63 +629,13 @@ fn check_values(config: &HsvConfig, file: &str) -> Result<(), ConfigError> {
 }
 
 /// The config key of each model-name field of a region table, with the role it names.
-const REGION_ROLE_KEYS: [(&str, crate::registry::Role); 5] = [
-    ("aero", crate::registry::Role::Aero),
-    ("heat_flux", crate::registry::Role::HeatFlux),
-    ("conduction", crate::registry::Role::Conduction),
-    ("structure", crate::registry::Role::Structure),
-    ("propulsion", crate::registry::Role::Propulsion),
+const REGION_ROLE_KEYS: [(&str, crate::role::Role); 5] = [
+    ("aero", crate::role::Role::Aero),
+    ("heat_flux", crate::role::Role::HeatFlux),
+    ("conduction", crate::role::Role::Conduction),
+    ("structure", crate::role::Role::Structure),
+    ("propulsion", crate::role::Role::Propulsion),
 ];
-
-impl LoadedConfig {
-    /// Every model named in `[regions.*]` exists in `registry` with the role its key says
-    /// (`regions.left_surface.aero` names an aero model): the first that does not is an error
-    /// naming the file and key path, before anything runs.
-    pub fn check_models(&self, registry: &crate::registry::Registry) -> Result<(), ConfigError> {
-        match self.model_name_problems(registry).into_iter().next() {
-            Some(problem) => Err(problem),
-            None => Ok(()),
-        }
-    }
-
-    /// Every `[regions.*]` model name that is not a registered model of its key's role, each
-    /// an error naming the file and key path, in the order of the config's tables.
-    pub fn model_name_problems(&self, registry: &crate::registry::Registry) -> Vec<ConfigError> {
-        let regions = &self.config.regions;
-        let tables = [
-            ("main_body", Some(&regions.main_body)),
-            ("lifting_surfaces", Some(&regions.lifting_surfaces)),
-            ("left_surface", Some(&regions.left_surface)),
-            ("right_surface", Some(&regions.right_surface)),
-            ("propulsion", regions.propulsion.as_ref()),
-            ("vertical_fin", regions.vertical_fin.as_ref()),
-        ];
-        let mut problems = Vec::new();
-        for (region, models) in tables {
-            let Some(models) = models else { continue };
-            for (key, wanted, name) in models.named() {
-                let Some(name) = name else { continue };
-                let error = |message: String| ConfigError {
-                    file: self.file.clone(),
-                    key_path: format!("regions.{region}.{key}"),
-                    message,
-                };
-                match registry.get(name) {
-                    Err(e) => problems.push(error(e.to_string())),
-                    Ok(entry) if entry.role() != wanted => {
-                        let known = registry.names(wanted).join(", ");
-                        problems.push(error(format!(
-                            "`{name}` is a {} model, but this key names a {wanted} model (known: {known})",
-                            entry.role()
-                        )));
-                    }
-                    Ok(_) => {}
-                }
-            }
-        }
-        problems
-    }
-}
 
 /// Largest magnitude of a flow angle (α, β), deg: an angle is one turn at most, so 720° is a
 /// typing error, not 0°.

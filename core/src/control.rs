@@ -11,10 +11,8 @@
 pub mod riccati;
 
 use nalgebra::DMatrix;
-use serde::de::DeserializeOwned;
 
 use crate::error::ModelError;
-use crate::registry::Registry;
 
 /// What the controller measures (the true values at the sample instant, or what the runner's
 /// sensors make of them: delayed, biased, noisy). SI,
@@ -181,43 +179,6 @@ pub struct LinearDesignModel {
     pub reduction: String,
 }
 
-/// What a controller constructor gets: its settings and the operating point.
-#[derive(Clone, Copy)]
-pub struct ControlContext<'a> {
-    /// `[models.<name>]`.
-    pub settings: &'a toml::Table,
-    /// Dotted key path of `settings`, for messages.
-    pub key_path: &'a str,
-    /// The config file.
-    pub file: &'a str,
-    /// The measured outputs at trim.
-    pub trim_outputs: &'a MeasuredOutputs,
-    /// The trim commands.
-    pub trim_commands: &'a ControlCommands,
-    /// The linear design model, built on request.
-    pub design: &'a dyn DesignSource,
-    /// The `[simulation.inputs]`-style schedule of offsets from trim, as its raw table (empty
-    /// when the config has none), for controllers that fly one.
-    pub schedule: &'a toml::Table,
-    /// `[control.commands]`: the reference commands of a tracking controller (tables of
-    /// offsets from trim by time) as its raw table, empty when the config has none.
-    pub commands: &'a toml::Table,
-    pub registry: &'a Registry,
-}
-
-impl ControlContext<'_> {
-    /// Parses the settings into `T` (`#[serde(deny_unknown_fields)]`), naming file and key.
-    pub fn parse_settings<T: DeserializeOwned>(&self) -> Result<T, ModelError> {
-        crate::config::parse_table(self.settings, self.file, self.key_path)
-            .map_err(ModelError::from)
-    }
-
-    /// A settings error at `key` under this controller's table.
-    pub fn settings_error(&self, key: &str, message: impl Into<String>) -> ModelError {
-        ModelError::settings_at(self.file, self.key_path, key, message)
-    }
-}
-
 /// A controller.
 pub trait Controller: Send {
     /// The registered name.
@@ -283,6 +244,3 @@ pub struct StateFeedback {
 pub fn matrix_rows(m: &DMatrix<f64>) -> Vec<Vec<f64>> {
     m.row_iter().map(|r| r.iter().copied().collect()).collect()
 }
-
-/// A controller constructor.
-pub type ControllerConstructor = fn(&ControlContext<'_>) -> Result<Box<dyn Controller>, ModelError>;

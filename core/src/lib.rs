@@ -26,8 +26,10 @@ pub mod data;
 pub mod error;
 pub mod flow;
 pub mod propulsion;
-pub mod reduced_order;
+/// The aero capability of a reduced-order model ([`aero::reduced_order`]), by its short path.
+pub use aero::reduced_order;
 pub mod registry;
+pub mod role;
 pub mod settings;
 pub mod structure;
 pub mod thermal;

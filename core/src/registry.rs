@@ -14,77 +14,54 @@ use std::sync::Arc;
 use serde::de::DeserializeOwned;
 
 use crate::aero::AeroModel;
-use crate::control::{ControlContext, Controller, ControllerConstructor};
+use crate::control::Controller;
 use crate::error::ModelError;
 use crate::propulsion::PropulsionModel;
 use crate::region::{ModelSettings, RegionInfo};
 use crate::structure::StructureModel;
 use crate::thermal::{ConductionModel, HeatFluxModel};
 
-/// The four model families of the design card.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash, serde::Serialize)]
-#[serde(rename_all = "kebab-case")]
-pub enum Family {
-    Aero,
-    Thermal,
-    Structure,
-    Propulsion,
-    Control,
+pub use crate::role::{Family, Role};
+
+/// What a controller constructor gets: its settings and the operating point.
+#[derive(Clone, Copy)]
+pub struct ControlContext<'a> {
+    /// `[models.<name>]`.
+    pub settings: &'a toml::Table,
+    /// Dotted key path of `settings`, for messages.
+    pub key_path: &'a str,
+    /// The config file.
+    pub file: &'a str,
+    /// The measured outputs at trim.
+    pub trim_outputs: &'a crate::control::MeasuredOutputs,
+    /// The trim commands.
+    pub trim_commands: &'a crate::control::ControlCommands,
+    /// The linear design model, built on request.
+    pub design: &'a dyn crate::control::DesignSource,
+    /// The `[simulation.inputs]`-style schedule of offsets from trim, as its raw table (empty
+    /// when the config has none), for controllers that fly one.
+    pub schedule: &'a toml::Table,
+    /// `[control.commands]`: the reference commands of a tracking controller (tables of
+    /// offsets from trim by time) as its raw table, empty when the config has none.
+    pub commands: &'a toml::Table,
+    pub registry: &'a Registry,
 }
 
-/// What a model does; thermal models split into heat flux at the wall and conduction inside.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash, serde::Serialize)]
-#[serde(rename_all = "kebab-case")]
-pub enum Role {
-    Aero,
-    HeatFlux,
-    Conduction,
-    Structure,
-    Propulsion,
-    /// A controller (`hsv_core::control::Controller`): measured outputs in, commands out.
-    Control,
-}
-
-impl Role {
-    pub fn family(self) -> Family {
-        match self {
-            Role::Aero => Family::Aero,
-            Role::HeatFlux | Role::Conduction => Family::Thermal,
-            Role::Structure => Family::Structure,
-            Role::Propulsion => Family::Propulsion,
-            Role::Control => Family::Control,
-        }
+impl ControlContext<'_> {
+    /// Parses the settings into `T` (`#[serde(deny_unknown_fields)]`), naming file and key.
+    pub fn parse_settings<T: DeserializeOwned>(&self) -> Result<T, ModelError> {
+        crate::config::parse_table(self.settings, self.file, self.key_path)
+            .map_err(ModelError::from)
     }
 
-    pub fn as_str(self) -> &'static str {
-        match self {
-            Role::Aero => "aero",
-            Role::HeatFlux => "heat-flux",
-            Role::Conduction => "conduction",
-            Role::Structure => "structure",
-            Role::Propulsion => "propulsion",
-            Role::Control => "control",
-        }
+    /// A settings error at `key` under this controller's table.
+    pub fn settings_error(&self, key: &str, message: impl Into<String>) -> ModelError {
+        ModelError::settings_at(self.file, self.key_path, key, message)
     }
 }
 
-impl fmt::Display for Role {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        f.write_str(self.as_str())
-    }
-}
-
-impl fmt::Display for Family {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        f.write_str(match self {
-            Family::Aero => "aero",
-            Family::Thermal => "thermal",
-            Family::Structure => "structure",
-            Family::Propulsion => "propulsion",
-            Family::Control => "control",
-        })
-    }
-}
+/// A controller constructor.
+pub type ControllerConstructor = fn(&ControlContext<'_>) -> Result<Box<dyn Controller>, ModelError>;
 
 /// What a constructor gets: its settings, the region it is built for and the host registry.
 ///
@@ -626,6 +603,58 @@ fn wrong_role(name: &str, actual: Role, wanted: Role) -> RegistryError {
         name: name.to_owned(),
         actual,
         wanted,
+    }
+}
+
+/// A config's model names checked against the registry: here, so the config does not depend on
+/// the registry that builds its models.
+impl crate::config::LoadedConfig {
+    /// Every model named in `[regions.*]` exists in `registry` with the role its key says
+    /// (`regions.left_surface.aero` names an aero model): the first that does not is an error
+    /// naming the file and key path, before anything runs.
+    pub fn check_models(&self, registry: &Registry) -> Result<(), crate::config::ConfigError> {
+        match self.model_name_problems(registry).into_iter().next() {
+            Some(problem) => Err(problem),
+            None => Ok(()),
+        }
+    }
+
+    /// Every `[regions.*]` model name that is not a registered model of its key's role, each
+    /// an error naming the file and key path, in the order of the config's tables.
+    pub fn model_name_problems(&self, registry: &Registry) -> Vec<crate::config::ConfigError> {
+        let regions = &self.config.regions;
+        let tables = [
+            ("main_body", Some(&regions.main_body)),
+            ("lifting_surfaces", Some(&regions.lifting_surfaces)),
+            ("left_surface", Some(&regions.left_surface)),
+            ("right_surface", Some(&regions.right_surface)),
+            ("propulsion", regions.propulsion.as_ref()),
+            ("vertical_fin", regions.vertical_fin.as_ref()),
+        ];
+        let mut problems = Vec::new();
+        for (region, models) in tables {
+            let Some(models) = models else { continue };
+            for (key, wanted, name) in models.named() {
+                let Some(name) = name else { continue };
+                let error = |message: String| crate::config::ConfigError {
+                    file: self.file.clone(),
+                    key_path: format!("regions.{region}.{key}"),
+                    message,
+                };
+                match registry.get(name) {
+                    Err(e) => problems.push(error(e.to_string())),
+                    Ok(entry) if entry.role() != wanted => {
+                        let known = registry.names(wanted).join(", ");
+                        problems.push(error(format!(
+                            "`{name}` is a {} model, but this key names a {wanted} model (known: {known})",
+                            entry.role()
+                        )));
+                    }
+                    Ok(_) => {}
+                }
+            }
+        }
+        problems
     }
 }
 

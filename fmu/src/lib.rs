@@ -19,7 +19,8 @@ use fmi::fmi3::{Fmi3Error, Fmi3Res};
 use fmi_export::FmuModel;
 use fmi_export::fmi3::{CSDoStepResult, Context, DefaultLoggingCategory, Model, UserModel};
 use hsv_core::control::ControlCommands;
-use hsv_run::analysis::flight::{EXTERNAL_CONTROLLER, Flight, FlightOptions};
+use hsv_run::analysis::control::EXTERNAL_CONTROLLER;
+use hsv_run::analysis::flight::{Flight, FlightOptions};
 use hsv_run::analysis::simulate::Sample;
 
 /// The FMU's model identifier: the library's file name in `binaries/<platform>/`.

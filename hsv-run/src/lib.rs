@@ -10,7 +10,7 @@
 //! 1. [`commands::simulate`] parses the arguments and asks [`analysis::flight::Flight`] for the
 //!    trimmed vehicle (assembled by name from the registry, [`vehicle::assemble`]), then flies it.
 //! 2. [`analysis::simulate`] (`Stepper::step`) opens each 1 ms step: the controller's command
-//!    ([`control`]), then `begin_step` on the vehicle.
+//!    ([`analysis::control`]), then `begin_step` on the vehicle.
 //! 3. [`vehicle::partitioned`]'s `step.rs` (`begin_step`, `publish_regions`): the regions due at
 //!    the accepted state are evaluated side by side and published (the body every step; the
 //!    surfaces too with `surface_loads_dt_s`; module [`vehicle::region_rate`]).
@@ -36,7 +36,6 @@
 pub mod aero_job;
 pub mod analysis;
 pub mod commands;
-pub mod control;
 pub mod disturbance;
 pub mod dynamics;
 pub mod error_line;
@@ -48,4 +47,7 @@ pub mod progress;
 pub mod steps;
 pub mod vehicle;
 
+/// The controllers in the loop live with the analyses they serve ([`analysis::control`]); this
+/// is their short path.
+pub use analysis::control;
 pub use linked::{registry, shared_registry};

@@ -5,9 +5,10 @@
 //! is a clear error.
 
 use hsv_core::control::{
-    ControlCommands, ControlContext, Controller, DesignSource, LinearDesignModel, MeasuredOutputs,
+    ControlCommands, Controller, DesignSource, LinearDesignModel, MeasuredOutputs,
 };
 use hsv_core::error::ModelError;
+use hsv_core::registry::ControlContext;
 use hsv_core::registry::Registry;
 use hsv_core::testing::plugin_path;
 use nalgebra::DMatrix;

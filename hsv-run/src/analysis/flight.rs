@@ -10,18 +10,16 @@ use hsv_core::config::LoadedConfig;
 use hsv_core::control::ControlCommands;
 use hsv_core::registry::Registry;
 
+use super::level_trim::{LevelTrim, earth, trim_level_flight};
 use super::simulate::{
     Inputs, Integrator, RunSettings, Sample, SimulationError, Stepper, record_sample, simulate,
 };
-use super::trim::{TrimRequest, TrimResult, TrimStatus, trim};
-use crate::control::{ControlLoop, DesignFrom, DesignRecord};
+use crate::analysis::control::{ControlLoop, DesignFrom, DesignRecord, EXTERNAL_CONTROLLER};
 use crate::disturbance::{DisturbanceSettings, Disturbances};
 use crate::dynamics::EarthModel;
 use crate::dynamics::VehicleState;
 use crate::vehicle::flexible_vehicle_with;
-use crate::vehicle::partitioned::{
-    ElevonCommand, FlightControls, HeatingRates, PartitionedVehicle, SurfaceModel, VehicleError,
-};
+use crate::vehicle::partitioned::{HeatingRates, PartitionedVehicle, SurfaceModel, VehicleError};
 use crate::vehicle::region_rate::{DEFAULT_BODY_FRICTION_DT_S, RegionLoadRate};
 
 /// The heating rates: `[simulation]` keys `heat_transfer_dt_s`, `aerothermal_dt_s`,
@@ -129,30 +127,6 @@ pub fn rate_seconds(rate: RegionLoadRate) -> f64 {
     }
 }
 
-/// The Earth: `[simulation] earth` (`flat`, the default and the paper's; `spherical`;
-/// `spherical-rotating`) starting at `[simulation] latitude_deg` (default 0).
-pub fn earth(loaded: &LoadedConfig) -> Result<EarthModel> {
-    let simulation = &loaded.config.simulation;
-    let latitude_deg = match simulation.latitude_deg {
-        None => 0.0,
-        Some(value) if (-89.0..=89.0).contains(&value) => value,
-        Some(value) => bail!(
-            "{}: key `simulation.latitude_deg` is {value}; expected degrees in [-89, 89]",
-            loaded.file
-        ),
-    };
-    let Some(name) = &simulation.earth else {
-        return Ok(EarthModel::Flat);
-    };
-    EarthModel::from_name(name, latitude_deg.to_radians()).with_context(|| {
-        format!(
-            "{}: key `simulation.earth` is \"{name}\"; expected one of {}",
-            loaded.file,
-            EarthModel::NAMES.map(|n| format!("\"{n}\"")).join(", ")
-        )
-    })
-}
-
 /// The integrator: `[simulation] integrator` (`exponential-rk4`, the default, or `rk4`).
 pub fn integrator(loaded: &LoadedConfig) -> Result<Integrator> {
     let Some(name) = &loaded.config.simulation.integrator else {
@@ -213,57 +187,6 @@ impl FlightSettings {
             earth: earth(loaded)?,
         })
     }
-}
-
-/// The trimmed level flight a run starts from.
-#[derive(Debug, Clone)]
-pub struct LevelTrim {
-    pub result: TrimResult,
-    /// The trim controls (no differential elevon).
-    pub controls: FlightControls,
-    /// The vehicle in level flight at the trim.
-    pub state: VehicleState,
-}
-
-/// Trims `vehicle` for steady flight at `mach`, `altitude_m` (default search) and puts it in
-/// that flight: level, or a glide for a vehicle without an engine.
-pub fn trim_level_flight(
-    vehicle: &mut PartitionedVehicle,
-    mach: f64,
-    altitude_m: f64,
-) -> Result<LevelTrim> {
-    let request = TrimRequest {
-        mach,
-        altitude_m,
-        ..TrimRequest::default()
-    };
-    let result = trim(vehicle, &request)?;
-    if result.status == TrimStatus::Failed {
-        bail!(
-            "no flight starts from the trim at Mach {mach}, {altitude_m} m: it failed ({})",
-            result.notes.join("; ")
-        );
-    }
-    let t = &result.trim;
-    let controls = FlightControls {
-        elevon: ElevonCommand {
-            symmetric_rad: t.elevon_deg.to_radians(),
-            differential_rad: 0.0,
-        },
-        fuel_equivalence_ratio: t.fuel_equivalence_ratio,
-    };
-    let (state, _) = vehicle.steady_flight_state(
-        mach,
-        altitude_m,
-        t.alpha_deg.to_radians(),
-        t.flight_path_angle_deg.to_radians(),
-        &controls,
-    )?;
-    Ok(LevelTrim {
-        result,
-        controls,
-        state,
-    })
 }
 
 /// Which vehicle flies and who commands it.
@@ -377,11 +300,8 @@ pub struct RunState {
     pub step: usize,
     pub state: VehicleState,
     pub vehicle: crate::vehicle::partitioned::VehicleRestart,
-    pub control: crate::control::ControlState,
+    pub control: crate::analysis::control::ControlState,
 }
-
-/// The name a flight under the host's commands reports as its controller.
-pub const EXTERNAL_CONTROLLER: &str = "external";
 
 impl Flight {
     /// Assembles the configured vehicle, trims it at the config's flight condition, designs the
@@ -402,7 +322,7 @@ impl Flight {
         let settings = FlightSettings::from_config(loaded)?;
         let disturbances = flight_disturbances(loaded, options)?;
         let (controller_name, actuators) =
-            crate::control::control_settings(loaded, options.controller.as_deref())?;
+            crate::analysis::control::control_settings(loaded, options.controller.as_deref())?;
         let mut vehicle = flight_vehicle(loaded, registry, options, &settings)?;
         let (mach, altitude_m) = (loaded.config.flight.mach, loaded.config.flight.altitude_m);
         log(&format!(
@@ -420,7 +340,7 @@ impl Flight {
             ),
             Some(_) => {
                 // Designed on the trimmed vehicle before it heats.
-                let (control, design) = crate::control::build_control_loop(
+                let (control, design) = crate::analysis::control::build_control_loop(
                     loaded,
                     registry,
                     &controller_name,

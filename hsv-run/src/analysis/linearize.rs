@@ -62,7 +62,11 @@ pub fn linearize_configured(
     loaded: &hsv_core::config::LoadedConfig,
     registry: &hsv_core::registry::Registry,
     rule: &PerturbationRule,
-) -> anyhow::Result<(PartitionedVehicle, super::flight::LevelTrim, Linearization)> {
+) -> anyhow::Result<(
+    PartitionedVehicle,
+    super::level_trim::LevelTrim,
+    Linearization,
+)> {
     let flight = &loaded.config.flight;
     linearize_at(loaded, registry, rule, flight.mach, flight.altitude_m)
 }
@@ -75,7 +79,11 @@ pub fn linearize_at(
     rule: &PerturbationRule,
     mach: f64,
     altitude_m: f64,
-) -> anyhow::Result<(PartitionedVehicle, super::flight::LevelTrim, Linearization)> {
+) -> anyhow::Result<(
+    PartitionedVehicle,
+    super::level_trim::LevelTrim,
+    Linearization,
+)> {
     let sets = crate::vehicle::assemble(
         loaded,
         registry,
@@ -86,8 +94,8 @@ pub fn linearize_at(
         crate::dynamics::GravityModel::default(),
         crate::vehicle::partitioned::CouplingSettings::default(),
     )?;
-    vehicle.set_earth(super::flight::earth(loaded)?);
-    let trim = super::flight::trim_level_flight(&mut vehicle, mach, altitude_m)?;
+    vehicle.set_earth(super::level_trim::earth(loaded)?);
+    let trim = super::level_trim::trim_level_flight(&mut vehicle, mach, altitude_m)?;
     let lin = linearize(&mut vehicle, &trim.state, &trim.controls, rule)?;
     Ok((vehicle, trim, lin))
 }

@@ -8,7 +8,7 @@
 
 use nalgebra::DVector;
 
-use crate::control::ControlLoop;
+use crate::analysis::control::ControlLoop;
 use crate::dynamics::{AttitudeCoordinates, ExponentialRk4, VehicleState};
 use crate::vehicle::partitioned::{OpenStep, PartitionedVehicle, VehicleError};
 use crate::vehicle::staggered::StaggeredInterface;

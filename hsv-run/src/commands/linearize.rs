@@ -108,7 +108,7 @@ pub fn run(args: LinearizeArgs, registry: &Registry) -> Result<()> {
     let closed = match &args.controller {
         None => None,
         Some(name) => {
-            let (control, _) = crate::control::build_control_loop(
+            let (control, _) = crate::analysis::control::build_control_loop(
                 &loaded,
                 &registry,
                 name,
@@ -117,16 +117,18 @@ pub fn run(args: LinearizeArgs, registry: &Registry) -> Result<()> {
                 state,
                 controls,
                 1e-3,
-                crate::control::DesignFrom::Linear(lin.model.clone()),
+                crate::analysis::control::DesignFrom::Linear(lin.model.clone()),
             )?;
             let laws = control.controller().state_feedback();
             if laws.is_empty() {
                 anyhow::bail!("controller `{name}` is no linear state feedback: no closed loop");
             }
-            let dynamics = crate::control::loop_dynamics(&loaded, name, control.controller())?;
-            let values =
-                crate::control::design::closed_loop_eigenvalues(&lin.model, &laws, &dynamics)
-                    .map_err(|e| anyhow::anyhow!("closing the loop with `{name}`: {e}"))?;
+            let dynamics =
+                crate::analysis::control::loop_dynamics(&loaded, name, control.controller())?;
+            let values = crate::analysis::control::design::closed_loop_eigenvalues(
+                &lin.model, &laws, &dynamics,
+            )
+            .map_err(|e| anyhow::anyhow!("closing the loop with `{name}`: {e}"))?;
             Some((
                 name.clone(),
                 values,

@@ -173,7 +173,7 @@ struct RestartFile {
     /// The controller and the design it was built from.
     controller: String,
     #[serde(default)]
-    design: Option<crate::control::DesignRecord>,
+    design: Option<crate::analysis::control::DesignRecord>,
 }
 
 impl RestartFile {
@@ -216,7 +216,9 @@ pub fn run(args: SimulateArgs, registry: &Registry) -> Result<()> {
     let options = FlightOptions {
         model,
         heated: !args.no_heating,
-        controller: Some(crate::control::control_settings(&loaded, args.controller.as_deref())?.0),
+        controller: Some(
+            crate::analysis::control::control_settings(&loaded, args.controller.as_deref())?.0,
+        ),
         dt_s: args.dt_s,
         disturbances: args.disturbances.settings(&loaded)?,
     };
@@ -280,7 +282,7 @@ pub fn run(args: SimulateArgs, registry: &Registry) -> Result<()> {
             }
             let settings = FlightSettings::from_config(&loaded)?;
             let (controller_name, actuators) =
-                crate::control::control_settings(&loaded, args.controller.as_deref())?;
+                crate::analysis::control::control_settings(&loaded, args.controller.as_deref())?;
             let mut vehicle = flight_vehicle(&loaded, &registry, &options, &settings)?;
             vehicle.set_disturbances(crate::analysis::flight::flight_disturbances(
                 &loaded, &options,
@@ -293,7 +295,7 @@ pub fn run(args: SimulateArgs, registry: &Registry) -> Result<()> {
                     path.display()
                 );
             }
-            let (mut control, design) = crate::control::build_control_loop(
+            let (mut control, design) = crate::analysis::control::build_control_loop(
                 &loaded,
                 &registry,
                 &controller_name,
@@ -303,8 +305,8 @@ pub fn run(args: SimulateArgs, registry: &Registry) -> Result<()> {
                 &restart.controls,
                 args.dt_s,
                 restart.design.clone().map_or(
-                    crate::control::DesignFrom::Vehicle,
-                    crate::control::DesignFrom::Restart,
+                    crate::analysis::control::DesignFrom::Vehicle,
+                    crate::analysis::control::DesignFrom::Restart,
                 ),
             )?;
             control.restore(restart.run.control.clone())?;

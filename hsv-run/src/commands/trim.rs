@@ -115,10 +115,10 @@ pub fn trim_configured(
         let sets = assemble(loaded, registry, &needs)?;
         let mut vehicle =
             PartitionedVehicle::new(sets, GravityModel::default(), CouplingSettings::default())?;
-        vehicle.set_earth(crate::analysis::flight::earth(loaded)?);
+        vehicle.set_earth(crate::analysis::level_trim::earth(loaded)?);
         trim(&mut vehicle, &request)?
     } else {
-        let earth = crate::analysis::flight::earth(loaded)?;
+        let earth = crate::analysis::level_trim::earth(loaded)?;
         if earth != crate::dynamics::EarthModel::Flat {
             anyhow::bail!(
                 "{}: `simulation.earth = \"{}\"`: the rigid vehicle's trim flies a flat Earth \

@@ -40,8 +40,6 @@ use super::modal::{
 use super::rigid_body::{RigidBody, RigidBodyDerivative, RigidBodyState};
 use super::{DynamicsError, check_finite, check_len};
 
-pub use super::state_layout::{AttitudeCoordinates, StateLayout};
-
 /// The whole vehicle's dynamic state: plain data.
 #[derive(Debug, PartialEq, Default, Serialize, Deserialize)]
 pub struct VehicleState {
@@ -213,19 +211,12 @@ impl VehicleDynamics {
             .reduce(f64::min)
     }
 
-    /// Each lifting surface's structural equations as a linear block of the flat state
-    /// (generator at assembly), for [`ExponentialRk4`](super::ExponentialRk4): the stiff Ritz vectors
-    /// are then propagated exactly and the heating's stiffness change, the aero, the root
-    /// motion and the coupling stay in the explicit remainder.
-    pub fn surface_linear_blocks(&self, layout: &StateLayout) -> Vec<super::LinearBlock> {
+    /// Each surface's modal equations with the structural generator at assembly (before any
+    /// temperature update), in order.
+    pub fn surface_modal_models(&self) -> impl Iterator<Item = (&ModalDynamics, &DMatrix<f64>)> {
         self.surfaces
             .iter()
-            .enumerate()
-            .map(|(i, s)| super::LinearBlock {
-                start: layout.surface_modes(i),
-                generator: s.reference_generator.clone(),
-            })
-            .collect()
+            .map(|s| (&s.modal, &s.reference_generator))
     }
 
     /// Updates a surface's modal matrices in place (temperature-dependent stiffness).
@@ -285,15 +276,6 @@ impl VehicleDynamics {
                 .map(|s| ModalRate::zeros(s.modal.n_modes()))
                 .collect(),
             surface_root_motion: vec![RootMotion::default(); self.surfaces.len()],
-        }
-    }
-
-    /// The flat state-vector layout of this vehicle.
-    pub fn layout(&self, attitude: AttitudeCoordinates) -> StateLayout {
-        StateLayout {
-            attitude,
-            n_body_modes: self.body.n_modes(),
-            n_surface_modes: self.surfaces.iter().map(|s| s.modal.n_modes()).collect(),
         }
     }
 

@@ -27,10 +27,7 @@ pub mod modal;
 pub mod rigid_body;
 pub mod state_layout;
 
-pub use equations_of_motion::{
-    AttitudeCoordinates, StateLayout, VehicleDerivative, VehicleDynamics, VehicleLoads,
-    VehicleState,
-};
+pub use equations_of_motion::{VehicleDerivative, VehicleDynamics, VehicleLoads, VehicleState};
 pub use flight_modes::{FlightMode, ModeName, ModeScales, StateRole, flight_modes};
 pub use integrate::{ExponentialRk4, LinearBlock, Rk4};
 pub use linearize::{LinearModel, PerturbationRule, linearize, linearize_outputs};
@@ -38,6 +35,7 @@ pub use modal::{
     ModalDynamics, ModalRate, ModalState, RootMotion, SurfaceAttachment, mean_axes_cosine,
 };
 pub use rigid_body::{EarthModel, GravityModel, RigidBody, RigidBodyDerivative, RigidBodyState};
+pub use state_layout::{AttitudeCoordinates, StateLayout};
 
 use hsv_core::linalg::EigenError;
 

@@ -6,7 +6,7 @@ use hsv_core::frames;
 use nalgebra::{DVector, Quaternion, UnitQuaternion};
 use serde::{Deserialize, Serialize};
 
-use super::equations_of_motion::{VehicleDerivative, VehicleState};
+use super::equations_of_motion::{VehicleDerivative, VehicleDynamics, VehicleState};
 use super::flight_modes::StateRole;
 use super::modal::{ModalRate, ModalState};
 use super::{DynamicsError, check_finite, check_len};
@@ -38,6 +38,34 @@ pub struct StateLayout {
     pub attitude: AttitudeCoordinates,
     pub n_body_modes: usize,
     pub n_surface_modes: Vec<usize>,
+}
+
+impl VehicleDynamics {
+    /// The flat state-vector layout of this vehicle.
+    pub fn layout(&self, attitude: AttitudeCoordinates) -> StateLayout {
+        StateLayout {
+            attitude,
+            n_body_modes: self.body_modes().n_modes(),
+            n_surface_modes: self
+                .surface_modal_models()
+                .map(|(modal, _)| modal.n_modes())
+                .collect(),
+        }
+    }
+
+    /// Each lifting surface's structural equations as a linear block of the flat state
+    /// (generator at assembly), for [`ExponentialRk4`](super::ExponentialRk4): the stiff Ritz
+    /// vectors are then propagated exactly and the heating's stiffness change, the aero, the
+    /// root motion and the coupling stay in the explicit remainder.
+    pub fn surface_linear_blocks(&self, layout: &StateLayout) -> Vec<super::LinearBlock> {
+        self.surface_modal_models()
+            .enumerate()
+            .map(|(i, (_, generator))| super::LinearBlock {
+                start: layout.surface_modes(i),
+                generator: generator.clone(),
+            })
+            .collect()
+    }
 }
 
 impl StateLayout {

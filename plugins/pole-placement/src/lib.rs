@@ -15,10 +15,9 @@
 //! z = (α, q); φ and the differential elevon stay at trim (the lateral axis is left to the
 //! vehicle, so fly it symmetric).
 
-use hsv_core::control::{
-    ControlCommands, ControlContext, Controller, MeasuredOutputs, StateFeedback, matrix_rows,
-};
+use hsv_core::control::{ControlCommands, Controller, MeasuredOutputs, StateFeedback, matrix_rows};
 use hsv_core::error::ModelError;
+use hsv_core::registry::ControlContext;
 use nalgebra::{DMatrix, DVector};
 
 /// Registered name.

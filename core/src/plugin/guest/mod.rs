@@ -20,13 +20,13 @@ use super::convert::{
 };
 use crate::aero::{AeroModel, AeroSolution, Loads, PanelMotion};
 use crate::control::{
-    ControlCommands, ControlContext, Controller, ControllerConstructor, DesignSource,
-    LinearDesignModel, MeasuredOutputs,
+    ControlCommands, Controller, DesignSource, LinearDesignModel, MeasuredOutputs,
 };
 use crate::error::ModelError;
 use crate::mesh::PanelMesh;
 use crate::propulsion::{EngineInputs, EngineStatus, PropulsionModel, PropulsionSolution};
 use crate::region::ModelSettings;
+use crate::registry::{ControlContext, ControllerConstructor};
 use crate::registry::{ModelContext, Registry};
 use crate::structure::{RigidDof, StructureModel};
 use crate::thermal::{ConductionModel, HeatFluxModel};

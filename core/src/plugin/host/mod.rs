@@ -13,15 +13,14 @@ use super::convert::{
     flight_abi, state_feedback_from_json,
 };
 use crate::aero::{AeroModel, AeroSolution, Loads, PanelMotion};
-use crate::control::{
-    ControlCommands, ControlContext, Controller, DesignSource, MeasuredOutputs, StateFeedback,
-};
+use crate::control::{ControlCommands, Controller, DesignSource, MeasuredOutputs, StateFeedback};
 use crate::error::ModelError;
 use crate::flow::FlightCondition;
 use crate::mesh::{ModeShapes, PanelMesh};
 use crate::propulsion::{
     EngineInputs, EngineStatus, PropulsionModel, PropulsionSolution, StationState,
 };
+use crate::registry::ControlContext;
 use crate::registry::ModelContext;
 use crate::structure::{
     MassDistribution, MassProperties, ModalModel, RigidBodyCoupling, RigidDof, RootLoads,

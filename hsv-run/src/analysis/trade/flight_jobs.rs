@@ -61,7 +61,7 @@ pub(super) fn simulate_case(
     loaded.config.flight.mach = spec.mach;
     loaded.config.flight.altitude_m = spec.altitude_m;
     let options = FlightOptions {
-        controller: Some(crate::control::control_settings(&loaded, None)?.0),
+        controller: Some(crate::analysis::control::control_settings(&loaded, None)?.0),
         dt_s: flight_spec.dt_s,
         ..FlightOptions::default()
     };

@@ -10,9 +10,9 @@
 use hsv_core::ModelError;
 use hsv_core::control::riccati::{RiccatiSolution, solve_care};
 use hsv_core::control::{
-    ControlCommands, ControlContext, Controller, LinearDesignModel, MeasuredOutputs, StateFeedback,
-    matrix_rows,
+    ControlCommands, Controller, LinearDesignModel, MeasuredOutputs, StateFeedback, matrix_rows,
 };
+use hsv_core::registry::ControlContext;
 use hsv_core::registry::{Constructor, ModelDescriptor};
 use nalgebra::DMatrix;
 

@@ -2,14 +2,14 @@
 //! ROM built from a panel method or CFD step responses) that can say what it was built from,
 //! be identified anew, and be checked against its source on prescribed modal motion.
 //!
-//! A model opts in by returning itself from [`crate::aero::AeroModel::reduced_order`] (`None`
+//! A model opts in by returning itself from [`super::AeroModel::reduced_order`] (`None`
 //! by default), as structure models expose their capabilities ([`crate::structure`]); commands
 //! ask for it with [`require`], so they name the model but never link its crate. A reduced
 //! model names its source model in the `source` key of its settings.
 
 use nalgebra::DMatrix;
 
-use crate::aero::AeroModel;
+use super::AeroModel;
 use crate::error::ModelError;
 use crate::flow::FlightCondition;
 

@@ -3,10 +3,11 @@
 //! evaluated at every instant the dynamics ask, so a run under it is the open-loop run.
 
 use hsv_core::ModelError;
-use hsv_core::control::{ControlCommands, ControlContext, Controller, MeasuredOutputs};
+use hsv_core::control::{ControlCommands, Controller, MeasuredOutputs};
+use hsv_core::registry::ControlContext;
 use hsv_core::registry::{Constructor, ModelDescriptor};
 
-use crate::analysis::simulate::Inputs;
+use crate::analysis::inputs::Inputs;
 
 /// The schedule around the trim commands.
 pub struct Schedule {

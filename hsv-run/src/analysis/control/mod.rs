@@ -175,7 +175,7 @@ impl ControlLoop {
     /// The open-loop `schedule` of `inputs` around `trim`, without actuators (the run the
     /// input tables always flew).
     pub fn schedule(
-        inputs: crate::analysis::simulate::Inputs,
+        inputs: crate::analysis::inputs::Inputs,
         trim: &FlightControls,
         dt_s: f64,
     ) -> Result<Self, VehicleError> {
@@ -341,13 +341,16 @@ impl ControlLoop {
     }
 }
 
+/// The name a flight under the host's commands reports as its controller.
+pub const EXTERNAL_CONTROLLER: &str = "external";
+
 /// The host program's commands: sampled at every step, it leaves the held command as the host
 /// set it (not registered: a flight built without a controller uses it).
 struct HostCommands;
 
 impl Controller for HostCommands {
     fn name(&self) -> &str {
-        crate::analysis::flight::EXTERNAL_CONTROLLER
+        EXTERNAL_CONTROLLER
     }
 
     /// Every step: the loop rounds any interval shorter than a step up to one step.

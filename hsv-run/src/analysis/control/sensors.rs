@@ -200,7 +200,8 @@ mod tests {
     fn the_controller_sees_the_outputs_of_delay_steps_ago() {
         let trim = crate::vehicle::partitioned::FlightControls::default();
         let mut control =
-            crate::control::ControlLoop::new(Box::new(Echo), None, &trim, 1e-3).expect("loop");
+            crate::analysis::control::ControlLoop::new(Box::new(Echo), None, &trim, 1e-3)
+                .expect("loop");
         let settings = SensorSettings {
             delay_s: 0.003,
             ..SensorSettings::default()

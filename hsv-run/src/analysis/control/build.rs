@@ -205,7 +205,7 @@ pub fn build_control_loop(
     let schedule = &loaded.config.simulation.inputs.clone().unwrap_or_default();
     let commands = &sub_table(&loaded.config.control, "commands");
     let key_path = format!("models.{name}");
-    let context = hsv_core::control::ControlContext {
+    let context = hsv_core::registry::ControlContext {
         settings: loaded.model_settings(name),
         key_path: &key_path,
         file: &loaded.file,

@@ -15,14 +15,13 @@
 //! "Advanced PID Control", 2006, §3.5), so a large step is flown on the proportional law.
 
 use hsv_core::ModelError;
-use hsv_core::control::{
-    ControlCommands, ControlContext, Controller, MeasuredOutputs, StateFeedback,
-};
+use hsv_core::control::{ControlCommands, Controller, MeasuredOutputs, StateFeedback};
+use hsv_core::registry::ControlContext;
 use hsv_core::registry::{Constructor, ModelDescriptor};
 use nalgebra::DMatrix;
 
 use super::lqr::{Regulator, bryson_lqr, design, regulator};
-use crate::analysis::simulate::InputTable;
+use crate::analysis::inputs::InputTable;
 use hsv_core::control::matrix_rows;
 
 /// `[models.tracking]`.

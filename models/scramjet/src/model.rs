@@ -32,6 +32,8 @@ pub trait SectionEngine: Send {
 struct Scratch {
     surfaces: EngineSurfaces,
     geometry: SectionGeometry,
+    /// The polylines of the last section solved (its `y_m` is not kept).
+    solved: SectionGeometry,
     sections: Vec<SectionSolution>,
     station_y_m: Vec<f64>,
     fit: SpanFit,
@@ -45,6 +47,23 @@ pub struct Scramjet<E> {
     strips: usize,
     reference_m: Point3<f64>,
     scratch: Scratch,
+}
+
+/// Largest distance, m, at which two sections' points count as the same: rounding of the
+/// mesh's coordinates (about 1e-15 m on a 30 m body; the sample vehicle's sections differ by
+/// 2e-15 m) and nothing a flow can resolve.
+const SAME_POINT_M: f64 = 1e-12;
+
+/// Whether `a` and `b` have the same ramp, cowl and nozzle polylines, point by point within
+/// [`SAME_POINT_M`].
+fn same_polylines(a: &SectionGeometry, b: &SectionGeometry) -> bool {
+    let same = |p: &[Point2<f64>], q: &[Point2<f64>]| {
+        p.len() == q.len()
+            && p.iter().zip(q).all(|(p, q)| {
+                (p.x - q.x).abs() <= SAME_POINT_M && (p.y - q.y).abs() <= SAME_POINT_M
+            })
+    };
+    same(&a.ramp_m, &b.ramp_m) && same(&a.cowl_m, &b.cowl_m) && same(&a.nozzle_m, &b.nozzle_m)
 }
 
 /// Severity order of the engine states: a vehicle's engine is as bad as its worst section.
@@ -133,8 +152,19 @@ impl<E: SectionEngine> PropulsionModel for Scramjet<E> {
         };
         for (k, &y) in s.station_y_m.iter().enumerate() {
             s.surfaces.section_at(y, &mut s.geometry);
+            // A section solve reads no y (only the section's polylines, the freestream and α),
+            // so a section that repeats the last solved one has its solution: every section
+            // of a spanwise-uniform engine, such as the sample vehicle's.
+            if k > 0 && same_polylines(&s.solved, &s.geometry) {
+                let (done, rest) = s.sections.split_at_mut(k);
+                rest[0].copy_from(&done[k - 1]);
+                continue;
+            }
             self.engine
                 .solve(&s.geometry, &conditions, &mut s.sections[k])?;
+            s.solved.ramp_m.clone_from(&s.geometry.ramp_m);
+            s.solved.cowl_m.clone_from(&s.geometry.cowl_m);
+            s.solved.nozzle_m.clone_from(&s.geometry.nozzle_m);
         }
         let sections = &s.sections[..self.strips];
 

@@ -97,6 +97,32 @@ pub struct SectionSolution {
 }
 
 impl SectionSolution {
+    /// `other` into this solution, reusing the buffers (a derived `clone_from` would allocate).
+    pub fn copy_from(&mut self, other: &Self) {
+        let Self {
+            status,
+            force_n_per_m,
+            pitching_moment_nm_per_m,
+            air_mass_flow_kg_s_per_m,
+            captured_fraction,
+            ramp_shock_wave_angle_rad,
+            fuel_air_ratio,
+            stations,
+            ramp_pressure_pa,
+            nozzle_pressure_pa,
+        } = other;
+        self.status = *status;
+        self.force_n_per_m = *force_n_per_m;
+        self.pitching_moment_nm_per_m = *pitching_moment_nm_per_m;
+        self.air_mass_flow_kg_s_per_m = *air_mass_flow_kg_s_per_m;
+        self.captured_fraction = *captured_fraction;
+        self.ramp_shock_wave_angle_rad = *ramp_shock_wave_angle_rad;
+        self.fuel_air_ratio = *fuel_air_ratio;
+        self.stations.clone_from(stations);
+        self.ramp_pressure_pa.clone_from(ramp_pressure_pa);
+        self.nozzle_pressure_pa.clone_from(nozzle_pressure_pa);
+    }
+
     /// Clears the result for `geometry`, keeping buffer capacity.
     pub fn reset(&mut self, geometry: &SectionGeometry) {
         self.status = EngineStatus::Ok;

@@ -388,6 +388,11 @@ pub struct Eckert {
     /// Powers of the (fixed) Prandtl number every panel needs, computed once.
     prandtl: PrandtlPowers,
     running_length_m: Vec<f64>,
+    /// Per panel, the panel of an earlier strip whose flat-plate boundary layer it repeats
+    /// ([`Eckert::find_repeats`]), or `None`.
+    repeat_of: Vec<Option<usize>>,
+    /// The flat-plate heating of each panel that repeats none (scratch of `heat_flux`).
+    flat_plate: Vec<Option<ConvectiveHeating>>,
     diagnostics: HeatFluxDiagnostics,
 }
 
@@ -438,6 +443,8 @@ impl Eckert {
             settings,
             prandtl: PrandtlPowers::new(settings.prandtl_number),
             running_length_m: Vec::new(),
+            repeat_of: Vec::new(),
+            flat_plate: Vec::new(),
             diagnostics: HeatFluxDiagnostics::default(),
         })
     }
@@ -633,11 +640,19 @@ impl HeatFluxModel for Eckert {
         self.update_running_lengths(mesh, flight);
         let direction = flight.velocity_body_m_s().normalize();
         let mut diagnostics = HeatFluxDiagnostics::default();
+        self.check_panels(aero, wall_temperature_k)?;
+        self.find_repeats(mesh, aero, wall_temperature_k);
+        let mut flat_plate = std::mem::take(&mut self.flat_plate);
+        flat_plate.clear();
+        flat_plate.extend((0..n).map(|i| {
+            let edge = &aero.edge[i];
+            let boundary_layer = !is_vacuum(edge) && edge.velocity_m_s != 0.0;
+            (boundary_layer && self.repeat_of[i].is_none())
+                .then(|| self.heating(edge, &gas, self.running_length_m[i], wall_temperature_k[i]))
+        }));
         for i in 0..n {
             let tw = wall_temperature_k[i];
             let edge = &aero.edge[i];
-            check_wall_temperature(NAME, tw, self.settings.melting_point_k, Some(i))?;
-            check_edge(edge, Some(i))?;
             let flat_plate = if is_vacuum(edge) {
                 diagnostics.vacuum_panels += 1;
                 continue_radiating(&mut out_w_m2[i], self.radiated_flux_w_m2(tw), i)?;
@@ -646,7 +661,9 @@ impl HeatFluxModel for Eckert {
                 diagnostics.stagnant_panels += 1;
                 0.0
             } else {
-                let h = self.heating(edge, &gas, self.running_length_m[i], tw);
+                let root = self.repeat_of[i].unwrap_or(i);
+                let h = flat_plate[root]
+                    .unwrap_or_else(|| self.heating(edge, &gas, self.running_length_m[i], tw));
                 diagnostics.turbulent_panels += usize::from(h.turbulent);
                 h.heat_flux_w_m2
             };
@@ -673,6 +690,7 @@ impl HeatFluxModel for Eckert {
             out_w_m2[i] = net;
         }
         self.diagnostics = diagnostics;
+        self.flat_plate = flat_plate;
         Ok(())
     }
 
@@ -692,6 +710,51 @@ impl Eckert {
         );
         self.running_length_m = running;
     }
+
+    /// Every panel's wall temperature and edge state checked, in panel order (the first bad
+    /// one is the error, naming it).
+    fn check_panels(
+        &self,
+        aero: &AeroSolution,
+        wall_temperature_k: &[f64],
+    ) -> Result<(), ModelError> {
+        for (i, (&tw, edge)) in wall_temperature_k.iter().zip(&aero.edge).enumerate() {
+            check_wall_temperature(NAME, tw, self.settings.melting_point_k, Some(i))?;
+            check_edge(edge, Some(i))?;
+        }
+        Ok(())
+    }
+
+    /// Which panels repeat the flat-plate boundary layer of a panel of an earlier strip: at
+    /// the same place in the strip before theirs (of as many panels), with the same edge state
+    /// and wall temperature to the bit and a running length within 1e-12 relative (rounding of
+    /// the mesh). Flat-plate heating and shear read nothing else, so every strip across a flat
+    /// face (5 of 6 of the sample body's) is computed once. Each repeat points at the first
+    /// panel of its chain, which repeats none.
+    fn find_repeats(&mut self, mesh: &PanelMesh, aero: &AeroSolution, wall_temperature_k: &[f64]) {
+        let n = mesh.panels.len();
+        self.repeat_of.clear();
+        self.repeat_of.resize(n, None);
+        let running = &self.running_length_m;
+        for pair in mesh.strips.windows(2) {
+            let (last, next) = (&pair[0].panels, &pair[1].panels);
+            if last.len() != next.len() {
+                continue;
+            }
+            for (&a, &b) in last.iter().zip(next) {
+                let repeats = a != b
+                    && a < n
+                    && b < n
+                    && self.repeat_of[b].is_none()
+                    && aero.edge[a] == aero.edge[b]
+                    && wall_temperature_k[a] == wall_temperature_k[b]
+                    && (running[a] - running[b]).abs() <= 1e-12 * running[a].abs();
+                if repeats {
+                    self.repeat_of[b] = Some(self.repeat_of[a].unwrap_or(a));
+                }
+            }
+        }
+    }
 }
 
 impl SkinFriction for Eckert {
@@ -710,11 +773,15 @@ impl SkinFriction for Eckert {
         check_wall_shear_inputs(NAME, mesh, flight, aero, wall_temperature_k, out_pa)?;
         self.update_running_lengths(mesh, flight);
         let gas = flight.freestream.gas;
+        self.check_panels(aero, wall_temperature_k)?;
+        self.find_repeats(mesh, aero, wall_temperature_k);
+        // Panels that repeat none first, then each repeat takes its panel's shear.
         for (i, out) in out_pa.iter_mut().enumerate() {
+            if self.repeat_of[i].is_some() {
+                continue;
+            }
             let tw = wall_temperature_k[i];
             let edge = &aero.edge[i];
-            check_wall_temperature(NAME, tw, self.settings.melting_point_k, Some(i))?;
-            check_edge(edge, Some(i))?;
             let no_boundary_layer = is_vacuum(edge) || edge.velocity_m_s == 0.0;
             let tau = if no_boundary_layer {
                 0.0
@@ -726,6 +793,11 @@ impl SkinFriction for Eckert {
                 return Err(ModelError::non_finite_at_panel(NAME, "wall shear", i));
             }
             *out = tau;
+        }
+        for i in 0..out_pa.len() {
+            if let Some(root) = self.repeat_of[i] {
+                out_pa[i] = out_pa[root];
+            }
         }
         Ok(())
     }

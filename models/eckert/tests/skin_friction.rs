@@ -283,3 +283,95 @@ fn registered_model_offers_skin_friction() {
     let expected = -Vector3::new(10f64.to_radians().cos(), 10f64.to_radians().sin(), 0.0);
     assert!((direction - expected).norm() < 1e-12, "{direction:?}");
 }
+
+/// `strips` plates of [`plate`] side by side (y = 0, 1, ...), one strip each.
+fn plates(n: usize, length_m: f64, strips: usize) -> PanelMesh {
+    let mut vertices = Vec::new();
+    let mut specs = Vec::new();
+    let mut strip_list = Vec::new();
+    for s in 0..strips {
+        let base = vertices.len();
+        let y = s as f64;
+        for i in 0..=n {
+            let x = -length_m * i as f64 / n as f64;
+            vertices.push(Point3::new(x, y, 0.0));
+            vertices.push(Point3::new(x, y + 1.0, 0.0));
+        }
+        let first = specs.len();
+        specs.extend((0..n).map(|i| {
+            PanelSpec::quad(
+                base + 2 * i,
+                base + 2 * i + 2,
+                base + 2 * i + 3,
+                base + 2 * i + 1,
+                0,
+            )
+        }));
+        strip_list.push(Strip {
+            panels: (first..first + n).collect(),
+        });
+    }
+    PanelMesh::new(
+        vertices,
+        &specs,
+        strip_list,
+        vec![Surface::new("plates", RegionKind::LiftingSurface)],
+    )
+    .unwrap()
+}
+
+/// Strips that repeat one another share their boundary layer's computation: four unit-span
+/// plates side by side, Mach 0.1 at sea level (forced laminar), each carry the Blasius plate
+/// drag (as [`plate_friction_drag_matches_blasius_plate_drag`], within 2 %) and every panel the
+/// shear of its counterpart on the first plate; a plate whose wall is 1 K hotter (its own
+/// boundary layer) differs from the others, and the plate after it, repeating no neighbour, is
+/// computed again (equal to rounding).
+#[test]
+fn repeated_strips_carry_the_blasius_drag_and_a_different_wall_its_own_shear() {
+    let f = freestream(0.1, 0.0);
+    let (n, strips) = (400, 4);
+    let mesh = plates(n, 1.0, strips);
+    let flight = FlightCondition::steady(f, 0.0, 0.0);
+    let mut eckert = model(Reference::Eckert, Regime::Laminar, 1.0);
+    let aero = uniform_solution(&mesh, edge_of(&f));
+    let tau = wall_shear(&mut eckert, &mesh, &flight, &aero, f.temperature_k);
+    let loads = integrate_shear(
+        &mesh,
+        &tau,
+        &flight,
+        &PanelMotion::default(),
+        &Point3::origin(),
+        |_| true,
+    );
+    let re_l = f.density_kg_m3 * f.velocity_m_s / sutherland_viscosity(f.temperature_k);
+    let drag = 0.5 * f.density_kg_m3 * f.velocity_m_s.powi(2) * 1.328 / re_l.sqrt();
+    let err = -loads.force_n.x / (strips as f64 * drag) - 1.0;
+    assert!(
+        err.abs() < 0.02,
+        "off {strips} Blasius plate drags by {:.2} %",
+        100.0 * err
+    );
+    for s in 1..strips {
+        for i in 0..n {
+            assert_eq!(tau[s * n + i], tau[i], "plate {s}, panel {i}");
+        }
+    }
+
+    let mut walls = vec![f.temperature_k; mesh.panels.len()];
+    walls[2 * n..3 * n].fill(f.temperature_k + 1.0);
+    let mut hot = vec![0.0; mesh.panels.len()];
+    eckert
+        .skin_friction()
+        .expect("eckert has skin friction")
+        .wall_shear(&mesh, &flight, &aero, &walls, &mut hot)
+        .unwrap();
+    for i in 0..n {
+        assert_eq!(hot[i], tau[i], "cool plate 0, panel {i}");
+        assert_ne!(hot[2 * n + i], tau[i], "hot plate 2, panel {i}");
+        // Plate 3 follows a plate it does not repeat: its own computation, equal to rounding.
+        assert!(
+            (hot[3 * n + i] - tau[i]).abs() <= 1e-12 * tau[i],
+            "cool plate 3, panel {i}"
+        );
+    }
+}

@@ -13,9 +13,9 @@
 mod common;
 use common::*;
 
-use hsv_core::aero::{AeroSolution, PanelMotion, integrate_shear};
+use hsv_core::aero::{AeroSolution, Loads, PanelMotion, integrate_shear};
 use hsv_core::atmosphere::sutherland_viscosity;
-use hsv_core::flow::FlightCondition;
+use hsv_core::flow::{FlightCondition, Freestream};
 use hsv_core::mesh::{PanelMesh, PanelSpec, RegionKind, Strip, Surface};
 use hsv_core::registry::{ModelContext, Registry};
 use hsv_core::thermal::HeatFluxModel;
@@ -37,24 +37,7 @@ fn model(reference: Reference, regime: Regime, default_running_length_m: f64) ->
 /// A plate of chord `length_m` (x = 0 back to −L) and unit span in `n` equal quads along one
 /// strip, in the body x-y plane.
 fn plate(n: usize, length_m: f64) -> PanelMesh {
-    let mut vertices = Vec::new();
-    for i in 0..=n {
-        let x = -length_m * i as f64 / n as f64;
-        vertices.push(Point3::new(x, 0.0, 0.0));
-        vertices.push(Point3::new(x, 1.0, 0.0));
-    }
-    let specs: Vec<PanelSpec> = (0..n)
-        .map(|i| PanelSpec::quad(2 * i, 2 * i + 2, 2 * i + 3, 2 * i + 1, 0))
-        .collect();
-    PanelMesh::new(
-        vertices,
-        &specs,
-        vec![Strip {
-            panels: (0..n).collect(),
-        }],
-        vec![Surface::new("plate", RegionKind::LiftingSurface)],
-    )
-    .unwrap()
+    plates(n, length_m, 1)
 }
 
 /// One 1 m² panel in no strip (its running length is `default_running_length_m`).
@@ -90,6 +73,24 @@ fn wall_shear(
         .wall_shear(mesh, flight, aero, &vec![wall_k; n], &mut tau)
         .unwrap();
     tau
+}
+
+/// The friction force and moment about the origin of the panels' wall shear `tau`.
+fn friction_loads(mesh: &PanelMesh, tau: &[f64], flight: &FlightCondition) -> Loads {
+    integrate_shear(
+        mesh,
+        tau,
+        flight,
+        &PanelMotion::default(),
+        &Point3::origin(),
+        |_| true,
+    )
+}
+
+/// Blasius drag of a 1 m × 1 m plate aligned with the flow, N: ½ ρ u² (1.328/√Re_L) A.
+fn blasius_plate_drag_n(f: &Freestream) -> f64 {
+    let re_l = f.density_kg_m3 * f.velocity_m_s / sutherland_viscosity(f.temperature_k);
+    0.5 * f.density_kg_m3 * f.velocity_m_s.powi(2) * 1.328 / re_l.sqrt()
 }
 
 /// Laminar, Mach 0.1 at sea level, wall at the edge temperature, along a 1 m plate in 20 panels
@@ -187,16 +188,8 @@ fn plate_friction_drag_matches_blasius_plate_drag() {
         &uniform_solution(&mesh, edge_of(&f)),
         f.temperature_k,
     );
-    let loads = integrate_shear(
-        &mesh,
-        &tau,
-        &flight,
-        &PanelMotion::default(),
-        &Point3::origin(),
-        |_| true,
-    );
-    let re_l = f.density_kg_m3 * f.velocity_m_s * 1.0 / sutherland_viscosity(f.temperature_k);
-    let drag = 0.5 * f.density_kg_m3 * f.velocity_m_s.powi(2) * 1.328 / re_l.sqrt() * 1.0;
+    let loads = friction_loads(&mesh, &tau, &flight);
+    let drag = blasius_plate_drag_n(&f);
     let err = -loads.force_n.x / drag - 1.0;
     println!(
         "plate: F = {:?} N, Blasius drag {drag:.5} N ({:+.2} %)",
@@ -335,16 +328,8 @@ fn repeated_strips_carry_the_blasius_drag_and_a_different_wall_its_own_shear() {
     let mut eckert = model(Reference::Eckert, Regime::Laminar, 1.0);
     let aero = uniform_solution(&mesh, edge_of(&f));
     let tau = wall_shear(&mut eckert, &mesh, &flight, &aero, f.temperature_k);
-    let loads = integrate_shear(
-        &mesh,
-        &tau,
-        &flight,
-        &PanelMotion::default(),
-        &Point3::origin(),
-        |_| true,
-    );
-    let re_l = f.density_kg_m3 * f.velocity_m_s / sutherland_viscosity(f.temperature_k);
-    let drag = 0.5 * f.density_kg_m3 * f.velocity_m_s.powi(2) * 1.328 / re_l.sqrt();
+    let loads = friction_loads(&mesh, &tau, &flight);
+    let drag = blasius_plate_drag_n(&f);
     let err = -loads.force_n.x / (strips as f64 * drag) - 1.0;
     assert!(
         err.abs() < 0.02,

@@ -728,9 +728,10 @@ impl Eckert {
     /// Which panels repeat the flat-plate boundary layer of a panel of an earlier strip: at
     /// the same place in the strip before theirs (of as many panels), with the same edge state
     /// and wall temperature to the bit and a running length within 1e-12 relative (rounding of
-    /// the mesh). Flat-plate heating and shear read nothing else, so every strip across a flat
-    /// face (5 of 6 of the sample body's) is computed once. Each repeat points at the first
-    /// panel of its chain, which repeats none.
+    /// the mesh). Flat-plate heating and shear read nothing else, so a boundary layer repeated
+    /// across a flat face is computed once (600 of the sample body's 1304 panels repeat one;
+    /// the others' running lengths differ). Each repeat points at the first panel of its chain,
+    /// which repeats none.
     fn find_repeats(&mut self, mesh: &PanelMesh, aero: &AeroSolution, wall_temperature_k: &[f64]) {
         let n = mesh.panels.len();
         self.repeat_of.clear();

@@ -101,7 +101,7 @@ impl ShockExpansion {
         for (s, strip) in mesh.strips.iter().enumerate() {
             // A strip's march reads only its θ sequence (and the freestream): a strip that
             // repeats the one before it takes that one's states, as every strip across a flat
-            // face of a beam-deformed body does (5 of 6 of the sample body's).
+            // face of a beam-deformed body does (28 of the sample body's 36 strips).
             if s > 0 && self.repeats(&mesh.strips[s - 1].panels, &strip.panels) {
                 for (&from, &to) in mesh.strips[s - 1].panels.iter().zip(&strip.panels) {
                     self.local[to] = self.local[from];

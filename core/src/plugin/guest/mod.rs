@@ -265,7 +265,7 @@ pub const fn model_entry<M: ?Sized + Exportable>(
 /// }
 /// ```
 /// Roles: `aero`, `heat_flux`, `conduction`, `structure`, `propulsion`, `control` (a
-/// [`crate::control::ControllerConstructor`]). [`crate::export_plugin!`]
+/// [`crate::registry::ControllerConstructor`]). [`crate::export_plugin!`]
 /// adds the entry point; this macro alone serves in-process tables (tests).
 #[macro_export]
 macro_rules! plugin_header {

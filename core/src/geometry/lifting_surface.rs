@@ -92,67 +92,82 @@ pub(super) struct Planform {
     pub(super) pivot_z: f64,
 }
 
+/// The trapezoidal, double-wedge shape the lifting surfaces and the vertical fin share, as
+/// their config tables give it, and the table and span key its errors name.
+pub(super) struct WingShape {
+    pub table: &'static str,
+    pub span_key: &'static str,
+    pub root_chord_m: f64,
+    pub tip_chord_m: f64,
+    pub span_m: f64,
+    pub leading_edge_sweep_deg: f64,
+    pub thickness_to_chord: f64,
+    pub max_thickness_chord_fraction: f64,
+    pub panels_chordwise: usize,
+    pub panels_spanwise: usize,
+}
+
 impl Planform {
+    /// `shape` checked (errors name its table and key) and placed with its root leading edge
+    /// `root_le_s` aft of the nose, its root at `root_y`, its pivot plane at `pivot_z`, m.
+    pub(super) fn checked(
+        shape: &WingShape,
+        (root_le_s, root_y, pivot_z): (f64, f64, f64),
+    ) -> Result<Self, VehicleError> {
+        let t = shape.table;
+        check_range(t, "root_chord_m", shape.root_chord_m, 0.0, 1e4, false)?;
+        check_range(t, "tip_chord_m", shape.tip_chord_m, 0.0, 1e4, false)?;
+        check_range(t, shape.span_key, shape.span_m, 0.0, 1e4, false)?;
+        let sweep = shape.leading_edge_sweep_deg;
+        check_range(t, "leading_edge_sweep_deg", sweep, -80.0, 80.0, true)?;
+        let tc = shape.thickness_to_chord;
+        check_range(t, "thickness_to_chord", tc, 0.0, 0.5, false)?;
+        let ridge = shape.max_thickness_chord_fraction;
+        check_range(t, "max_thickness_chord_fraction", ridge, 0.0, 1.0, false)?;
+        check_count(t, "panels_chordwise", shape.panels_chordwise, 2)?;
+        check_count(t, "panels_spanwise", shape.panels_spanwise, 1)?;
+        Ok(Self {
+            root_chord: shape.root_chord_m,
+            tip_chord: shape.tip_chord_m,
+            span: shape.span_m,
+            tan_sweep: sweep.to_radians().tan(),
+            tc,
+            ridge,
+            root_le_s,
+            root_y,
+            pivot_z,
+        })
+    }
+
     fn new(c: &LiftingSurfaceConfig) -> Result<Self, VehicleError> {
         const T: &str = "lifting_surface";
-        check_range(T, "root_chord_m", c.root_chord_m, 0.0, 1e4, false)?;
-        check_range(T, "tip_chord_m", c.tip_chord_m, 0.0, 1e4, false)?;
-        check_range(T, "span_m", c.span_m, 0.0, 1e4, false)?;
-        check_range(
-            T,
-            "leading_edge_sweep_deg",
-            c.leading_edge_sweep_deg,
-            -80.0,
-            80.0,
-            true,
-        )?;
-        check_range(
-            T,
-            "thickness_to_chord",
-            c.thickness_to_chord,
-            0.0,
-            0.5,
-            false,
-        )?;
-        check_range(
-            T,
-            "max_thickness_chord_fraction",
-            c.max_thickness_chord_fraction,
-            0.0,
-            1.0,
-            false,
-        )?;
-        check_range(
-            T,
-            "pivot_aft_of_nose_m",
-            c.pivot_aft_of_nose_m,
-            -1e4,
-            1e4,
-            true,
-        )?;
+        let pivot_aft = c.pivot_aft_of_nose_m;
+        check_range(T, "pivot_aft_of_nose_m", pivot_aft, -1e4, 1e4, true)?;
+        let pivot_fraction = c.pivot_root_chord_fraction;
         check_range(
             T,
             "pivot_root_chord_fraction",
-            c.pivot_root_chord_fraction,
+            pivot_fraction,
             0.0,
             1.0,
             true,
         )?;
         check_range(T, "pivot_z_m", c.pivot_z_m, -1e4, 1e4, true)?;
         check_range(T, "root_y_m", c.root_y_m, 0.0, 1e4, true)?;
-        check_count(T, "panels_chordwise", c.panels_chordwise, 2)?;
-        check_count(T, "panels_spanwise", c.panels_spanwise, 1)?;
-        Ok(Self {
-            root_chord: c.root_chord_m,
-            tip_chord: c.tip_chord_m,
-            span: c.span_m,
-            tan_sweep: c.leading_edge_sweep_deg.to_radians().tan(),
-            tc: c.thickness_to_chord,
-            ridge: c.max_thickness_chord_fraction,
-            root_le_s: c.pivot_aft_of_nose_m - c.pivot_root_chord_fraction * c.root_chord_m,
-            root_y: c.root_y_m,
-            pivot_z: c.pivot_z_m,
-        })
+        let shape = WingShape {
+            table: T,
+            span_key: "span_m",
+            root_chord_m: c.root_chord_m,
+            tip_chord_m: c.tip_chord_m,
+            span_m: c.span_m,
+            leading_edge_sweep_deg: c.leading_edge_sweep_deg,
+            thickness_to_chord: c.thickness_to_chord,
+            max_thickness_chord_fraction: c.max_thickness_chord_fraction,
+            panels_chordwise: c.panels_chordwise,
+            panels_spanwise: c.panels_spanwise,
+        };
+        let root_le_s = pivot_aft - pivot_fraction * c.root_chord_m;
+        Self::checked(&shape, (root_le_s, c.root_y_m, c.pivot_z_m))
     }
 
     /// Point at chord fraction u, span fraction eta, on the upper (true) or lower surface, for

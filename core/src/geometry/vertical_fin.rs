@@ -13,8 +13,8 @@ use serde::{Deserialize, Serialize};
 
 use crate::mesh::PanelMesh;
 
-use super::checks::{VehicleError, check_count, check_range};
-use super::lifting_surface::{Planform, closed_surface_mesh};
+use super::checks::{VehicleError, check_range};
+use super::lifting_surface::{Planform, WingShape, closed_surface_mesh};
 
 /// The `[vertical_fin]` table: one trapezoidal fin with a double-wedge section on the upper
 /// centreline. Distances in m, angles in degrees.
@@ -47,55 +47,29 @@ impl VerticalFinConfig {
     /// The fin's planform, checked; errors name the `[vertical_fin]` key.
     fn planform(&self) -> Result<Planform, VehicleError> {
         const T: &str = "vertical_fin";
-        check_range(T, "root_chord_m", self.root_chord_m, 0.0, 1e4, false)?;
-        check_range(T, "tip_chord_m", self.tip_chord_m, 0.0, 1e4, false)?;
-        check_range(T, "height_m", self.height_m, 0.0, 1e4, false)?;
-        check_range(
-            T,
-            "leading_edge_sweep_deg",
-            self.leading_edge_sweep_deg,
-            -80.0,
-            80.0,
-            true,
-        )?;
-        check_range(
-            T,
-            "thickness_to_chord",
-            self.thickness_to_chord,
-            0.0,
-            0.5,
-            false,
-        )?;
-        check_range(
-            T,
-            "max_thickness_chord_fraction",
-            self.max_thickness_chord_fraction,
-            0.0,
-            1.0,
-            false,
-        )?;
+        let root_le = self.root_leading_edge_aft_of_nose_m;
         check_range(
             T,
             "root_leading_edge_aft_of_nose_m",
-            self.root_leading_edge_aft_of_nose_m,
+            root_le,
             -1e4,
             1e4,
             true,
         )?;
         check_range(T, "root_z_m", self.root_z_m, -1e4, 1e4, true)?;
-        check_count(T, "panels_chordwise", self.panels_chordwise, 2)?;
-        check_count(T, "panels_spanwise", self.panels_spanwise, 1)?;
-        Ok(Planform {
-            root_chord: self.root_chord_m,
-            tip_chord: self.tip_chord_m,
-            span: self.height_m,
-            tan_sweep: self.leading_edge_sweep_deg.to_radians().tan(),
-            tc: self.thickness_to_chord,
-            ridge: self.max_thickness_chord_fraction,
-            root_le_s: self.root_leading_edge_aft_of_nose_m,
-            root_y: 0.0,
-            pivot_z: 0.0,
-        })
+        let shape = WingShape {
+            table: T,
+            span_key: "height_m",
+            root_chord_m: self.root_chord_m,
+            tip_chord_m: self.tip_chord_m,
+            span_m: self.height_m,
+            leading_edge_sweep_deg: self.leading_edge_sweep_deg,
+            thickness_to_chord: self.thickness_to_chord,
+            max_thickness_chord_fraction: self.max_thickness_chord_fraction,
+            panels_chordwise: self.panels_chordwise,
+            panels_spanwise: self.panels_spanwise,
+        };
+        Planform::checked(&shape, (root_le, 0.0, 0.0))
     }
 
     /// The fin's planform area, m²: (c_root + c_tip) h / 2.

@@ -2,22 +2,9 @@
 //! error line and a non-zero exit, never a panic.
 
 use std::path::PathBuf;
-use std::process::{Command, Output};
 
-fn hsv_run(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_hsv-run"))
-        .args(args)
-        .output()
-        .expect("hsv-run starts")
-}
-
-fn stdout(output: &Output) -> String {
-    String::from_utf8_lossy(&output.stdout).into_owned()
-}
-
-fn stderr(output: &Output) -> String {
-    String::from_utf8_lossy(&output.stderr).into_owned()
-}
+mod common;
+use common::cli::{hsv_run, quiet_simulate, scratch_dir, stderr, stdout};
 
 /// Runs and expects failure with one `error:` line containing every `needle`.
 fn expect_error(args: &[&str], needles: &[&str]) -> String {
@@ -39,12 +26,6 @@ fn expect_error(args: &[&str], needles: &[&str]) -> String {
         assert!(err.contains(needle), "{args:?}: `{needle}` not in: {err}");
     }
     err
-}
-
-fn scratch_dir(name: &str) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("hsv-cli-{}-{name}", std::process::id()));
-    std::fs::create_dir_all(&dir).expect("temp dir");
-    dir
 }
 
 #[test]
@@ -442,27 +423,8 @@ fn simulate_flies_the_vehicle_without_its_engine_in_a_steady_glide() {
     )
     .expect("config written");
     let out = dir.join("out");
-    let args = [
-        "simulate",
-        "--config",
-        config.to_str().expect("utf-8"),
-        "--duration-s",
-        "0.4",
-        "--no-heating",
-        "--vtk-interval-s",
-        "0",
-        "--quiet",
-        "--force",
-        "--out",
-        out.to_str().expect("utf-8"),
-    ];
-    let output = hsv_run(&args);
-    assert!(output.status.success(), "{args:?}: {}", stderr(&output));
-    assert!(
-        stdout(&output).contains("glide gamma"),
-        "{}",
-        stdout(&output)
-    );
+    let text = quiet_simulate(Some(&config), "0.4", &out);
+    assert!(text.contains("glide gamma"), "{text}");
     let summary: serde_json::Value = serde_json::from_str(
         &std::fs::read_to_string(out.join("summary.json")).expect("summary.json"),
     )
@@ -511,20 +473,7 @@ fn simulate_flies_the_vehicle_without_its_engine_in_a_steady_glide() {
 fn coupling_residuals_are_recorded_per_interface() {
     let dir = scratch_dir("interfaces");
     let out = dir.join("out");
-    let args = [
-        "simulate",
-        "--duration-s",
-        "0.02",
-        "--no-heating",
-        "--vtk-interval-s",
-        "0",
-        "--quiet",
-        "--force",
-        "--out",
-        out.to_str().expect("utf-8"),
-    ];
-    let output = hsv_run(&args);
-    assert!(output.status.success(), "{args:?}: {}", stderr(&output));
+    quiet_simulate(None, "0.02", &out);
     let history = std::fs::read_to_string(out.join("history.csv")).expect("history.csv");
     let largest = history_column(&history, "coupling_residual");
     let residuals = std::fs::read_to_string(out.join("coupling_residuals.csv"))

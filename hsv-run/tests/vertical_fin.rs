@@ -15,30 +15,9 @@
 //! 0.03 %.
 
 use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
 
-fn hsv_run(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_hsv-run"))
-        .args(args)
-        .output()
-        .expect("hsv-run starts")
-}
-
-fn ok_stdout(args: &[&str]) -> String {
-    let output = hsv_run(args);
-    assert!(
-        output.status.success(),
-        "{args:?}: {}",
-        String::from_utf8_lossy(&output.stderr)
-    );
-    String::from_utf8_lossy(&output.stdout).into_owned()
-}
-
-fn scratch_dir(name: &str) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("hsv-fin-{}-{name}", std::process::id()));
-    std::fs::create_dir_all(&dir).expect("temp dir");
-    dir
-}
+mod common;
+use common::cli::{ok_stdout, quiet_simulate, scratch_dir};
 
 /// The embedded sample, and the sample with its commented vertical-fin block uncommented
 /// (lines between the `>>> vertical fin` and `<<< vertical fin` markers that start with `#`
@@ -352,21 +331,7 @@ fn simulate_flies_the_vehicle_with_a_vertical_fin() {
     let dir = scratch_dir("simulate");
     let (_, with_fin) = configs(&dir);
     let out = dir.join("out");
-    let args = [
-        "simulate",
-        "--config",
-        with_fin.to_str().expect("utf-8"),
-        "--duration-s",
-        "0.05",
-        "--no-heating",
-        "--vtk-interval-s",
-        "0",
-        "--quiet",
-        "--force",
-        "--out",
-        out.to_str().expect("utf-8"),
-    ];
-    ok_stdout(&args);
+    quiet_simulate(Some(&with_fin), "0.05", &out);
     let summary: serde_json::Value = serde_json::from_str(
         &std::fs::read_to_string(out.join("summary.json")).expect("summary.json"),
     )

@@ -27,6 +27,31 @@ pub fn stderr(output: &Output) -> String {
     String::from_utf8_lossy(&output.stderr).into_owned()
 }
 
+/// The stdout of `hsv-run args...`, which must succeed.
+pub fn ok_stdout(args: &[&str]) -> String {
+    let output = hsv_run(args);
+    assert!(output.status.success(), "{args:?}: {}", stderr(&output));
+    stdout(&output)
+}
+
+/// `hsv-run simulate` of `config` (the embedded sample when `None`) for `duration_s`, unheated,
+/// quiet and without VTK frames, into `out`: the run must succeed; its stdout.
+pub fn quiet_simulate(config: Option<&Path>, duration_s: &str, out: &Path) -> String {
+    let mut args = vec!["simulate"];
+    if let Some(config) = config {
+        args.extend(["--config", config.to_str().expect("utf-8")]);
+    }
+    args.extend([
+        "--duration-s",
+        duration_s,
+        "--no-heating",
+        "--vtk-interval-s",
+        "0",
+    ]);
+    args.extend(["--quiet", "--force", "--out", out.to_str().expect("utf-8")]);
+    ok_stdout(&args)
+}
+
 /// The `--json` summary of a run that must have succeeded.
 pub fn json(output: &Output) -> serde_json::Value {
     assert!(output.status.success(), "{}", stderr(output));

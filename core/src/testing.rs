@@ -25,6 +25,25 @@ pub fn sample_region(name: &str) -> &'static RegionInfo {
     })
 }
 
+/// The vertical fin of the sample config's commented `[vertical_fin]` block (between its
+/// `>>> vertical fin` and `<<< vertical fin` markers), uncommented and parsed.
+pub fn sample_vertical_fin() -> crate::geometry::VerticalFinConfig {
+    let text = crate::config::SAMPLE_CONFIG_TOML;
+    let start = text
+        .find("#[vertical_fin]\n")
+        .expect("the sample's fin block");
+    let end = start
+        + text[start..]
+            .find("\n#\n")
+            .expect("the end of the fin table");
+    let table: String = text[start..end]
+        .lines()
+        .skip(1)
+        .map(|line| format!("{}\n", &line[1..]))
+        .collect();
+    toml::from_str(&table).expect("the sample's fin table parses")
+}
+
 /// An empty registry, for contexts of models that build no base models.
 pub fn empty_registry() -> &'static Registry {
     static EMPTY: OnceLock<Registry> = OnceLock::new();

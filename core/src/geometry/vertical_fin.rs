@@ -103,19 +103,9 @@ mod tests {
     use super::*;
     use crate::mesh::RegionKind;
 
+    /// The sample config's fin (its commented block; root chord 4 m, height 3 m).
     fn fin() -> VerticalFinConfig {
-        VerticalFinConfig {
-            root_chord_m: 4.0,
-            tip_chord_m: 1.6,
-            height_m: 3.0,
-            leading_edge_sweep_deg: 38.66,
-            thickness_to_chord: 0.028,
-            max_thickness_chord_fraction: 0.5,
-            root_leading_edge_aft_of_nose_m: 25.0,
-            root_z_m: -1.4,
-            panels_chordwise: 10,
-            panels_spanwise: 8,
-        }
+        crate::testing::sample_vertical_fin()
     }
 
     /// The mesh stands in the x-z plane above its root, and its loaded panels' projected area

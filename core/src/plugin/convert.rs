@@ -604,18 +604,7 @@ mod tests {
     /// Every region geometry a plugin can be handed survives its JSON round trip.
     #[test]
     fn region_geometries_round_trip() {
-        let fin = crate::geometry::VerticalFinConfig {
-            root_chord_m: 4.0,
-            tip_chord_m: 1.6,
-            height_m: 3.0,
-            leading_edge_sweep_deg: 38.66,
-            thickness_to_chord: 0.028,
-            max_thickness_chord_fraction: 0.5,
-            root_leading_edge_aft_of_nose_m: 25.0,
-            root_z_m: -1.415,
-            panels_chordwise: 10,
-            panels_spanwise: 8,
-        };
+        let fin = crate::testing::sample_vertical_fin();
         for geometry in [
             crate::testing::sample_region("right_surface")
                 .geometry

@@ -228,9 +228,7 @@ impl PartitionedVehicle {
         out: &mut VehicleDerivative,
     ) -> Result<(), VehicleError> {
         self.time_s = time_s;
-        let flight = self.flight(state)?;
-        self.region_loads(state, controls, &flight, step.reads_publications)?;
-        self.close_interface(state, out)
+        self.coupled_derivative(state, controls, step.reads_publications, out)
     }
 
     /// The state derivative at time `time_s` (the time models with memory read their history up
@@ -256,8 +254,20 @@ impl PartitionedVehicle {
         controls: &FlightControls,
         out: &mut VehicleDerivative,
     ) -> Result<(), VehicleError> {
+        self.coupled_derivative(state, controls, false, out)
+    }
+
+    /// The regions' loads at `state` (those at their own rates read from their publications
+    /// when `reads_publications`), then the interface closed on them.
+    fn coupled_derivative(
+        &mut self,
+        state: &VehicleState,
+        controls: &FlightControls,
+        reads_publications: bool,
+        out: &mut VehicleDerivative,
+    ) -> Result<(), VehicleError> {
         let flight = self.flight(state)?;
-        self.region_loads(state, controls, &flight, false)?;
+        self.region_loads(state, controls, &flight, reads_publications)?;
         self.close_interface(state, out)
     }
 

@@ -302,21 +302,21 @@ impl PartitionedVehicle {
     }
 
     /// Loads of every region except the root loads' inertia term (which waits for q̈): the
-    /// main body with its engine, and each lifting surface, run side by side (rayon). At a
-    /// stage of an open step (`in_step`) a region that runs at its own rate reads its
-    /// publications instead, and the first stage reads the surfaces `begin_step` evaluated at
-    /// its state.
+    /// main body with its engine, and each lifting surface, run side by side (rayon). With
+    /// `reads_publications` (a stage of an open step) a region that runs at its own rate reads
+    /// its publications instead, and the first stage reads the surfaces `begin_step` evaluated
+    /// at its state.
     pub(super) fn region_loads(
         &mut self,
         state: &VehicleState,
         controls: &FlightControls,
         flight: &FlightCondition,
-        in_step: bool,
+        reads_publications: bool,
     ) -> Result<(), VehicleError> {
-        let surfaces_read = in_step
+        let surfaces_read = reads_publications
             && (self.read_surface_loads(&controls.elevon)?
                 || self.stage_one_surfaces(state, controls));
-        let body_read = in_step
+        let body_read = reads_publications
             && self.exchange.read_body(
                 self.time_s,
                 &mut self.loads.body,
@@ -333,7 +333,7 @@ impl PartitionedVehicle {
             RegionsWanted {
                 body: !body_read,
                 surfaces: !surfaces_read,
-                hold_friction: in_step,
+                hold_friction: reads_publications,
             },
         );
         if let Some(done) = surfaces_done {

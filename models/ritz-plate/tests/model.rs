@@ -266,3 +266,33 @@ fn left_side_root_loads_mirror_the_right() {
     assert_relative_eq!(a.moment_nm.y, b.moment_nm.y);
     assert!(a.moment_nm.x.abs() > 0.0 && a.force_n.z.abs() > 0.0);
 }
+
+/// The construction keeps the last plate built for the mirror surface's copy; only the same
+/// settings may take it. Cantilever plates of 10, again 10 (the copy) and 20 mm built one
+/// after the other each match Leissa's CFFF λ₁ = 3.492 for their own thickness (f₁ ∝ h for a
+/// Kirchhoff plate, within 2 % as above), and the copy is the first plate to the bit.
+#[test]
+fn plates_built_in_turn_each_have_their_own_thickness() {
+    let ti = hsv_core::material::Material::ti_6al_4v();
+    let e = ti.youngs_modulus_pa(293.0).unwrap();
+    let nu = ti.poisson_ratio;
+    let leissa_hz = |h: f64| {
+        let d = e * h.powi(3) / (12.0 * (1.0 - nu * nu));
+        3.492 / (2.0 * std::f64::consts::PI) * (d / (ti.density_kg_m3 * h)).sqrt()
+    };
+    let first_frequency = |h: f64| {
+        let model = build(&format!(
+            "planform = \"rectangular\"\nroot = \"clamped\"\nelements_chordwise = 12\n\
+             elements_spanwise = 12\n[rectangular]\nchord_m = 1.0\nspan_m = 1.0\n\
+             thickness_m = {h}\n"
+        ))
+        .expect("rectangular");
+        model.natural_frequencies_hz().expect("frequencies")[0]
+    };
+    let thin = first_frequency(0.01);
+    let thin_again = first_frequency(0.01);
+    let thick = first_frequency(0.02);
+    assert_relative_eq!(thin, leissa_hz(0.01), max_relative = 0.02);
+    assert_relative_eq!(thick, leissa_hz(0.02), max_relative = 0.02);
+    assert_eq!(thin_again, thin);
+}

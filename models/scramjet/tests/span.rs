@@ -1,7 +1,9 @@
-//! The engine across its span: on a spanwise-uniform engine (the sample vehicle's, a 2D inlet,
-//! combustor and nozzle extruded across 3 m) every section is the same two-dimensional problem,
-//! so the vehicle's engine loads are one section's per-span loads times the width (the span
-//! fit integrates a constant exactly) and the sections share one solve.
+//! The engine across its span, a consistency check of the span integration (not a validation:
+//! the section physics is validated against Heiser & Pratt and Bolender & Doman in the other
+//! files). On a spanwise-uniform engine (the sample vehicle's, a 2D inlet, combustor and nozzle
+//! extruded across 3 m) every section is the same two-dimensional problem, so the quadratic span
+//! fit must integrate the sections' per-span loads to exactly those loads times the width, and
+//! the sections share one solve (every section equal to the first, to the bit).
 
 use hsv_core::config::LoadedConfig;
 use hsv_core::flow::{FlightCondition, Freestream};

@@ -319,6 +319,34 @@ fn a_run_resumed_from_its_restart_file_continues_bit_for_bit() {
     resumes_bit_for_bit(RegionLoadRate::Interval(0.004));
 }
 
+#[test]
+fn a_restart_of_another_vehicle_is_refused_and_changes_nothing() {
+    // Issue 25: the vehicle's own state is one value, checked whole before any of it is taken,
+    // so a refused restart leaves the vehicle as it was (nothing half restored).
+    let (mut vehicle, _, _) = heated_trimmed();
+    let before = vehicle.restart();
+    let mut foreign = before.clone();
+    foreign.memory.time_s = 1.0;
+    foreign.memory.q_ddot[0] = nalgebra::DVector::zeros(foreign.memory.q_ddot[0].len() + 1);
+    let err = vehicle
+        .restore(&foreign)
+        .expect_err("a surface with one mode more");
+    assert!(
+        err.to_string().contains("modal accelerations for `"),
+        "{err}"
+    );
+    let mut cold = before.clone();
+    cold.memory.time_s = 1.0;
+    cold.thermal[0] = None;
+    let err = vehicle.restore(&cold).expect_err("one surface unheated");
+    assert!(
+        err.to_string()
+            .contains("heats in one run and not in the other"),
+        "{err}"
+    );
+    assert_eq!(vehicle.restart(), before);
+}
+
 /// The heated partitioned vehicle (coarse surfaces), trimmed and flown for 0.2 s in one go, and
 /// again stopped at 0.102 s, written to JSON, read back into a freshly built vehicle and
 /// resumed: the final states must be identical to the last bit.

@@ -31,6 +31,7 @@ impl PartitionedVehicle {
         let mut follower_sets = Vec::new();
         let mut body_modal = None;
         let mut surfaces = Vec::new();
+        let mut histories = Vec::new();
         let mut engine = None;
         let mut mass: Option<MassProperties> = None;
         let mut reference_point_m = Point3::origin();
@@ -122,6 +123,7 @@ impl PartitionedVehicle {
                         )?),
                         _ => None,
                     };
+                    histories.push(history);
                     surfaces.push(Surface {
                         thermal,
                         friction: set.friction.map(|m| RegionFriction::new(m, n_panels)),
@@ -131,7 +133,6 @@ impl PartitionedVehicle {
                         elevon_rotation: nalgebra::Rotation3::identity(),
                         name: name.clone(),
                         rigid: set.info.mesh.clone(),
-                        history,
                         velocities: vec![Vector3::zeros(); set.info.mesh.panels.len()],
                         displaced_m: set.info.mesh.vertices.clone(),
                         deflected: set.info.mesh.clone(),
@@ -145,7 +146,6 @@ impl PartitionedVehicle {
                         pivot_m,
                         solution: AeroSolution::default(),
                         generalized: vec![0.0; n],
-                        root_force_n: Vector3::zeros(),
                         body_modes_at_pivot: nalgebra::DMatrix::zeros(6, 0),
                     });
                 }
@@ -259,8 +259,14 @@ impl PartitionedVehicle {
             HeatingRates::default().heat_flux_s,
         )?;
         Ok(Self {
-            q_ddot,
-            body_q_ddot: DVector::zeros(body_modal.n_modes()),
+            memory: VehicleMemory {
+                time_s: 0.0,
+                root_force_n: vec![Vector3::zeros(); q_ddot.len()],
+                q_ddot,
+                histories,
+                coupling: CouplingReport::default(),
+                body_q_ddot: DVector::zeros(body_modal.n_modes()),
+            },
             acceleration: hsv_core::acceleration::acceleration(&CouplingConfig::default()),
             acceleration_config: CouplingConfig::default(),
             iterate: vec![0.0; interface_len],
@@ -278,11 +284,9 @@ impl PartitionedVehicle {
             gas,
             settings,
             loads,
-            report: CouplingReport::default(),
             interface_residuals: vec![0.0; n_surfaces + 1],
             warm_start: None,
             heating: HeatingRates::default(),
-            time_s: 0.0,
             aero_loads: Loads::default(),
             aero_with_surfaces: Loads::default(),
             body_mode_names: body_modal_names,

@@ -9,8 +9,8 @@ impl PartitionedVehicle {
     /// next [`Self::derivative`] starts from.
     pub fn coupling_guess(&self) -> CouplingGuess {
         CouplingGuess {
-            q_ddot: self.q_ddot.clone(),
-            body_q_ddot: self.body_q_ddot.clone(),
+            q_ddot: self.memory.q_ddot.clone(),
+            body_q_ddot: self.memory.body_q_ddot.clone(),
         }
     }
 
@@ -20,21 +20,22 @@ impl PartitionedVehicle {
         let fits = |a: &[DVector<f64>], b: &[DVector<f64>]| {
             a.len() == b.len() && a.iter().zip(b).all(|(x, y)| x.len() == y.len())
         };
-        if !(fits(&guess.q_ddot, &self.q_ddot) && guess.body_q_ddot.len() == self.body_q_ddot.len())
+        if !(fits(&guess.q_ddot, &self.memory.q_ddot)
+            && guess.body_q_ddot.len() == self.memory.body_q_ddot.len())
         {
             return Err(VehicleError::Input(
                 "a coupling guess of another vehicle (surface mode counts differ)".to_owned(),
             ));
         }
-        self.q_ddot.clone_from(&guess.q_ddot);
-        self.body_q_ddot.copy_from(&guess.body_q_ddot);
+        self.memory.q_ddot.clone_from(&guess.q_ddot);
+        self.memory.body_q_ddot.copy_from(&guess.body_q_ddot);
         Ok(())
     }
 
     /// Length of the interface vector of the staggered scheme ([`crate::vehicle::staggered`]): every
     /// surface's q̈, then the body's η̈.
     pub fn interface_len(&self) -> usize {
-        self.q_ddot.iter().map(|q| q.len()).sum::<usize>() + self.body_q_ddot.len()
+        self.memory.q_ddot.iter().map(|q| q.len()).sum::<usize>() + self.memory.body_q_ddot.len()
     }
 
     /// The interface unknowns the next derivative starts from, into `out`
@@ -42,7 +43,10 @@ impl PartitionedVehicle {
     pub fn interface_guess(&self, out: &mut [f64]) {
         gather(
             out,
-            self.q_ddot.iter().chain(std::iter::once(&self.body_q_ddot)),
+            self.memory
+                .q_ddot
+                .iter()
+                .chain(std::iter::once(&self.memory.body_q_ddot)),
         );
     }
 
@@ -50,9 +54,10 @@ impl PartitionedVehicle {
     pub fn set_interface_guess(&mut self, guess: &[f64]) {
         scatter(
             guess,
-            self.q_ddot
+            self.memory
+                .q_ddot
                 .iter_mut()
-                .chain(std::iter::once(&mut self.body_q_ddot)),
+                .chain(std::iter::once(&mut self.memory.body_q_ddot)),
         );
     }
 
@@ -69,7 +74,7 @@ impl PartitionedVehicle {
         produced: &mut [f64],
         out: &mut VehicleDerivative,
     ) -> Result<(), VehicleError> {
-        self.time_s = time_s;
+        self.memory.time_s = time_s;
         let flight = self.flight(state)?;
         self.region_loads(state, controls, &flight, step.reads_publications)?;
         self.set_interface_guess(guess);
@@ -77,7 +82,7 @@ impl PartitionedVehicle {
         self.add_root_loads(state, &body_without_roots)?;
         self.loads
             .body_modal_acceleration
-            .copy_from(&self.body_q_ddot);
+            .copy_from(&self.memory.body_q_ddot);
         self.dynamics.derivative(state, &self.loads, out)?;
         gather(
             produced,
@@ -119,7 +124,7 @@ impl PartitionedVehicle {
     /// Records a staggered step's sub-iterations and final interface residual (m) as the
     /// coupling report.
     pub fn set_staggered_report(&mut self, sub_iterations: usize, residual_m: f64) {
-        self.report = CouplingReport {
+        self.memory.coupling = CouplingReport {
             iterations: sub_iterations,
             residual: residual_m,
         };
@@ -185,17 +190,18 @@ impl PartitionedVehicle {
                 .root_loads(
                     &modes.q,
                     &modes.q_dot,
-                    &self.q_ddot[i],
+                    &self.memory.q_ddot[i],
                     &s.applied_surface_frame,
                 )
                 .map_err(&err)?;
             let force = rotation * root.force_n;
             let moment = rotation * root.moment_nm;
-            let scale = force.norm().max(s.root_force_n.norm()).max(1.0);
-            let surface_change = (force - s.root_force_n).norm() / scale;
+            let last = &mut self.memory.root_force_n[i];
+            let scale = force.norm().max(last.norm()).max(1.0);
+            let surface_change = (force - *last).norm() / scale;
             self.interface_residuals[i] = surface_change;
             change = change.max(surface_change);
-            s.root_force_n = force;
+            *last = force;
             self.loads.surface_root_loads[i] = Loads {
                 force_n: force,
                 moment_nm: moment,
@@ -227,7 +233,7 @@ impl PartitionedVehicle {
         controls: &FlightControls,
         out: &mut VehicleDerivative,
     ) -> Result<(), VehicleError> {
-        self.time_s = time_s;
+        self.memory.time_s = time_s;
         self.coupled_derivative(state, controls, step.reads_publications, out)
     }
 
@@ -241,7 +247,7 @@ impl PartitionedVehicle {
         controls: &FlightControls,
         out: &mut VehicleDerivative,
     ) -> Result<(), VehicleError> {
-        self.time_s = time_s;
+        self.memory.time_s = time_s;
         self.derivative(state, controls, out)
     }
 
@@ -286,7 +292,7 @@ impl PartitionedVehicle {
             residual = self.add_root_loads(state, &body_without_roots)?;
             self.loads
                 .body_modal_acceleration
-                .copy_from(&self.body_q_ddot);
+                .copy_from(&self.memory.body_q_ddot);
             self.dynamics.derivative(state, &self.loads, out)?;
             // The body's side of the interface: η̈ against its iterate, relative to the η̈ that
             // moves a pivot by 1 g.
@@ -294,7 +300,7 @@ impl PartitionedVehicle {
                 .body_modes
                 .q_ddot
                 .iter()
-                .zip(self.body_q_ddot.iter())
+                .zip(self.memory.body_q_ddot.iter())
                 .fold(0.0_f64, |m, (a, b)| m.max((a - b).abs()))
                 / self.body_q_ddot_scale;
             if let Some(body) = self.interface_residuals.last_mut() {
@@ -302,7 +308,7 @@ impl PartitionedVehicle {
             }
             residual = residual.max(body_change);
             if n_surfaces == 0 || (iteration > 1 && residual <= self.settings.tolerance) {
-                self.report = CouplingReport {
+                self.memory.coupling = CouplingReport {
                     iterations: iteration,
                     residual,
                 };
@@ -312,7 +318,10 @@ impl PartitionedVehicle {
             // mass-normalized modal accelerations, so one inner product weighs them alike).
             gather(
                 &mut self.iterate,
-                self.q_ddot.iter().chain(std::iter::once(&self.body_q_ddot)),
+                self.memory
+                    .q_ddot
+                    .iter()
+                    .chain(std::iter::once(&self.memory.body_q_ddot)),
             );
             gather(
                 &mut self.produced,
@@ -324,12 +333,13 @@ impl PartitionedVehicle {
             self.acceleration.update(&mut self.iterate, &self.produced);
             scatter(
                 &self.iterate,
-                self.q_ddot
+                self.memory
+                    .q_ddot
                     .iter_mut()
-                    .chain(std::iter::once(&mut self.body_q_ddot)),
+                    .chain(std::iter::once(&mut self.memory.body_q_ddot)),
             );
         }
-        self.report = CouplingReport {
+        self.memory.coupling = CouplingReport {
             iterations: self.settings.max_iterations,
             residual,
         };

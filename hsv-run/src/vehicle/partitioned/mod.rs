@@ -32,7 +32,9 @@
 
 use hsv_core::ModelError;
 use hsv_core::acceleration::Acceleration;
-use hsv_core::aero::{AeroModel, AeroSolution, Loads, PanelMotion, integrate_pressure};
+use hsv_core::aero::{
+    AeroModel, AeroSolution, Loads, ModalHistory, PanelMotion, integrate_pressure,
+};
 use hsv_core::config::CouplingConfig;
 pub use hsv_core::coupling::ElevonCommand;
 use hsv_core::coupling::{
@@ -70,6 +72,8 @@ mod restart;
 mod steady;
 mod step;
 mod surface;
+
+pub use restart::{ThermalRestart, VehicleMemory, VehicleRestart};
 
 use body::*;
 use engine::*;
@@ -140,17 +144,22 @@ pub fn heated_needs(analysis: &str) -> AnalysisNeeds {
     needs
 }
 
-/// Rates of the in-flight heating (paper Table 3).
-#[derive(Debug, Clone, Copy, PartialEq)]
+/// Rates of the in-flight heating (paper Table 3). In a restart file its fields are keys of
+/// the vehicle's own ([`VehicleRestart`]), prefixed `heating_`.
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct HeatingRates {
     /// Conduction step, s (paper: heat transfer 1 ms).
+    #[serde(rename = "heating_conduction_s")]
     pub conduction_s: f64,
     /// Interval between heat-flux updates, s (paper: aerothermal 10 ms); the flux is refreshed
     /// at the start of the step where it falls due, from the accepted state.
+    #[serde(rename = "heating_heat_flux_s")]
     pub heat_flux_s: f64,
     /// Interval between stiffness updates from the temperature field, s (our choice).
+    #[serde(rename = "heating_stiffness_s")]
     pub stiffness_s: f64,
     /// Initial uniform temperature, K (paper: 293 K).
+    #[serde(rename = "heating_initial_k")]
     pub initial_k: f64,
 }
 
@@ -178,43 +187,6 @@ struct HeatedSurface {
     /// surface's `structure_temperatures` topic, the structure reads it into its stiffness and
     /// the vehicle's modal matrices follow.
     stiffness_changed: bool,
-}
-
-/// One heated surface's thermal state for a restart file.
-#[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
-pub struct ThermalRestart {
-    pub state: DVector<f64>,
-    pub structure_k: Vec<f64>,
-    pub structure_difference_k: Vec<f64>,
-    pub conduction_time_s: f64,
-    pub stiffness_time_s: f64,
-}
-
-/// Everything of the vehicle, beyond its [`VehicleState`], that the next step depends on: the
-/// coupling iteration's guesses, the surfaces' thermal states and modal histories. With it a
-/// run continues bit for bit.
-#[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
-pub struct VehicleRestart {
-    pub time_s: f64,
-    pub q_ddot: Vec<DVector<f64>>,
-    pub root_force_n: Vec<Vector3<f64>>,
-    pub thermal: Vec<Option<ThermalRestart>>,
-    pub histories: Vec<Option<hsv_core::aero::ModalHistory>>,
-    pub heating_conduction_s: f64,
-    pub heating_heat_flux_s: f64,
-    pub heating_stiffness_s: f64,
-    pub heating_initial_k: f64,
-    /// The regions' publications at their own rates: the data manager's checkpoint of the
-    /// body's and each surface's loads topics and the body's skin friction.
-    pub region_loads: hsv_core::data::DataCheckpoint,
-    /// The last coupling iteration's report (the first sample of a continued run shows it;
-    /// absent in older restart files).
-    #[serde(default)]
-    pub coupling: CouplingReport,
-    /// The body's η̈ guess of the elastic interface (absent in restart files from before the
-    /// two-way interface: zeros).
-    #[serde(default)]
-    pub body_q_ddot: DVector<f64>,
 }
 
 /// Temperatures of one heated surface, K.
@@ -481,12 +453,9 @@ struct Surface {
     pivot_m: Point3<f64>,
     /// The base mesh rotated rigidly by the elevon (what a model with memory evaluates on).
     rigid: PanelMesh,
-    /// The modal history of an aero model with memory: simulation state of this region.
-    history: Option<hsv_core::aero::ModalHistory>,
     velocities: Vec<Vector3<f64>>,
     solution: AeroSolution,
     generalized: Vec<f64>,
-    root_force_n: Vector3<f64>,
     /// The body's mode shapes at the pivot (6 × n_body: translation m, section rotation rad).
     body_modes_at_pivot: nalgebra::DMatrix<f64>,
 }
@@ -507,11 +476,9 @@ pub struct PartitionedVehicle {
     gas: PerfectGas,
     settings: CouplingSettings,
     loads: VehicleLoads,
-    /// Surface modal accelerations: the coupling's unknown, kept from the last derivative as
-    /// the next guess.
-    q_ddot: Vec<DVector<f64>>,
-    /// The body's η̈, the interface's other unknown.
-    body_q_ddot: DVector<f64>,
+    /// The vehicle's own state from derivative to derivative and step to step: time, the
+    /// coupling's guesses and report, the surfaces' modal histories ([`VehicleMemory`]).
+    memory: VehicleMemory,
     /// The fixed point's acceleration (`[coupling] acceleration`) and the flat interface
     /// vectors it works on (scratch).
     acceleration: Box<dyn Acceleration>,
@@ -523,15 +490,12 @@ pub struct PartitionedVehicle {
     /// The staggered scheme's settings, or None for the implicit scheme (module
     /// [`super::staggered`]).
     staggered: Option<super::staggered::StaggeredSettings>,
-    report: CouplingReport,
     /// Each interface's residual at the last fixed-point iteration: every surface's relative
     /// root-force change, then the body's η̈ change (relative to the η̈ that moves a pivot by
     /// 1 g); [`PartitionedVehicle::interface_names`] names them.
     interface_residuals: Vec<f64>,
     warm_start: Option<VehicleState>,
     heating: HeatingRates,
-    /// Simulation time of the next derivative, s (for models with memory).
-    time_s: f64,
     /// Aero loads of the body panels, and with the surfaces' applied loads, about the CG.
     aero_loads: Loads,
     aero_with_surfaces: Loads,

@@ -1,42 +1,137 @@
-//! The vehicle's own state in a restart file and its restoration (`--resume`, bit for bit).
+//! The vehicle's own state in a restart file and its restoration (`--resume`, bit for bit): its
+//! memory whole ([`VehicleMemory`]), each heated surface's thermal state, the heating's rates
+//! and the data manager's checkpoint.
 
 use super::*;
+
+/// One heated surface's thermal state: its conduction state and the field its structure's
+/// stiffness was last updated from.
+#[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
+pub struct ThermalRestart {
+    pub state: DVector<f64>,
+    pub structure_k: Vec<f64>,
+    pub structure_difference_k: Vec<f64>,
+    pub conduction_time_s: f64,
+    pub stiffness_time_s: f64,
+}
+
+/// What the vehicle itself carries from one derivative and one step to the next, beyond the
+/// integrated [`VehicleState`]: the time, the coupling iteration's guesses (each surface's q̈,
+/// the body's η̈) and references (root forces, the last report), and the surfaces' modal
+/// histories (aero models with memory). Plain data held as one value by the vehicle, saved and
+/// restored whole; the thermal regions and the data manager keep theirs (in
+/// [`VehicleRestart`] beside it).
+#[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
+pub struct VehicleMemory {
+    /// Simulation time of the next derivative, s (models with memory, the wind field).
+    pub time_s: f64,
+    /// Surface modal accelerations: the coupling's unknown, kept from the last derivative as
+    /// the next guess.
+    pub q_ddot: Vec<DVector<f64>>,
+    /// Each surface's root force at the last coupling iteration, N (the residual's reference).
+    pub root_force_n: Vec<Vector3<f64>>,
+    /// The modal history of each surface's aero model with memory (`None` for the others).
+    pub histories: Vec<Option<ModalHistory>>,
+    /// The last coupling iteration's report (the first sample of a continued run shows it;
+    /// absent in older restart files).
+    #[serde(default)]
+    pub coupling: CouplingReport,
+    /// The body's η̈, the interface's other unknown (absent in restart files from before the
+    /// two-way interface: zeros).
+    #[serde(default)]
+    pub body_q_ddot: DVector<f64>,
+}
+
+/// Everything of the vehicle, beyond its [`VehicleState`], that the next step depends on: its
+/// own memory, the surfaces' thermal states, the heating's rates and the regions' publications
+/// in the data manager. With it a run continues bit for bit. Its keys are flat (one JSON object).
+#[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
+pub struct VehicleRestart {
+    #[serde(flatten)]
+    pub memory: VehicleMemory,
+    pub thermal: Vec<Option<ThermalRestart>>,
+    #[serde(flatten)]
+    pub heating: HeatingRates,
+    /// The regions' publications at their own rates: the data manager's checkpoint of the
+    /// body's and each surface's loads topics and the body's skin friction.
+    pub region_loads: hsv_core::data::DataCheckpoint,
+}
+
+impl HeatedSurface {
+    /// The thermal region's conduction state and the field the structure last read.
+    fn saved(&self) -> ThermalRestart {
+        ThermalRestart {
+            state: self.region.state().clone(),
+            structure_k: self.onto_structure.mean_k.clone(),
+            structure_difference_k: self.onto_structure.difference_k.clone(),
+            conduction_time_s: self.region.time_s(),
+            stiffness_time_s: self.stiffness_time_s,
+        }
+    }
+
+    /// Continues from `saved`; whether the structure's stiffness must be set from its field
+    /// again (it had been heated).
+    fn restore(&mut self, saved: &ThermalRestart) -> Result<bool, ModelError> {
+        self.region.restore(&saved.state, saved.conduction_time_s)?;
+        self.onto_structure.mean_k.clone_from(&saved.structure_k);
+        self.onto_structure
+            .difference_k
+            .clone_from(&saved.structure_difference_k);
+        self.stiffness_time_s = saved.stiffness_time_s;
+        Ok(self.stiffness_time_s > 0.0)
+    }
+}
 
 impl PartitionedVehicle {
     /// The vehicle's own state for a restart file ([`VehicleRestart`]).
     pub fn restart(&self) -> VehicleRestart {
         VehicleRestart {
-            time_s: self.time_s,
-            q_ddot: self.q_ddot.clone(),
-            root_force_n: self.surfaces.iter().map(|s| s.root_force_n).collect(),
+            memory: self.memory.clone(),
             thermal: self
                 .surfaces
                 .iter()
-                .map(|s| {
-                    s.thermal.as_ref().map(|t| ThermalRestart {
-                        state: t.region.state().clone(),
-                        structure_k: t.onto_structure.mean_k.clone(),
-                        structure_difference_k: t.onto_structure.difference_k.clone(),
-                        conduction_time_s: t.region.time_s(),
-                        stiffness_time_s: t.stiffness_time_s,
-                    })
-                })
+                .map(|s| s.thermal.as_ref().map(HeatedSurface::saved))
                 .collect(),
-            histories: self.surfaces.iter().map(|s| s.history.clone()).collect(),
-            heating_conduction_s: self.heating.conduction_s,
-            heating_heat_flux_s: self.heating.heat_flux_s,
-            heating_stiffness_s: self.heating.stiffness_s,
-            heating_initial_k: self.heating.initial_k,
+            heating: self.heating,
             region_loads: self.exchange.checkpoint(),
-            body_q_ddot: self.body_q_ddot.clone(),
-            coupling: self.report,
         }
     }
 
     /// Restores the vehicle's own state from a restart file: the surfaces' stiffness is set from
     /// the saved temperature field again, so the modal matrices are those of the run.
     pub fn restore(&mut self, r: &VehicleRestart) -> Result<(), VehicleError> {
-        let n = self.surfaces.len();
+        self.check_restart(r)?;
+        let mut memory = r.memory.clone();
+        if memory.body_q_ddot.is_empty() {
+            // A restart file from before the two-way interface.
+            memory.body_q_ddot = DVector::zeros(self.memory.body_q_ddot.len());
+        }
+        self.memory = memory;
+        self.heating = r.heating;
+        // The exchange declares the heat flux's interval: at the run's, then its state.
+        self.rebuild_exchange()?;
+        self.exchange.restore(&r.region_loads)?;
+        self.stage_one = None;
+        for (i, s) in self.surfaces.iter_mut().enumerate() {
+            let (Some(t), Some(saved)) = (&mut s.thermal, &r.thermal[i]) else {
+                continue;
+            };
+            if t.restore(saved).map_err(model_error(&s.name))? {
+                if let Some(thermal) = s.structure.thermal_stiffness_mut() {
+                    t.onto_structure
+                        .apply(thermal)
+                        .map_err(model_error(&s.name))?;
+                }
+                self.dynamics
+                    .set_surface_matrices(i, s.structure.modal_model())?;
+            }
+        }
+        Ok(())
+    }
+
+    /// Whether `r` fits this vehicle: as many surfaces, modes and thermal states, each surface
+    /// heating in both runs or in neither, and no cold state for a heated structure.
+    fn check_restart(&self, r: &VehicleRestart) -> Result<(), VehicleError> {
         if self.stiffness_heated()
             && r.thermal
                 .iter()
@@ -50,11 +145,13 @@ impl PartitionedVehicle {
                     .to_owned(),
             ));
         }
+        let n = self.surfaces.len();
+        let m = &r.memory;
         for (what, len) in [
-            ("coupling accelerations", r.q_ddot.len()),
-            ("root forces", r.root_force_n.len()),
+            ("coupling accelerations", m.q_ddot.len()),
+            ("root forces", m.root_force_n.len()),
             ("thermal states", r.thermal.len()),
-            ("modal histories", r.histories.len()),
+            ("modal histories", m.histories.len()),
         ] {
             if len != n {
                 return Err(VehicleError::Input(format!(
@@ -62,63 +159,25 @@ impl PartitionedVehicle {
                 )));
             }
         }
-        let n_body = self.body_q_ddot.len();
-        let len = r.body_q_ddot.len();
-        if len != 0 && len != n_body {
-            return Err(VehicleError::Input(format!(
-                "restart file: {len} body modal accelerations for a body of {n_body} modes"
-            )));
-        }
-        self.time_s = r.time_s;
-        self.report = r.coupling;
-        self.heating = HeatingRates {
-            conduction_s: r.heating_conduction_s,
-            heat_flux_s: r.heating_heat_flux_s,
-            stiffness_s: r.heating_stiffness_s,
-            initial_k: r.heating_initial_k,
-        };
-        // The exchange declares the heat flux's interval: at the run's, then its state.
-        self.rebuild_exchange()?;
-        self.exchange.restore(&r.region_loads)?;
-        self.stage_one = None;
-        self.q_ddot.clone_from(&r.q_ddot);
-        if r.body_q_ddot.is_empty() {
-            self.body_q_ddot.fill(0.0);
-        } else {
-            self.body_q_ddot.copy_from(&r.body_q_ddot);
-        }
-        for (i, s) in self.surfaces.iter_mut().enumerate() {
-            s.root_force_n = r.root_force_n[i];
-            s.history.clone_from(&r.histories[i]);
-            match (&mut s.thermal, &r.thermal[i]) {
-                (Some(t), Some(saved)) => {
-                    if saved.state.len() != t.region.state().len() {
-                        return Err(VehicleError::Input(format!(
-                            "restart file: {} thermal states for `{}`, whose conduction model has {}",
-                            saved.state.len(),
-                            s.name,
-                            t.region.state().len()
-                        )));
-                    }
-                    t.region
-                        .restore(&saved.state, saved.conduction_time_s)
-                        .map_err(model_error(&s.name))?;
-                    t.onto_structure.mean_k.clone_from(&saved.structure_k);
-                    t.onto_structure
-                        .difference_k
-                        .clone_from(&saved.structure_difference_k);
-                    t.stiffness_time_s = saved.stiffness_time_s;
-                    if t.stiffness_time_s > 0.0 {
-                        if let Some(thermal) = s.structure.thermal_stiffness_mut() {
-                            t.onto_structure
-                                .apply(thermal)
-                                .map_err(model_error(&s.name))?;
-                        }
-                        self.dynamics
-                            .set_surface_matrices(i, s.structure.modal_model())?;
-                    }
+        for (s, (q_ddot, saved)) in self.surfaces.iter().zip(m.q_ddot.iter().zip(&r.thermal)) {
+            if q_ddot.len() != s.shapes.n_modes() {
+                return Err(VehicleError::Input(format!(
+                    "restart file: {} modal accelerations for `{}`, which has {} modes",
+                    q_ddot.len(),
+                    s.name,
+                    s.shapes.n_modes()
+                )));
+            }
+            match (&s.thermal, saved) {
+                (Some(t), Some(saved)) if saved.state.len() != t.region.state().len() => {
+                    return Err(VehicleError::Input(format!(
+                        "restart file: {} thermal states for `{}`, whose conduction model has {}",
+                        saved.state.len(),
+                        s.name,
+                        t.region.state().len()
+                    )));
                 }
-                (None, None) => {}
+                (Some(_), Some(_)) | (None, None) => {}
                 _ => {
                     return Err(VehicleError::Input(format!(
                         "restart file: `{}` heats in one run and not in the other",
@@ -126,6 +185,13 @@ impl PartitionedVehicle {
                     )));
                 }
             }
+        }
+        let n_body = self.memory.body_q_ddot.len();
+        let len = m.body_q_ddot.len();
+        if len != 0 && len != n_body {
+            return Err(VehicleError::Input(format!(
+                "restart file: {len} body modal accelerations for a body of {n_body} modes"
+            )));
         }
         Ok(())
     }

@@ -27,11 +27,13 @@ impl PartitionedVehicle {
                 step.start_s
             )));
         }
-        self.time_s = time_s;
+        self.memory.time_s = time_s;
         let flight = self.flight(state)?;
         self.update_surface_flights(state, &flight)?;
         for (i, s) in self.surfaces.iter_mut().enumerate() {
-            if let (Some(rom), Some(history)) = (s.aero.modal_history(), s.history.as_mut()) {
+            if let (Some(rom), Some(history)) =
+                (s.aero.modal_history(), self.memory.histories[i].as_mut())
+            {
                 let dt = time_s - history.time_s;
                 let modes = &state.surface_modes[i];
                 rom.commit(
@@ -45,7 +47,7 @@ impl PartitionedVehicle {
             }
         }
         self.advance_heating(time_s)?;
-        self.time_s = time_s;
+        self.memory.time_s = time_s;
         self.stage_one = None;
         Ok(())
     }
@@ -174,7 +176,7 @@ impl PartitionedVehicle {
         surfaces: bool,
     ) -> Result<(), VehicleError> {
         let flight = self.flight(state)?;
-        self.time_s = time_s;
+        self.memory.time_s = time_s;
         if surfaces {
             self.update_surface_flights(state, &flight)?;
         }
@@ -226,7 +228,7 @@ impl PartitionedVehicle {
 
     /// The last derivative's coupling iterations and residual.
     pub fn coupling_report(&self) -> CouplingReport {
-        self.report
+        self.memory.coupling
     }
 
     /// The interfaces of the body-surface coupling, in [`Self::interface_residuals`]' order:
@@ -266,7 +268,7 @@ impl PartitionedVehicle {
         if self.disturbances.is_calm() {
             return Vector3::zeros();
         }
-        self.disturbances.velocity_at(self.time_s, 0.0)
+        self.disturbances.velocity_at(self.memory.time_s, 0.0)
     }
 
     /// How far ahead of the centre of mass the foremost region flies, m (at least zero).
@@ -289,7 +291,7 @@ impl PartitionedVehicle {
         let wind_ned = if self.disturbances.is_calm() {
             Vector3::zeros()
         } else {
-            rigid.attitude * self.disturbances.velocity_at(self.time_s, lead_m)
+            rigid.attitude * self.disturbances.velocity_at(self.memory.time_s, lead_m)
         };
         let (airspeed, alpha, beta) = rigid.air_data(&wind_ned);
         let altitude = rigid.altitude_m();
@@ -318,7 +320,7 @@ impl PartitionedVehicle {
                 || self.stage_one_surfaces(state, controls));
         let body_read = reads_publications
             && self.exchange.read_body(
-                self.time_s,
+                self.memory.time_s,
                 &mut self.loads.body,
                 &mut self.aero_loads,
                 self.loads.body_generalized_force.as_mut_slice(),
@@ -359,7 +361,8 @@ impl PartitionedVehicle {
     ) -> RegionResults {
         let cg = self.mass.center_of_mass_m;
         let reference_point_m = self.reference_point_m;
-        let time_s = self.time_s;
+        let time_s = self.memory.time_s;
+        let histories = &self.memory.histories;
         let body = &mut self.body;
         let engine = self.engine.as_mut();
         let surfaces = &mut self.surfaces;
@@ -387,7 +390,7 @@ impl PartitionedVehicle {
                         state,
                         &controls.elevon,
                         surface_flights,
-                        time_s,
+                        (time_s, histories),
                         wanted.hold_friction,
                     )
                 })
@@ -399,7 +402,7 @@ impl PartitionedVehicle {
     /// derivative: the step's first stage, at the same time, state and controls (once).
     fn stage_one_surfaces(&mut self, state: &VehicleState, controls: &FlightControls) -> bool {
         self.stage_one.take().is_some_and(|(time_s, at)| {
-            time_s == self.time_s && at == *controls && *state == self.stage_one_state
+            time_s == self.memory.time_s && at == *controls && *state == self.stage_one_state
         })
     }
 

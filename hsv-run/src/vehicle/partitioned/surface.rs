@@ -40,7 +40,7 @@ pub(super) fn surface_aero(
     (modes, body_modes): (&crate::dynamics::ModalState, &crate::dynamics::ModalState),
     elevon: &ElevonCommand,
     flight: &FlightCondition,
-    time_s: f64,
+    (time_s, history): (f64, Option<&ModalHistory>),
 ) -> Result<(nalgebra::Rotation3<f64>, bool), VehicleError> {
     let err = model_error(&s.name);
     let deflection = elevon.deflection_rad(s.side);
@@ -84,8 +84,8 @@ pub(super) fn surface_aero(
     let motion = PanelMotion {
         elastic_velocity_m_s: Some(&s.velocities),
     };
-    let dt_since_commit = time_s - s.history.as_ref().map_or(0.0, |h| h.time_s);
-    match (s.aero.modal_history(), s.history.as_ref()) {
+    let dt_since_commit = time_s - history.map_or(0.0, |h| h.time_s);
+    match (s.aero.modal_history(), history) {
         // A model with memory (convolution ROM): generalized forces from the modal history on
         // the rigidly deflected mesh.
         (Some(rom), Some(history)) => {
@@ -127,12 +127,12 @@ pub(super) fn surface_region_loads(
     modes: (&crate::dynamics::ModalState, &crate::dynamics::ModalState),
     elevon: &ElevonCommand,
     flight: &FlightCondition,
-    time_s: f64,
+    clock: (f64, Option<&ModalHistory>),
     hold_friction: bool,
     out: &mut DVector<f64>,
 ) -> Result<(), VehicleError> {
     let p_inf = flight.freestream.pressure_pa;
-    let (rotation, from_history) = surface_aero(s, modes, elevon, flight, time_s)?;
+    let (rotation, from_history) = surface_aero(s, modes, elevon, flight, clock)?;
     let err = model_error(&s.name);
     if !from_history {
         // The modes turn with the surface, so A n·φ is that of the reference geometry.
@@ -211,14 +211,14 @@ pub(super) fn refresh_heat_flux(
     modes: (&crate::dynamics::ModalState, &crate::dynamics::ModalState),
     elevon: &ElevonCommand,
     flight: &FlightCondition,
-    (time_s, aero_current): (f64, bool),
+    (time_s, history, aero_current): (f64, Option<&ModalHistory>, bool),
 ) -> Result<(), VehicleError> {
     if s.thermal.is_none() {
         return Ok(());
     }
     if !aero_current {
         // The panel solution only: the step's first stage evaluates the loads at this state.
-        surface_aero(s, modes, elevon, flight, time_s)?;
+        surface_aero(s, modes, elevon, flight, (time_s, history))?;
     }
     let err = model_error(&s.name);
     let Some(t) = &mut s.thermal else {
@@ -300,22 +300,16 @@ pub(super) fn surfaces_loads(
     state: &VehicleState,
     elevon: &ElevonCommand,
     flights: &[FlightCondition],
-    time_s: f64,
+    (time_s, histories): (f64, &[Option<ModalHistory>]),
     hold_friction: bool,
 ) -> Result<(), VehicleError> {
-    let each = |(((s, out), modes), flight): (
-        (
-            (&mut Surface, &mut DVector<f64>),
-            &crate::dynamics::ModalState,
-        ),
-        &FlightCondition,
-    )| {
+    let each = |(i, (s, out)): (usize, (&mut Surface, &mut DVector<f64>))| {
         surface_region_loads(
             s,
-            (modes, &state.body_modes),
+            (&state.surface_modes[i], &state.body_modes),
             elevon,
-            flight,
-            time_s,
+            &flights[i],
+            (time_s, histories[i].as_ref()),
             hold_friction,
             out,
         )
@@ -324,15 +318,13 @@ pub(super) fn surfaces_loads(
         surfaces
             .par_iter_mut()
             .zip(forces.par_iter_mut())
-            .zip(state.surface_modes.par_iter())
-            .zip(flights.par_iter())
+            .enumerate()
             .try_for_each(each)
     } else {
         surfaces
             .iter_mut()
             .zip(forces.iter_mut())
-            .zip(state.surface_modes.iter())
-            .zip(flights.iter())
+            .enumerate()
             .try_for_each(each)
     }
 }
@@ -359,29 +351,35 @@ impl PartitionedVehicle {
         }
         let elevon = controls.elevon;
         let body_modes = &state.body_modes;
-        let refresh = |((s, modes), flight): (
-            (&mut Surface, &crate::dynamics::ModalState),
-            &FlightCondition,
+        let refresh = |(((s, modes), flight), history): (
+            (
+                (&mut Surface, &crate::dynamics::ModalState),
+                &FlightCondition,
+            ),
+            &Option<ModalHistory>,
         )| {
             refresh_heat_flux(
                 s,
                 (modes, body_modes),
                 &elevon,
                 flight,
-                (time_s, aero_current),
+                (time_s, history.as_ref(), aero_current),
             )
         };
+        let histories = &self.memory.histories;
         if side_by_side() {
             self.surfaces
                 .par_iter_mut()
                 .zip(state.surface_modes.par_iter())
                 .zip(self.surface_flights.par_iter())
+                .zip(histories.par_iter())
                 .try_for_each(refresh)?;
         } else {
             self.surfaces
                 .iter_mut()
                 .zip(state.surface_modes.iter())
                 .zip(self.surface_flights.iter())
+                .zip(histories.iter())
                 .try_for_each(refresh)?;
         }
         for (index, s) in self.surfaces.iter().enumerate() {
@@ -432,7 +430,7 @@ impl PartitionedVehicle {
         {
             if !self.exchange.read_surface(
                 index,
-                self.time_s,
+                self.memory.time_s,
                 &mut s.applied_surface_frame,
                 &mut s.generalized,
             )? {

@@ -16,8 +16,9 @@
 //!    surfaces too with `surface_loads_dt_s`; module [`vehicle::region_rate`]).
 //! 4. [`dynamics::integrate`] (`ExponentialRk4::step`) takes four stage derivatives; each calls
 //!    the vehicle's `stage_derivative` with the open step `begin_step` returned (`interface.rs`):
-//!    the regions' loads at the stage
-//!    (`region_loads`, `step.rs`), then the body-surface interface closed by the configured
+//!    the regions' loads at the stage, each published on its topic in the data manager and
+//!    read back by the coupling (`region_loads`, `step.rs`; [`vehicle::region_rate`]), then
+//!    the body-surface interface closed by the configured
 //!    fixed point (`close_interface`) over the equations of motion
 //!    ([`dynamics::equations_of_motion`]).
 //! 5. A lifting surface's loads (`surface.rs`, `surface_aero`): its Ritz-deformed mesh rotated

@@ -320,6 +320,47 @@ fn a_run_resumed_from_its_restart_file_continues_bit_for_bit() {
 }
 
 #[test]
+fn every_derivative_reads_the_regions_loads_from_the_data_manager() {
+    // Issue 25: a trim's or linearization's derivative (outside a step) evaluates every region,
+    // which publishes its loads as its topic's iterate; the coupling reads them from there, so
+    // the body's loads plus the surfaces' root forces are the vehicle's. Then a step's start
+    // publishes the body converged (its own rate), and the surfaces, run at every stage, stay
+    // iterates the predictor never reads.
+    let (mut vehicle, state, controls) = trimmed();
+    let mut out = vehicle.dynamics().zero_derivative();
+    vehicle
+        .derivative(&state, &controls, &mut out)
+        .expect("derivative");
+    let published = vehicle.region_publications();
+    let topics: Vec<&str> = published.iter().map(|p| p.topic.as_str()).collect();
+    assert_eq!(
+        topics,
+        [
+            "main_body/loads",
+            "left_surface/loads",
+            "right_surface/loads"
+        ]
+    );
+    assert!(
+        published
+            .iter()
+            .all(|p| p.time_s == Some(0.0) && !p.converged),
+        "{published:?}"
+    );
+    let roots = vehicle.restart().memory.root_force_n;
+    let with_roots = roots
+        .iter()
+        .fold(published[0].force_n, |total, root| total + root);
+    assert_eq!(with_roots, vehicle.body_loads().force_n);
+
+    let step = vehicle.begin_step(&state, &controls, 0.0).expect("opens");
+    let published = vehicle.region_publications();
+    assert!(published[0].converged, "{published:?}");
+    assert!(published[1..].iter().all(|p| !p.converged), "{published:?}");
+    vehicle.commit_step(step, &state, 0.0).expect("commits");
+}
+
+#[test]
 fn a_restart_of_another_vehicle_is_refused_and_changes_nothing() {
     // Issue 25: the vehicle's own state is one value, checked whole before any of it is taken,
     // so a refused restart leaves the vehicle as it was (nothing half restored).

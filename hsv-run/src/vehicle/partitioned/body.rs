@@ -97,14 +97,40 @@ pub(super) fn body_region_loads(
 }
 
 impl PartitionedVehicle {
-    /// The body's aero and engine loads and generalized forces into the vehicle loads.
-    pub(super) fn set_body_loads(&mut self, (body_aero, engine_loads): (Loads, Loads)) {
-        self.loads.body = body_aero + engine_loads;
-        self.aero_loads = body_aero;
-        let b = &self.body;
-        for (k, q) in self.loads.body_generalized_force.iter_mut().enumerate() {
+    /// Publishes the body region's evaluation at `time_s` on its loads topic: its aero and
+    /// engine loads (`body_loads`, [`body_region_loads`]) and generalized forces, with those of
+    /// the regions that follow the body (evaluated here: the monolithic model's surfaces, the
+    /// fin). `converged` at an accepted state where the body falls due (what the predictor
+    /// extrapolates), else the iterate one derivative reads at once.
+    pub(super) fn publish_body_region(
+        &mut self,
+        (body_aero, engine_loads): (Loads, Loads),
+        (state, controls, flight): (&VehicleState, &FlightControls, &FlightCondition),
+        (time_s, converged): (f64, bool),
+    ) -> Result<(), VehicleError> {
+        self.evaluate_followers(state, controls, flight)?;
+        let mut total = body_aero + engine_loads;
+        let mut aero = body_aero;
+        let b = &mut self.body;
+        for (k, q) in b.published_generalized.iter_mut().enumerate() {
             // Without an engine its generalized forces are zeros, as they were summed before.
             *q = b.generalized[k] + self.engine.as_ref().map_or(0.0, |e| e.generalized[k]);
         }
+        for f in &self.followers {
+            total = total + f.loads;
+            aero = aero + f.loads;
+            for (q, g) in b.published_generalized.iter_mut().zip(&f.generalized) {
+                *q += g;
+            }
+        }
+        let generalized = b.published_generalized.as_slice();
+        if converged {
+            self.exchange
+                .publish_body(time_s, &total, &aero, generalized)?;
+        } else {
+            self.exchange
+                .publish_body_iterate(time_s, &total, &aero, generalized)?;
+        }
+        Ok(())
     }
 }

@@ -80,6 +80,7 @@ impl PartitionedVehicle {
                         aero,
                         solution: AeroSolution::default(),
                         generalized: vec![0.0; n],
+                        published_generalized: vec![0.0; n],
                     });
                 }
                 (_, "propulsion") => {
@@ -129,8 +130,6 @@ impl PartitionedVehicle {
                         friction: set.friction.map(|m| RegionFriction::new(m, n_panels)),
                         held_friction: None,
                         applied_surface_frame: Loads::default(),
-                        applied_about_pivot: Loads::default(),
-                        elevon_rotation: nalgebra::Rotation3::identity(),
                         name: name.clone(),
                         rigid: set.info.mesh.clone(),
                         velocities: vec![Vector3::zeros(); set.info.mesh.panels.len()],
@@ -284,6 +283,7 @@ impl PartitionedVehicle {
             gas,
             settings,
             loads,
+            surface_reads: vec![SurfaceRead::default(); n_surfaces],
             interface_residuals: vec![0.0; n_surfaces + 1],
             warm_start: None,
             heating: HeatingRates::default(),

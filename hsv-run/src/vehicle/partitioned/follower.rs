@@ -65,16 +65,6 @@ impl PartitionedVehicle {
             )
             .map_err(|e| err(ModelError::inconsistent("coupling", e.to_string())))?;
             f.loads = loads;
-            self.loads.body = self.loads.body + loads;
-            self.aero_loads = self.aero_loads + loads;
-            for (q, g) in self
-                .loads
-                .body_generalized_force
-                .iter_mut()
-                .zip(&f.generalized)
-            {
-                *q += g;
-            }
         }
         Ok(())
     }

@@ -181,7 +181,8 @@ impl PartitionedVehicle {
         let mut change: f64 = 0.0;
         for (i, s) in self.surfaces.iter_mut().enumerate() {
             let err = model_error(&s.name);
-            let (rotation, applied) = (s.elevon_rotation, s.applied_about_pivot);
+            let read = &self.surface_reads[i];
+            let (rotation, applied) = (read.elevon_rotation, read.applied_about_pivot);
             let modes = &state.surface_modes[i];
             let root = s
                 .structure
@@ -191,7 +192,7 @@ impl PartitionedVehicle {
                     &modes.q,
                     &modes.q_dot,
                     &self.memory.q_ddot[i],
-                    &s.applied_surface_frame,
+                    &read.applied_surface_frame,
                 )
                 .map_err(&err)?;
             let force = rotation * root.force_n;

@@ -423,6 +423,29 @@ struct Body {
     velocities: Vec<Vector3<f64>>,
     solution: AeroSolution,
     generalized: Vec<f64>,
+    /// The region's generalized forces as published: the body's, its engine's and its
+    /// followers' summed (scratch).
+    published_generalized: Vec<f64>,
+}
+
+/// What the coupling read of one lifting surface's publication for the current derivative
+/// ([`PartitionedVehicle::read_surface_loads`]): the applied load about the pivot in the
+/// surface's own frame and, turned by the stage's elevon rotation, in the body frame.
+#[derive(Debug, Clone, Copy)]
+struct SurfaceRead {
+    applied_surface_frame: Loads,
+    applied_about_pivot: Loads,
+    elevon_rotation: nalgebra::Rotation3<f64>,
+}
+
+impl Default for SurfaceRead {
+    fn default() -> Self {
+        Self {
+            applied_surface_frame: Loads::default(),
+            applied_about_pivot: Loads::default(),
+            elevon_rotation: nalgebra::Rotation3::identity(),
+        }
+    }
 }
 
 struct Surface {
@@ -432,13 +455,8 @@ struct Surface {
     /// accepted state, and held by its other stages (see [`surface_region_loads`]).
     held_friction: Option<Loads>,
     /// Pressure and friction loads about the pivot in the surface's own (undeflected) frame, from
-    /// the last region evaluation: the applied load of force summation, fixed while the coupling
-    /// iterates on q̈.
+    /// the last region evaluation: what it publishes with its aero generalized forces.
     applied_surface_frame: Loads,
-    /// The same loads in the body frame.
-    applied_about_pivot: Loads,
-    /// The elevon's rotation of the surface at the last region evaluation.
-    elevon_rotation: nalgebra::Rotation3<f64>,
     name: String,
     base: PanelMesh,
     /// The base vertices displaced by the modes, before the elevon's rotation, m.
@@ -476,6 +494,9 @@ pub struct PartitionedVehicle {
     gas: PerfectGas,
     settings: CouplingSettings,
     loads: VehicleLoads,
+    /// Each surface's loads as the coupling read them for the current derivative: the applied
+    /// load of force summation, fixed while the coupling iterates on q̈.
+    surface_reads: Vec<SurfaceRead>,
     /// The vehicle's own state from derivative to derivative and step to step: time, the
     /// coupling's guesses and report, the surfaces' modal histories ([`VehicleMemory`]).
     memory: VehicleMemory,

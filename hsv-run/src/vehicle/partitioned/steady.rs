@@ -112,11 +112,7 @@ impl PartitionedVehicle {
         let zero = self.dynamics.zero_loads();
         self.loads = zero;
         self.aero_loads = Loads::default();
-        for s in &mut self.surfaces {
-            s.applied_surface_frame = Loads::default();
-            s.applied_about_pivot = Loads::default();
-            s.elevon_rotation = nalgebra::Rotation3::identity();
-        }
+        self.surface_reads.fill(SurfaceRead::default());
         let base = self.dynamics.zero_state();
         let n_body = base.body_modes.n_modes();
         let sizes: Vec<usize> = std::iter::once(n_body)

@@ -198,32 +198,26 @@ impl PartitionedVehicle {
         let held = self.body.held_friction.take();
         if let Some(done) = surfaces_done {
             done?;
-            if self.surface_rate != RegionLoadRate::EveryStage {
-                for (index, s) in self.surfaces.iter().enumerate() {
-                    self.exchange.publish_surface(
-                        index,
-                        time_s,
-                        &s.applied_surface_frame,
-                        &s.generalized,
-                    )?;
-                }
-            }
+            // Due at their own rate: converged. Evaluated beside the body for the first stage:
+            // the iterate that stage reads.
+            let converged = self.surface_rate != RegionLoadRate::EveryStage;
+            self.publish_surfaces(time_s, converged)?;
         }
         if let Some(loads) = body_loads {
-            self.set_body_loads(loads?);
-            self.evaluate_followers(state, controls, &flight)?;
+            self.publish_body_region(loads?, (state, controls, &flight), (time_s, true))?;
             if held.is_none() && self.body.friction.is_some() {
                 self.exchange
                     .publish_friction(time_s, &self.body.friction_loads)?;
             }
-            self.exchange.publish_body(
-                time_s,
-                &self.loads.body,
-                &self.aero_loads,
-                self.loads.body_generalized_force.as_slice(),
-            )?;
         }
         Ok(())
+    }
+
+    /// Each region's loads topic in the data manager with its latest publication: the
+    /// regions' loads reach the coupling only through these (module docs of
+    /// [`crate::vehicle::region_rate`]).
+    pub fn region_publications(&self) -> Vec<crate::vehicle::region_rate::LoadsPublication> {
+        self.exchange.loads_publications()
     }
 
     /// The last derivative's coupling iterations and residual.
@@ -303,11 +297,13 @@ impl PartitionedVehicle {
         Ok(flight)
     }
 
-    /// Loads of every region except the root loads' inertia term (which waits for q̈): the
-    /// main body with its engine, and each lifting surface, run side by side (rayon). With
-    /// `reads_publications` (a stage of an open step) a region that runs at its own rate reads
-    /// its publications instead, and the first stage reads the surfaces `begin_step` evaluated
-    /// at its state.
+    /// Loads of every region except the root loads' inertia term (which waits for q̈), read by
+    /// the coupling from the regions' loads topics (the data manager, [`RegionExchange`]). A
+    /// region evaluated here (the main body with its engine and followers, each lifting
+    /// surface, run side by side) publishes the iterate read at once. With `reads_publications`
+    /// (a stage of an open step) a region that runs at its own rate is not evaluated: its
+    /// publications are read extrapolated to the stage; and the first stage reads the surfaces
+    /// `begin_step` evaluated and published at its state.
     pub(super) fn region_loads(
         &mut self,
         state: &VehicleState,
@@ -315,17 +311,19 @@ impl PartitionedVehicle {
         flight: &FlightCondition,
         reads_publications: bool,
     ) -> Result<(), VehicleError> {
-        let surfaces_read = reads_publications
-            && (self.read_surface_loads(&controls.elevon)?
-                || self.stage_one_surfaces(state, controls));
-        let body_read = reads_publications
+        let time_s = self.memory.time_s;
+        let surfaces_predicted =
+            reads_publications && self.read_surface_loads(&controls.elevon, Some(time_s))?;
+        let surfaces_published =
+            surfaces_predicted || (reads_publications && self.stage_one_surfaces(state, controls));
+        let body_predicted = reads_publications
             && self.exchange.read_body(
-                self.memory.time_s,
+                time_s,
                 &mut self.loads.body,
                 &mut self.aero_loads,
                 self.loads.body_generalized_force.as_mut_slice(),
             )?;
-        if !surfaces_read {
+        if !surfaces_published {
             self.update_surface_flights(state, flight)?;
         }
         let (body_loads, surfaces_done) = self.regions_side_by_side(
@@ -333,18 +331,25 @@ impl PartitionedVehicle {
             controls,
             flight,
             RegionsWanted {
-                body: !body_read,
-                surfaces: !surfaces_read,
+                body: !body_predicted,
+                surfaces: !surfaces_published,
                 hold_friction: reads_publications,
             },
         );
         if let Some(done) = surfaces_done {
             done?;
+            self.publish_surfaces(time_s, false)?;
         }
-        // The monolithic model's surfaces belong to the body region (published with it).
+        if !surfaces_predicted {
+            self.read_surface_loads(&controls.elevon, None)?;
+        }
         if let Some(loads) = body_loads {
-            self.set_body_loads(loads?);
-            self.evaluate_followers(state, controls, flight)?;
+            self.publish_body_region(loads?, (state, controls, flight), (time_s, false))?;
+            self.exchange.read_body_latest(
+                &mut self.loads.body,
+                &mut self.aero_loads,
+                self.loads.body_generalized_force.as_mut_slice(),
+            )?;
         }
         Ok(())
     }
@@ -367,7 +372,6 @@ impl PartitionedVehicle {
         let engine = self.engine.as_mut();
         let surfaces = &mut self.surfaces;
         let surface_flights = &self.surface_flights;
-        let surface_forces = &mut self.loads.surface_generalized_forces;
         join(
             || {
                 wanted.body.then(|| {
@@ -386,7 +390,6 @@ impl PartitionedVehicle {
                 wanted.surfaces.then(|| {
                     surfaces_loads(
                         surfaces,
-                        surface_forces,
                         state,
                         &controls.elevon,
                         surface_flights,

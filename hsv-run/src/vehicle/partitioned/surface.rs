@@ -113,8 +113,8 @@ pub(super) fn surface_aero(
     }
 }
 
-/// One lifting surface's aero ([`surface_aero`]), its generalized forces (aero and thermal)
-/// into `out`, and its skin friction about the pivot.
+/// One lifting surface's aero ([`surface_aero`]), its aero generalized forces, and its applied
+/// load (pressure and skin friction about the pivot, in its own frame): what it publishes.
 ///
 /// Inside an open step (`hold_friction`), the skin friction is evaluated at the step's first
 /// stage, the accepted state, and held by the others: friction reaches only the root loads, and
@@ -129,7 +129,6 @@ pub(super) fn surface_region_loads(
     flight: &FlightCondition,
     clock: (f64, Option<&ModalHistory>),
     hold_friction: bool,
-    out: &mut DVector<f64>,
 ) -> Result<(), VehicleError> {
     let p_inf = flight.freestream.pressure_pa;
     let (rotation, from_history) = surface_aero(s, modes, elevon, flight, clock)?;
@@ -168,21 +167,18 @@ pub(super) fn surface_region_loads(
         force_n: rotation.inverse_transform_vector(&applied.force_n),
         moment_nm: rotation.inverse_transform_vector(&applied.moment_nm),
     };
-    s.applied_about_pivot = applied;
-    s.elevon_rotation = rotation;
-    add_thermal_generalized_forces(s, out);
     Ok(())
 }
 
-/// The surface's generalized forces: the aero ones of its last evaluation plus the thermal
-/// ones of its heated stiffness.
-pub(super) fn add_thermal_generalized_forces(s: &Surface, out: &mut DVector<f64>) {
+/// The surface's generalized forces: the aero ones read from its publication (in `out`) plus
+/// the thermal ones of its heated stiffness.
+fn add_thermal_generalized_forces(s: &Surface, out: &mut DVector<f64>) {
     let thermal = s
         .structure
         .thermal_stiffness()
         .and_then(|t| t.thermal_generalized_forces());
     for (k, q) in out.iter_mut().enumerate() {
-        *q = s.generalized[k] + thermal.map_or(0.0, |t| t[k]);
+        *q += thermal.map_or(0.0, |t| t[k]);
     }
 }
 
@@ -296,14 +292,13 @@ pub(super) fn read_structure_temperatures(
 /// where it flies).
 pub(super) fn surfaces_loads(
     surfaces: &mut [Surface],
-    forces: &mut [DVector<f64>],
     state: &VehicleState,
     elevon: &ElevonCommand,
     flights: &[FlightCondition],
     (time_s, histories): (f64, &[Option<ModalHistory>]),
     hold_friction: bool,
 ) -> Result<(), VehicleError> {
-    let each = |(i, (s, out)): (usize, (&mut Surface, &mut DVector<f64>))| {
+    let each = |(i, s): (usize, &mut Surface)| {
         surface_region_loads(
             s,
             (&state.surface_modes[i], &state.body_modes),
@@ -311,21 +306,12 @@ pub(super) fn surfaces_loads(
             &flights[i],
             (time_s, histories[i].as_ref()),
             hold_friction,
-            out,
         )
     };
     if side_by_side() {
-        surfaces
-            .par_iter_mut()
-            .zip(forces.par_iter_mut())
-            .enumerate()
-            .try_for_each(each)
+        surfaces.par_iter_mut().enumerate().try_for_each(each)
     } else {
-        surfaces
-            .iter_mut()
-            .zip(forces.iter_mut())
-            .enumerate()
-            .try_for_each(each)
+        surfaces.iter_mut().enumerate().try_for_each(each)
     }
 }
 
@@ -412,38 +398,74 @@ impl PartitionedVehicle {
         Ok(())
     }
 
-    /// Each surface's loads at the stage time from its publications (module
-    /// [`crate::vehicle::region_rate`]) with the stage's elevon rotation and thermal generalized forces;
-    /// false when the surfaces are evaluated at every stage or nothing is published yet.
+    /// Each surface's loads for this derivative, read from its loads topic by the coupling
+    /// (into [`SurfaceRead`] and the vehicle's generalized forces), turned by the stage's elevon
+    /// rotation and with the thermal generalized forces of its heated stiffness.
+    /// `predicted_at` a stage time: the publications at its own rate extrapolated there (module
+    /// [`crate::vehicle::region_rate`]), false when the surfaces run at every stage or nothing
+    /// is published yet; `None`: the latest publication, the iterate this derivative's
+    /// evaluation (or the step's start, for its first stage) has just published.
     pub(super) fn read_surface_loads(
         &mut self,
         elevon: &ElevonCommand,
+        predicted_at: Option<f64>,
     ) -> Result<bool, VehicleError> {
-        if self.surface_rate == RegionLoadRate::EveryStage || self.surfaces.is_empty() {
+        if predicted_at.is_some() && self.surface_rate == RegionLoadRate::EveryStage {
             return Ok(false);
         }
-        for (index, (s, out)) in self
+        for (index, ((s, read), out)) in self
             .surfaces
-            .iter_mut()
+            .iter()
+            .zip(self.surface_reads.iter_mut())
             .zip(self.loads.surface_generalized_forces.iter_mut())
             .enumerate()
         {
-            if !self.exchange.read_surface(
-                index,
-                self.memory.time_s,
-                &mut s.applied_surface_frame,
-                &mut s.generalized,
-            )? {
-                return Ok(false);
+            let generalized = out.as_mut_slice();
+            match predicted_at {
+                Some(time_s) => {
+                    let applied = &mut read.applied_surface_frame;
+                    if !self
+                        .exchange
+                        .read_surface(index, time_s, applied, generalized)?
+                    {
+                        return Ok(false);
+                    }
+                }
+                None => self.exchange.read_surface_latest(
+                    index,
+                    &mut read.applied_surface_frame,
+                    generalized,
+                )?,
             }
             let rotation = elevon_rotation(&s.name, elevon.deflection_rad(s.side))?;
-            s.applied_about_pivot = Loads {
-                force_n: rotation * s.applied_surface_frame.force_n,
-                moment_nm: rotation * s.applied_surface_frame.moment_nm,
+            read.applied_about_pivot = Loads {
+                force_n: rotation * read.applied_surface_frame.force_n,
+                moment_nm: rotation * read.applied_surface_frame.moment_nm,
             };
-            s.elevon_rotation = rotation;
+            read.elevon_rotation = rotation;
             add_thermal_generalized_forces(s, out);
         }
-        Ok(true)
+        Ok(!self.surfaces.is_empty())
+    }
+
+    /// Publishes every surface's evaluation at `time_s` on its loads topic: `converged` at an
+    /// accepted state where the surfaces fall due at their own rate, else the iterate one
+    /// derivative reads at once.
+    pub(super) fn publish_surfaces(
+        &mut self,
+        time_s: f64,
+        converged: bool,
+    ) -> Result<(), VehicleError> {
+        for (index, s) in self.surfaces.iter().enumerate() {
+            let (applied, generalized) = (&s.applied_surface_frame, s.generalized.as_slice());
+            if converged {
+                self.exchange
+                    .publish_surface(index, time_s, applied, generalized)?;
+            } else {
+                self.exchange
+                    .publish_surface_iterate(index, time_s, applied, generalized)?;
+            }
+        }
+        Ok(())
     }
 }

@@ -74,6 +74,20 @@ impl std::fmt::Debug for RegionExchange {
     }
 }
 
+/// A region's loads topic and its latest publication ([`RegionExchange::loads_publications`]).
+#[derive(Debug, Clone, PartialEq, serde::Serialize)]
+pub struct LoadsPublication {
+    pub topic: String,
+    /// Time of the latest publication, s (None: nothing published).
+    pub time_s: Option<f64>,
+    /// Whether it was published converged, at an accepted state where the region fell due
+    /// (else it is one derivative's iterate).
+    pub converged: bool,
+    /// Its force, N, body axes (the body: all its loads about the centre of mass; a surface:
+    /// its applied load in its own frame).
+    pub force_n: nalgebra::Vector3<f64>,
+}
+
 /// The period a topic declares for a rate, s: its interval, or (every stage: never published)
 /// the shortest one that passes the data manager's check.
 fn declared_period_s(rate: RegionLoadRate) -> f64 {
@@ -245,6 +259,23 @@ impl RegionExchange {
         self.data.restore(checkpoint)
     }
 
+    /// Each region's loads topic (the body's, then each surface's) with its latest
+    /// publication, if any: what the coupling read last.
+    pub fn loads_publications(&self) -> Vec<LoadsPublication> {
+        std::iter::once(&self.body)
+            .chain(&self.surfaces)
+            .map(|channel| {
+                let latest = self.data.read(channel.reader).ok();
+                LoadsPublication {
+                    topic: channel.topic.clone(),
+                    time_s: latest.as_ref().map(|l| l.time_s),
+                    converged: latest.as_ref().is_some_and(|l| l.converged),
+                    force_n: latest.map_or_else(Default::default, |l| l.value.force_n),
+                }
+            })
+            .collect()
+    }
+
     /// The time of the body's latest publication, s.
     pub fn body_time_s(&self) -> Option<f64> {
         self.data
@@ -262,7 +293,8 @@ impl RegionExchange {
             .map(|s| s.time_s)
     }
 
-    /// Publishes the body's loads at `time_s`.
+    /// Publishes the body's loads at the accepted state of `time_s`, converged: what the
+    /// predictor extrapolates over the stages until the next.
     pub fn publish_body(
         &mut self,
         time_s: f64,
@@ -273,19 +305,73 @@ impl RegionExchange {
         publish_loads(
             &mut self.data,
             self.body.publisher,
-            time_s,
+            (time_s, true),
             total,
             aero,
             generalized,
         )
     }
 
-    /// Publishes surface `index`'s applied loads about its pivot and aero generalized forces at
-    /// `time_s`.
+    /// Publishes the body's loads of one derivative's evaluation at `time_s` (a stage, a trim
+    /// or linearization point) as the topic's iterate: read at once by the coupling
+    /// ([`Self::read_body_latest`]), never extrapolated, never in the history.
+    pub fn publish_body_iterate(
+        &mut self,
+        time_s: f64,
+        total: &Loads,
+        aero: &Loads,
+        generalized: &[f64],
+    ) -> Result<(), DataError> {
+        publish_loads(
+            &mut self.data,
+            self.body.publisher,
+            (time_s, false),
+            total,
+            aero,
+            generalized,
+        )
+    }
+
+    /// The body's latest publication (the iterate just published, or the converged one) into
+    /// the outputs.
+    pub fn read_body_latest(
+        &self,
+        total: &mut Loads,
+        aero: &mut Loads,
+        generalized: &mut [f64],
+    ) -> Result<(), DataError> {
+        read_latest_loads(&self.data, &self.body, total, Some(aero), generalized)
+    }
+
+    /// Publishes surface `index`'s applied loads about its pivot (its own frame) and aero
+    /// generalized forces at the accepted state of `time_s`, converged (as
+    /// [`Self::publish_body`]).
     pub fn publish_surface(
         &mut self,
         index: usize,
         time_s: f64,
+        applied: &Loads,
+        generalized: &[f64],
+    ) -> Result<(), DataError> {
+        self.publish_surface_at(index, (time_s, true), applied, generalized)
+    }
+
+    /// Publishes surface `index`'s loads of one derivative's evaluation as the topic's iterate
+    /// (as [`Self::publish_body_iterate`]).
+    pub fn publish_surface_iterate(
+        &mut self,
+        index: usize,
+        time_s: f64,
+        applied: &Loads,
+        generalized: &[f64],
+    ) -> Result<(), DataError> {
+        self.publish_surface_at(index, (time_s, false), applied, generalized)
+    }
+
+    fn publish_surface_at(
+        &mut self,
+        index: usize,
+        publication: (f64, bool),
         applied: &Loads,
         generalized: &[f64],
     ) -> Result<(), DataError> {
@@ -296,11 +382,24 @@ impl RegionExchange {
         publish_loads(
             &mut self.data,
             surface.publisher,
-            time_s,
+            publication,
             applied,
             &none,
             generalized,
         )
+    }
+
+    /// Surface `index`'s latest publication into the outputs (as [`Self::read_body_latest`]).
+    pub fn read_surface_latest(
+        &self,
+        index: usize,
+        applied: &mut Loads,
+        generalized: &mut [f64],
+    ) -> Result<(), DataError> {
+        let Some(surface) = self.surfaces.get(index) else {
+            return Ok(());
+        };
+        read_latest_loads(&self.data, surface, applied, None, generalized)
     }
 
     /// The body's loads at `time_s` into the outputs (module docs' predictor; held with one
@@ -423,11 +522,12 @@ fn read_loads(
     Ok(true)
 }
 
-/// Publishes and commits one region's loads at `time_s`, in place (the head's buffers reused).
+/// Publishes one region's loads at `time_s`, in place (the head's buffers reused), and with
+/// `converged` commits them into the history the predictor reads.
 fn publish_loads(
     data: &mut DataManager,
     publisher: Publisher<PublishedLoads>,
-    time_s: f64,
+    (time_s, converged): (f64, bool),
     total: &Loads,
     aero: &Loads,
     generalized: &[f64],
@@ -443,7 +543,39 @@ fn publish_loads(
             slot.generalized = DVector::from_column_slice(generalized);
         }
     })?;
-    data.mark_converged(publisher)?;
+    if converged {
+        data.mark_converged(publisher)?;
+    }
+    Ok(())
+}
+
+/// A region's latest publication (an iterate or converged) into the outputs, as [`read_loads`]
+/// but without the predictor: what the region gave at this very evaluation.
+fn read_latest_loads(
+    data: &DataManager,
+    channel: &LoadsChannel,
+    total: &mut Loads,
+    aero: Option<&mut Loads>,
+    generalized: &mut [f64],
+) -> Result<(), DataError> {
+    let latest = data.read(channel.reader)?;
+    let value = latest.value;
+    if value.generalized.len() != generalized.len() {
+        return Err(DataError::LengthMismatch {
+            topic: channel.topic.clone(),
+            reader: READER.to_owned(),
+            time_s: latest.time_s,
+            published: value.generalized.len(),
+            expected: generalized.len(),
+        });
+    }
+    total.force_n = value.force_n;
+    total.moment_nm = value.moment_nm;
+    if let Some(aero) = aero {
+        aero.force_n = value.aero_force_n;
+        aero.moment_nm = value.aero_moment_nm;
+    }
+    generalized.copy_from_slice(value.generalized.as_slice());
     Ok(())
 }
 

@@ -13,6 +13,12 @@
 //! [`exchange`]: one predicted topic per region, [`hsv_core::data`]), whose checkpoint a
 //! restart file carries; this file owns the rate rule ([`RegionLoadRate`]).
 //!
+//! The topic is the only way a region's loads reach the coupling. A region evaluated at a
+//! derivative (at every stage, or outside a step: trim, linearization, in-vacuo modes) publishes
+//! its loads as the topic's iterate, which the coupling reads at once and the predictor never
+//! sees; at an accepted state where it falls due it publishes them converged, which the stages
+//! until its next evaluation read extrapolated.
+//!
 //! - **The main body** (`[simulation] body_loads_dt_s`, default 1 ms): aero and skin friction
 //!   on the deformed OML, the engine, and the monolithic model's surfaces. Its evaluation is
 //!   expensive and its dynamics slow (rigid body, beam modes up to 27 Hz): three of the four body
@@ -37,7 +43,7 @@ pub mod published;
 
 use serde::{Deserialize, Serialize};
 
-pub use exchange::RegionExchange;
+pub use exchange::{LoadsPublication, RegionExchange};
 pub use published::{PublishedFriction, PublishedLoads, PublishedTemperatures};
 
 /// The body's skin friction rate by default, s: the paper's aerothermal step (Table 3).

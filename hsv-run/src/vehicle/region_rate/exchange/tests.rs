@@ -177,3 +177,48 @@ fn a_publication_of_the_wrong_length_is_refused_naming_the_topic() {
         .expect_err("three published, four read");
     assert!(err.to_string().contains("left_surface/loads"), "{err}");
 }
+
+/// A derivative's evaluation published as an iterate is what the coupling reads at once, but
+/// never what the predictor extrapolates: the stages between two accepted states see only the
+/// converged publications, and an iterate does not count as the region's last evaluation.
+#[test]
+fn an_iterate_is_read_at_once_and_never_extrapolated() {
+    let mut h = exchange();
+    let (mut total, mut aero, mut q) = (Loads::default(), Loads::default(), [0.0; 2]);
+    h.publish_body(0.0, &loads(1.0), &loads(1.0), &[1.0; 2])
+        .expect("converged");
+    h.publish_body_iterate(5e-4, &loads(9.0), &loads(8.0), &[9.0; 2])
+        .expect("iterate");
+    h.read_body_latest(&mut total, &mut aero, &mut q)
+        .expect("latest");
+    assert_eq!((total, aero, q), (loads(9.0), loads(8.0), [9.0; 2]));
+    assert!(
+        h.read_body(5e-4, &mut total, &mut aero, &mut q)
+            .expect("read")
+    );
+    assert_eq!(
+        (total, q),
+        (loads(1.0), [1.0; 2]),
+        "held, the iterate unseen"
+    );
+    assert_eq!(h.body_time_s(), Some(0.0));
+    // The next converged publication replaces the iterate; the predictor then uses both.
+    h.publish_body(1e-3, &loads(3.0), &loads(3.0), &[3.0; 2])
+        .expect("converged");
+    assert!(
+        h.read_body(2e-3, &mut total, &mut aero, &mut q)
+            .expect("read")
+    );
+    assert_eq!(total, loads(5.0));
+    let mut q3 = [0.0; 3];
+    h.publish_surface_iterate(0, 1e-3, &loads(-2.0), &[2.0; 3])
+        .expect("iterate");
+    h.read_surface_latest(0, &mut total, &mut q3)
+        .expect("latest");
+    assert_eq!((total, q3), (loads(-2.0), [2.0; 3]));
+    assert!(!h.read_surface(0, 1e-3, &mut total, &mut q3).expect("read"));
+    let err = h
+        .read_surface_latest(0, &mut total, &mut [0.0; 2])
+        .expect_err("two modes read from a three-mode publication");
+    assert!(err.to_string().contains("left_surface/loads"), "{err}");
+}

@@ -21,7 +21,7 @@
 //!    the body-surface interface closed by the configured
 //!    fixed point (`close_interface`) over the equations of motion
 //!    ([`dynamics::equations_of_motion`]).
-//! 5. A lifting surface's loads (`surface.rs`, `surface_aero`): its Ritz-deformed mesh rotated
+//! 5. A lifting surface's loads ([`vehicle::regions::surface`], `surface_aero`): its Ritz-deformed mesh rotated
 //!    by the elevon, its panels' velocities, then the aero model it was built with through the
 //!    `AeroModel` trait (`hsv_core::aero`).
 //! 6. `shock-expansion-piston` (`models/shock-expansion/src/piston.rs`): the steady
@@ -31,7 +31,7 @@
 //!    or `prandtl_meyer_expansion_from`, the formulas with their NACA 1135 and Anderson
 //!    equation numbers.
 //! 8. Back in `Stepper::step`, `commit_step` (`step.rs`) advances the heating (`heating.rs`,
-//!    `surface.rs`: conduction under the heat flux of the accepted state) and the sample is
+//!    [`vehicle::regions::heated`]: conduction under the heat flux of the accepted state) and the sample is
 //!    recorded ([`output`]).
 
 pub mod aero_job;

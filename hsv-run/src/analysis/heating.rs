@@ -16,7 +16,7 @@ use hsv_core::registry::{ModelContext, Registry};
 use hsv_core::thermal::{ConductionModel, HeatFluxModel};
 use nalgebra::DVector;
 
-use crate::vehicle::thermal::SurfaceThermal;
+use crate::vehicle::regions::thermal::SurfaceThermal;
 use crate::vehicle::{AssemblyError, Region, RegionDiagnostics, RegionError};
 
 /// The models of a heating run, by registered name.

@@ -6,12 +6,13 @@
 //! declares at assembly ([`wire`] fails when a subscribed topic has no publisher).
 
 pub mod check;
+pub mod error;
 pub mod friction;
 pub mod partitioned;
 pub mod region_rate;
+pub mod regions;
 pub mod rigid;
 pub mod staggered;
-pub mod thermal;
 
 use hsv_core::aero::AeroModel;
 use hsv_core::config::{LoadedConfig, REGION_NAMES, RegionModels};

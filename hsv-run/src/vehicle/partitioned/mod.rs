@@ -1,11 +1,11 @@
-//! The partitioned flexible vehicle (paper §III): the types its regions share and, in the
-//! submodules, one file per job — `build` (assembly), `step` (the step's protocol and the
-//! regions' rates), `body`, `engine`, `follower` and `surface` (the regions' loads),
-//! `interface` (the coupled derivative), `heating`, `restart` and `steady` (equilibrium, trim's
-//! interface). The partitioned and monolithic models, in-flight heating and restart share the
-//! regions' buffers: the loads every region computes from the vehicle state, and the state
-//! derivative with the body-surface coupling closed by a fixed-point iteration with Aitken
-//! relaxation.
+//! The partitioned flexible vehicle (paper §III): the regions ([`super::regions`]: the body,
+//! its engine and followers, the lifting surfaces and their heating) evaluated at their rates and
+//! coupled through what they publish in the data manager. One file per job — `build`
+//! (assembly), `step` (the step's protocol and the regions' rates), `publish` (the regions'
+//! publications and the coupling's reads), `interface` (the coupled derivative), `heating`,
+//! `restart` and `steady` (equilibrium, trim's interface). The partitioned and monolithic
+//! models, in-flight heating and restart share it: the state derivative with the body-surface
+//! coupling closed by a fixed-point iteration with Aitken relaxation.
 //!
 //! Per derivative evaluation:
 //! 1. flight condition from the rigid state (airspeed, α, β, rates about the centre of mass);
@@ -32,20 +32,12 @@
 
 use hsv_core::ModelError;
 use hsv_core::acceleration::Acceleration;
-use hsv_core::aero::{
-    AeroModel, AeroSolution, Loads, ModalHistory, PanelMotion, integrate_pressure,
-};
+use hsv_core::aero::{AeroSolution, Loads, ModalHistory};
 use hsv_core::config::CouplingConfig;
-pub use hsv_core::coupling::ElevonCommand;
-use hsv_core::coupling::{
-    ModalProjection, deflect_lifting_surface, elevon_rotation_angle_rad, generalized_forces,
-    pivot_axis, rotate_points, rotation_about_axis,
-};
+use hsv_core::coupling::ModalProjection;
 use hsv_core::flow::{FlightCondition, Freestream};
 use hsv_core::gas::PerfectGas;
-use hsv_core::geometry::{LiftingSurfaceConfig, Side, pivot_point};
-use hsv_core::mesh::{ModeShapes, PanelMesh, RegionKind};
-use hsv_core::propulsion::{EngineInputs, PropulsionModel, PropulsionSolution};
+use hsv_core::mesh::{PanelMesh, RegionKind};
 use hsv_core::region::RegionGeometry;
 use hsv_core::structure::{Capability, MassProperties, StructureModel};
 use nalgebra::{DVector, Point3, Vector3};
@@ -55,29 +47,37 @@ use super::friction::RegionFriction;
 use super::region_rate::{DEFAULT_BODY_FRICTION_DT_S, RegionExchange, RegionLoadRate};
 use super::{AnalysisNeeds, AssemblyError, RegionModelSet, RegionNeeds};
 use crate::disturbance::Disturbances;
-use crate::dynamics::equations_of_motion::pivot_motion;
 use crate::dynamics::{
     GravityModel, RigidBody, SurfaceAttachment, VehicleDerivative, VehicleDynamics, VehicleLoads,
     VehicleState,
 };
 use hsv_core::registry::Role;
 
-mod body;
 mod build;
-mod engine;
-mod follower;
 mod heating;
 mod interface;
+mod publish;
 mod restart;
 mod steady;
 mod step;
-mod surface;
 
 pub use restart::{ThermalRestart, VehicleMemory, VehicleRestart};
 
-use body::*;
-use engine::*;
-use surface::*;
+pub use super::error::VehicleError;
+use super::error::{assembly_error, model_error};
+use super::regions::body::{Body, body_region_loads};
+use super::regions::engine::Engine;
+use super::regions::follower::{FollowerSurface, follower_loads};
+pub use super::regions::heated::HeatingRates;
+use super::regions::heated::{
+    HeatedSurface, heat_flux_due, heat_surface, read_structure_temperatures, refresh_heat_flux,
+    surface_thermal,
+};
+use super::regions::surface::{
+    Surface, add_thermal_generalized_forces, elevon_rotation, surfaces_loads,
+};
+pub use super::regions::{ElevonCommand, FlightControls};
+use super::regions::{join, side_by_side};
 
 /// What the partitioned vehicle needs of its regions.
 pub fn partitioned_needs(analysis: &str) -> AnalysisNeeds {
@@ -144,51 +144,6 @@ pub fn heated_needs(analysis: &str) -> AnalysisNeeds {
     needs
 }
 
-/// Rates of the in-flight heating (paper Table 3). In a restart file its fields are keys of
-/// the vehicle's own ([`VehicleRestart`]), prefixed `heating_`.
-#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]
-pub struct HeatingRates {
-    /// Conduction step, s (paper: heat transfer 1 ms).
-    #[serde(rename = "heating_conduction_s")]
-    pub conduction_s: f64,
-    /// Interval between heat-flux updates, s (paper: aerothermal 10 ms); the flux is refreshed
-    /// at the start of the step where it falls due, from the accepted state.
-    #[serde(rename = "heating_heat_flux_s")]
-    pub heat_flux_s: f64,
-    /// Interval between stiffness updates from the temperature field, s (our choice).
-    #[serde(rename = "heating_stiffness_s")]
-    pub stiffness_s: f64,
-    /// Initial uniform temperature, K (paper: 293 K).
-    #[serde(rename = "heating_initial_k")]
-    pub initial_k: f64,
-}
-
-impl Default for HeatingRates {
-    fn default() -> Self {
-        Self {
-            conduction_s: 1e-3,
-            heat_flux_s: 1e-2,
-            stiffness_s: 0.1,
-            initial_k: 293.0,
-        }
-    }
-}
-
-/// One surface heating in flight: its thermal region ([`crate::vehicle::thermal`]: the heat
-/// flux from its latest aero solution, published on its `wall_heat_flux` topic, and the
-/// conduction under it) and the structure's stiffness updated from the temperature field.
-struct HeatedSurface {
-    region: crate::vehicle::thermal::SurfaceThermal,
-    /// The temperature field moved onto the structure's nodes (last stiffness update).
-    onto_structure: hsv_core::coupling::StructureTemperatures,
-    /// Time of the last stiffness update, s.
-    stiffness_time_s: f64,
-    /// Set when the field was moved onto the structure again: it is published on the
-    /// surface's `structure_temperatures` topic, the structure reads it into its stiffness and
-    /// the vehicle's modal matrices follow.
-    stiffness_changed: bool,
-}
-
 /// Temperatures of one heated surface, K.
 #[derive(Debug, Clone, Copy, PartialEq, Default, serde::Serialize)]
 pub struct SurfaceTemperatures {
@@ -214,38 +169,6 @@ pub fn monolithic_needs(analysis: &str) -> AnalysisNeeds {
     needs
 }
 
-/// OML that follows the body's modes and whose loads the body takes: a lifting surface of the
-/// monolithic model, and the fixed vertical fin of either model.
-struct FollowerSurface {
-    name: String,
-    base: PanelMesh,
-    deformed: PanelMesh,
-    deflected: PanelMesh,
-    /// The body's beam modes on this surface's vertices.
-    shapes: ModeShapes,
-    aero: Box<dyn AeroModel>,
-    friction: Option<RegionFriction>,
-    /// The planform and side the elevon rotates an all-movable surface by; `None` for the fin.
-    elevon: Option<(LiftingSurfaceConfig, Side)>,
-    velocities: Vec<Vector3<f64>>,
-    solution: AeroSolution,
-    generalized: Vec<f64>,
-    /// Its aero loads (pressure and friction) about the centre of mass at the last evaluation.
-    loads: Loads,
-}
-
-impl FollowerSurface {
-    /// The OML its aero last flew: deflected by the elevon, or for the fixed fin as the body's
-    /// modes deformed it.
-    fn flown_mesh(&self) -> &PanelMesh {
-        if self.elevon.is_some() {
-            &self.deflected
-        } else {
-            &self.deformed
-        }
-    }
-}
-
 /// A time step opened at an accepted state by [`PartitionedVehicle::begin_step`] and not yet
 /// committed: what its stage derivatives ([`PartitionedVehicle::stage_derivative`],
 /// [`PartitionedVehicle::staggered_derivative`]) take to read the regions published at their
@@ -259,14 +182,6 @@ pub struct OpenStep {
     /// Whether a region runs at its own rate, so the stages read publications (and hold the
     /// surfaces' skin friction); false when every region is evaluated at every stage.
     pub reads_publications: bool,
-}
-
-/// The controls at one instant.
-#[derive(Debug, Clone, Copy, PartialEq, Default, serde::Serialize, serde::Deserialize)]
-pub struct FlightControls {
-    pub elevon: ElevonCommand,
-    /// Fuel equivalence ratio φ.
-    pub fuel_equivalence_ratio: f64,
 }
 
 /// Body-surface coupling settings.
@@ -379,55 +294,6 @@ pub struct CouplingReport {
     pub residual: f64,
 }
 
-/// Why a derivative could not be computed: the region and quantity.
-#[derive(Debug, thiserror::Error)]
-pub enum VehicleError {
-    #[error("region `{region}`: {source}")]
-    Model {
-        region: String,
-        #[source]
-        source: ModelError,
-    },
-    #[error(transparent)]
-    Dynamics(#[from] crate::dynamics::DynamicsError),
-    /// The regions' exchange through the data manager refused a publication or read.
-    #[error("exchanging region data: {0}")]
-    Exchange(#[from] hsv_core::data::DataError),
-    /// A run's inputs are refused (its steps, its tables).
-    #[error("{0}")]
-    Input(String),
-    #[error(
-        "body-surface coupling did not converge in {iterations} iterations at the interfaces \
-         {interfaces}: last relative changes {residuals:?} (root forces, body η̈; tolerance \
-         {tolerance})"
-    )]
-    Coupling {
-        iterations: usize,
-        interfaces: String,
-        residuals: Vec<f64>,
-        tolerance: f64,
-    },
-}
-
-struct Body {
-    friction: Option<RegionFriction>,
-    /// Skin friction about the centre of mass of the last body evaluation, and the value the
-    /// next evaluation takes instead of evaluating the friction law (set by `begin_step` between
-    /// the friction's evaluations: module [`super::region_rate`]), as the surfaces' `held_friction`.
-    friction_loads: Loads,
-    held_friction: Option<Loads>,
-    base: PanelMesh,
-    mesh: PanelMesh,
-    shapes: ModeShapes,
-    aero: Box<dyn AeroModel>,
-    velocities: Vec<Vector3<f64>>,
-    solution: AeroSolution,
-    generalized: Vec<f64>,
-    /// The region's generalized forces as published: the body's, its engine's and its
-    /// followers' summed (scratch).
-    published_generalized: Vec<f64>,
-}
-
 /// What the coupling read of one lifting surface's publication for the current derivative
 /// ([`PartitionedVehicle::read_surface_loads`]): the applied load about the pivot in the
 /// surface's own frame and, turned by the stage's elevon rotation, in the body frame.
@@ -446,36 +312,6 @@ impl Default for SurfaceRead {
             elevon_rotation: nalgebra::Rotation3::identity(),
         }
     }
-}
-
-struct Surface {
-    thermal: Option<HeatedSurface>,
-    friction: Option<RegionFriction>,
-    /// Skin friction about the pivot (body frame) evaluated at the open step's first stage, the
-    /// accepted state, and held by its other stages (see [`surface_region_loads`]).
-    held_friction: Option<Loads>,
-    /// Pressure and friction loads about the pivot in the surface's own (undeflected) frame, from
-    /// the last region evaluation: what it publishes with its aero generalized forces.
-    applied_surface_frame: Loads,
-    name: String,
-    base: PanelMesh,
-    /// The base vertices displaced by the modes, before the elevon's rotation, m.
-    displaced_m: Vec<Point3<f64>>,
-    deflected: PanelMesh,
-    shapes: ModeShapes,
-    projection: ModalProjection,
-    structure: Box<dyn StructureModel>,
-    aero: Box<dyn AeroModel>,
-    planform: LiftingSurfaceConfig,
-    side: Side,
-    pivot_m: Point3<f64>,
-    /// The base mesh rotated rigidly by the elevon (what a model with memory evaluates on).
-    rigid: PanelMesh,
-    velocities: Vec<Vector3<f64>>,
-    solution: AeroSolution,
-    generalized: Vec<f64>,
-    /// The body's mode shapes at the pivot (6 × n_body: translation m, section rotation rad).
-    body_modes_at_pivot: nalgebra::DMatrix<f64>,
 }
 
 /// The partitioned vehicle (module docs).
@@ -548,38 +384,3 @@ pub struct PartitionedVehicle {
 /// How far past a step's start the wind field is generated when it opens: the step's stages and
 /// the regions ahead of the centre of mass read no further, s.
 const DISTURBANCE_LOOKAHEAD_S: f64 = 0.1;
-
-fn model_error(region: &str) -> impl Fn(ModelError) -> VehicleError + '_ {
-    move |source| VehicleError::Model {
-        region: region.to_owned(),
-        source,
-    }
-}
-
-fn assembly_error(region: &str, message: String) -> AssemblyError {
-    AssemblyError::Model {
-        file: String::new(),
-        region: region.to_owned(),
-        cause: message.into(),
-    }
-}
-
-/// Whether regions are evaluated side by side: only on a rayon worker thread (the simulation
-/// loop runs on one). Called from outside the pool (trim, linearization, flutter), every
-/// parallel section would hand its work to the pool and sleep on a latch, which cost 12 % of a
-/// one-core run for two surface evaluations of about 70 µs each.
-fn side_by_side() -> bool {
-    rayon::current_thread_index().is_some()
-}
-
-/// `a` and `b` side by side when [`side_by_side`], one after the other otherwise.
-fn join<RA: Send, RB: Send>(
-    a: impl FnOnce() -> RA + Send,
-    b: impl FnOnce() -> RB + Send,
-) -> (RA, RB) {
-    if side_by_side() {
-        rayon::join(a, b)
-    } else {
-        (a(), b())
-    }
-}

@@ -4,19 +4,28 @@
 //! body on `main_body/loads`. A vehicle without a `[regions.propulsion]` table has none (a
 //! glide).
 
-use super::*;
+use hsv_core::ModelError;
+use hsv_core::aero::Loads;
+use hsv_core::coupling::generalized_forces;
+use hsv_core::flow::FlightCondition;
+use hsv_core::mesh::{ModeShapes, PanelMesh, RegionKind};
+use hsv_core::propulsion::{EngineInputs, PropulsionModel, PropulsionSolution};
+use nalgebra::Point3;
+
+use super::FlightControls;
+use crate::vehicle::error::{VehicleError, model_error};
 
 /// The propulsion region's model and its last evaluation.
-pub(super) struct Engine {
-    pub(super) model: Box<dyn PropulsionModel>,
-    pub(super) solution: PropulsionSolution,
+pub(in crate::vehicle) struct Engine {
+    pub(in crate::vehicle) model: Box<dyn PropulsionModel>,
+    pub(in crate::vehicle) solution: PropulsionSolution,
     /// Generalized forces of its panel pressures on the body's modes, N (zero for an engine
     /// model without panel pressures).
-    pub(super) generalized: Vec<f64>,
+    pub(in crate::vehicle) generalized: Vec<f64>,
 }
 
 impl Engine {
-    pub(super) fn new(model: Box<dyn PropulsionModel>, n_body_modes: usize) -> Self {
+    pub(in crate::vehicle) fn new(model: Box<dyn PropulsionModel>, n_body_modes: usize) -> Self {
         Self {
             model,
             solution: PropulsionSolution::default(),
@@ -27,7 +36,7 @@ impl Engine {
 
 /// The engine's loads about the centre of mass `cg` on the body's deformed `mesh` (its moment
 /// comes about `reference_point_m`), and its generalized forces on the body's `shapes`.
-pub(super) fn engine_region_loads(
+pub(in crate::vehicle) fn engine_region_loads(
     engine: &mut Engine,
     (mesh, shapes): (&PanelMesh, &ModeShapes),
     flight: &FlightCondition,

@@ -5,7 +5,7 @@
 //!
 //! One component, two drivers: the flight heats each surface with one, its flux computed from
 //! the accepted state's aero and published on the surface's `wall_heat_flux` topic
-//! ([`super::partitioned`]); the standalone heating run on a fixed flow (`hsv-run heat`, the
+//! ([`super::heated`], [`crate::vehicle::partitioned`]); the standalone heating run on a fixed flow (`hsv-run heat`, the
 //! flutter march: [`crate::analysis::heating::SurfaceHeating`]) drives one from its steady edge
 //! states. Its state is plain data: the conduction state and the time it has reached.
 

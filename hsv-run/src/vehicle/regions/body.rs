@@ -1,19 +1,52 @@
 //! The main-body region: aero and skin friction on the beam-deformed OML beside the engine on
 //! its underside (`engine`), and the body's generalized forces; the surfaces that follow the
-//! body are `follower`'s.
+//! body are `follower`'s. Publishes `main_body/loads` (its loads about the centre of mass with
+//! its engine's and followers', and its generalized forces: at its rate, default 1 ms, or at
+//! every stage) and `main_body/skin_friction` (at the aerothermal rate, 10 ms); reads the
+//! body's modal state and the controls.
 //!
 //! Without an engine (no propulsion region: a glide) the body's aero model also loads the
 //! engine's ramp and nozzle, as outer surfaces of the flow it computes there; the duct is
 //! flow-through and its inner forces are not modelled (the inlet face and nozzle exit are caps
 //! that carry no load, as with an engine).
 
-use super::*;
+use hsv_core::ModelError;
+use hsv_core::aero::{AeroModel, AeroSolution, Loads, PanelMotion, integrate_pressure};
+use hsv_core::coupling::generalized_forces;
+use hsv_core::flow::FlightCondition;
+use hsv_core::mesh::{ModeShapes, PanelMesh, RegionKind};
+use nalgebra::{Point3, Vector3};
+
+use super::engine::{Engine, engine_region_loads};
+use super::{FlightControls, join};
+use crate::dynamics::VehicleState;
+use crate::vehicle::error::{VehicleError, model_error};
+use crate::vehicle::friction::RegionFriction;
+
+pub(in crate::vehicle) struct Body {
+    pub(in crate::vehicle) friction: Option<RegionFriction>,
+    /// Skin friction about the centre of mass of the last body evaluation, and the value the
+    /// next evaluation takes instead of evaluating the friction law (set by `begin_step` between
+    /// the friction's evaluations: module [`super::region_rate`]), as the surfaces' `held_friction`.
+    pub(in crate::vehicle) friction_loads: Loads,
+    pub(in crate::vehicle) held_friction: Option<Loads>,
+    pub(in crate::vehicle) base: PanelMesh,
+    pub(in crate::vehicle) mesh: PanelMesh,
+    pub(in crate::vehicle) shapes: ModeShapes,
+    pub(in crate::vehicle) aero: Box<dyn AeroModel>,
+    pub(in crate::vehicle) velocities: Vec<Vector3<f64>>,
+    pub(in crate::vehicle) solution: AeroSolution,
+    pub(in crate::vehicle) generalized: Vec<f64>,
+    /// The region's generalized forces as published: the body's, its engine's and its
+    /// followers' summed (scratch).
+    pub(in crate::vehicle) published_generalized: Vec<f64>,
+}
 
 /// The main body's aero (pressure and friction) and engine loads about the centre of mass, and
 /// its generalized forces, on the OML deformed by the beam modes; without an engine the aero
 /// takes the engine's panels and the engine loads are zero.
 #[allow(clippy::too_many_arguments)]
-pub(super) fn body_region_loads(
+pub(in crate::vehicle) fn body_region_loads(
     b: &mut Body,
     engine: Option<&mut Engine>,
     state: &VehicleState,
@@ -94,43 +127,4 @@ pub(super) fn body_region_loads(
         },
     );
     Ok((body_aero?, engine_loads?))
-}
-
-impl PartitionedVehicle {
-    /// Publishes the body region's evaluation at `time_s` on its loads topic: its aero and
-    /// engine loads (`body_loads`, [`body_region_loads`]) and generalized forces, with those of
-    /// the regions that follow the body (evaluated here: the monolithic model's surfaces, the
-    /// fin). `converged` at an accepted state where the body falls due (what the predictor
-    /// extrapolates), else the iterate one derivative reads at once.
-    pub(super) fn publish_body_region(
-        &mut self,
-        (body_aero, engine_loads): (Loads, Loads),
-        (state, controls, flight): (&VehicleState, &FlightControls, &FlightCondition),
-        (time_s, converged): (f64, bool),
-    ) -> Result<(), VehicleError> {
-        self.evaluate_followers(state, controls, flight)?;
-        let mut total = body_aero + engine_loads;
-        let mut aero = body_aero;
-        let b = &mut self.body;
-        for (k, q) in b.published_generalized.iter_mut().enumerate() {
-            // Without an engine its generalized forces are zeros, as they were summed before.
-            *q = b.generalized[k] + self.engine.as_ref().map_or(0.0, |e| e.generalized[k]);
-        }
-        for f in &self.followers {
-            total = total + f.loads;
-            aero = aero + f.loads;
-            for (q, g) in b.published_generalized.iter_mut().zip(&f.generalized) {
-                *q += g;
-            }
-        }
-        let generalized = b.published_generalized.as_slice();
-        if converged {
-            self.exchange
-                .publish_body(time_s, &total, &aero, generalized)?;
-        } else {
-            self.exchange
-                .publish_body_iterate(time_s, &total, &aero, generalized)?;
-        }
-        Ok(())
-    }
 }

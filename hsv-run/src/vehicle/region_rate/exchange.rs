@@ -486,9 +486,7 @@ impl RegionExchange {
 }
 
 /// One region's loads at `time_s` (the topic's predictor) into the outputs through `scratch`;
-/// false (outputs untouched) with nothing published. Generalized forces of another length
-/// than `generalized` are refused naming the topic: publisher and reader were wired to
-/// different mode counts, a defect no later read would repair.
+/// false (outputs untouched) with nothing published.
 fn read_loads(
     data: &DataManager,
     channel: &LoadsChannel,
@@ -503,23 +501,56 @@ fn read_loads(
         Err(e) => return Err(e),
         Ok(_) => {}
     }
-    if scratch.generalized.len() != generalized.len() {
+    copy_loads(scratch, (channel, time_s), total, aero, generalized)?;
+    Ok(true)
+}
+
+/// A region's latest publication (an iterate or converged) into the outputs, as [`read_loads`]
+/// but without the predictor: what the region gave at this very evaluation.
+fn read_latest_loads(
+    data: &DataManager,
+    channel: &LoadsChannel,
+    total: &mut Loads,
+    aero: Option<&mut Loads>,
+    generalized: &mut [f64],
+) -> Result<(), DataError> {
+    let latest = data.read(channel.reader)?;
+    copy_loads(
+        latest.value,
+        (channel, latest.time_s),
+        total,
+        aero,
+        generalized,
+    )
+}
+
+/// A publication of `channel`'s topic (read at `time_s`) into the outputs. Generalized forces of
+/// another length than `generalized` are refused naming the topic: publisher and reader were
+/// wired to different mode counts, a defect no later read would repair.
+fn copy_loads(
+    value: &PublishedLoads,
+    (channel, time_s): (&LoadsChannel, f64),
+    total: &mut Loads,
+    aero: Option<&mut Loads>,
+    generalized: &mut [f64],
+) -> Result<(), DataError> {
+    if value.generalized.len() != generalized.len() {
         return Err(DataError::LengthMismatch {
             topic: channel.topic.clone(),
             reader: READER.to_owned(),
             time_s,
-            published: scratch.generalized.len(),
+            published: value.generalized.len(),
             expected: generalized.len(),
         });
     }
-    total.force_n = scratch.force_n;
-    total.moment_nm = scratch.moment_nm;
+    total.force_n = value.force_n;
+    total.moment_nm = value.moment_nm;
     if let Some(aero) = aero {
-        aero.force_n = scratch.aero_force_n;
-        aero.moment_nm = scratch.aero_moment_nm;
+        aero.force_n = value.aero_force_n;
+        aero.moment_nm = value.aero_moment_nm;
     }
-    generalized.copy_from_slice(scratch.generalized.as_slice());
-    Ok(true)
+    generalized.copy_from_slice(value.generalized.as_slice());
+    Ok(())
 }
 
 /// Publishes one region's loads at `time_s`, in place (the head's buffers reused), and with
@@ -546,36 +577,6 @@ fn publish_loads(
     if converged {
         data.mark_converged(publisher)?;
     }
-    Ok(())
-}
-
-/// A region's latest publication (an iterate or converged) into the outputs, as [`read_loads`]
-/// but without the predictor: what the region gave at this very evaluation.
-fn read_latest_loads(
-    data: &DataManager,
-    channel: &LoadsChannel,
-    total: &mut Loads,
-    aero: Option<&mut Loads>,
-    generalized: &mut [f64],
-) -> Result<(), DataError> {
-    let latest = data.read(channel.reader)?;
-    let value = latest.value;
-    if value.generalized.len() != generalized.len() {
-        return Err(DataError::LengthMismatch {
-            topic: channel.topic.clone(),
-            reader: READER.to_owned(),
-            time_s: latest.time_s,
-            published: value.generalized.len(),
-            expected: generalized.len(),
-        });
-    }
-    total.force_n = value.force_n;
-    total.moment_nm = value.moment_nm;
-    if let Some(aero) = aero {
-        aero.force_n = value.aero_force_n;
-        aero.moment_nm = value.aero_moment_nm;
-    }
-    generalized.copy_from_slice(value.generalized.as_slice());
     Ok(())
 }
 

@@ -710,7 +710,7 @@ fn check_oblique(mach: f64, deflection_rad: f64, gamma: f64) -> Result<(f64, f64
 }
 
 /// Oblique shock turning M >= 1 flow by θ in [0, θ_max] rad on the chosen branch: on the weak
-/// branch the root of the θ-β-M cubic in sin²β ([`weak_oblique_shock`]); on the strong branch
+/// branch the root of the θ-β-M cubic in sin²β (`weak_oblique_shock`); on the strong branch
 /// Thompson's closed form polished by safeguarded Newton on the θ-β-M relation (Anderson MCF
 /// eq. 4.17).
 pub fn oblique_shock(

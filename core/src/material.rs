@@ -311,7 +311,7 @@ fn ti_6al_4v_beta_specific_heat(temperature_k: f64) -> f64 {
 impl Material {
     /// Ti-6Al-4V (annealed): E and α_sec 293-1323.66 K (the end of the published E data), k
     /// and c_p 293-1869.8 K (through the β transus at 1267-1268 K, to 7 K below the solidus);
-    /// sources of each column at [`TI_6AL_4V_TABLE`] and [`TI_6AL_4V_BETA_THERMAL_TABLE`].
+    /// sources of each column at `TI_6AL_4V_TABLE` and `TI_6AL_4V_BETA_THERMAL_TABLE`.
     /// Density 4430 kg/m³ (0.160 lb/in³) and Poisson's ratio 0.31: MMPDS / MIL-HDBK-5J
     /// Ti-6Al-4V design properties (section 5.4.1); solidus 1877 K (1604 °C, lower end of the melting range in the
     /// TIMET/BT Metals datasheet).

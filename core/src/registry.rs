@@ -2,7 +2,7 @@
 //! (one file: the descriptors, the context a constructor receives and the registry that finds them
 //! are the one contract a model crate is written against).
 //!
-//! A model crate registers itself with [`register_model!`]; the binary links it with a
+//! A model crate registers itself with [`register_model!`](crate::register_model); the binary links it with a
 //! `use hsv_model_x as _;` line. [`Registry::builtin`] collects the descriptors, sorts them by
 //! name and rejects duplicates; look-ups of unknown names answer with the closest known names.
 //! Plugins join through `Registry::load_plugin` (in `plugin.rs`, so this module does not know them).
@@ -68,7 +68,7 @@ pub type ControllerConstructor = fn(&ControlContext<'_>) -> Result<Box<dyn Contr
 /// Composite models (a surrogate trained on a base model, a reduced model built from a full one)
 /// build their base models through [`ModelContext::registry`], so plugins serve as base models
 /// too, and read the base model's settings as the same region sees them with
-/// [`ModelContext::for_model`].
+/// [`ModelContext::settings_for`].
 #[derive(Debug, Clone, Copy)]
 pub struct ModelContext<'a> {
     /// The model's settings (`[models.<name>]` overlaid by `[regions.<region>.models.<name>]`).
@@ -208,7 +208,7 @@ impl Constructor {
     }
 }
 
-/// What a built-in model crate submits with [`register_model!`].
+/// What a built-in model crate submits with [`register_model!`](crate::register_model).
 pub struct ModelDescriptor {
     /// Stable kebab-case name; the user's interface.
     pub name: &'static str,
@@ -231,7 +231,7 @@ inventory::collect!(ModelDescriptor);
 pub type SettingsCheck = fn(&ModelContext<'_>) -> Result<(), ModelError>;
 
 /// What a built-in model with a costly constructor submits beside its [`ModelDescriptor`] with
-/// [`register_model_check!`]; models without one are checked by building them.
+/// [`register_model_check!`](crate::register_model_check); models without one are checked by building them.
 pub struct ModelCheck {
     /// The model's registered name.
     pub name: &'static str,

@@ -25,7 +25,7 @@ const INTENSITY_ALTITUDES_FT: [f64; 12] = [
     80000.0,
 ];
 
-/// Probabilities of exceedance of the rows of [`INTENSITY_FT_S`].
+/// Probabilities of exceedance of the rows of `INTENSITY_FT_S`.
 pub const EXCEEDANCE_PROBABILITIES: [f64; 7] = [2e-1, 1e-1, 1e-2, 1e-3, 1e-4, 1e-5, 1e-6];
 
 /// Medium/high-altitude turbulence intensity σ_u = σ_v = σ_w, ft/s, by probability of

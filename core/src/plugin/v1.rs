@@ -327,7 +327,7 @@ pub struct PluginAeroOutput<'a> {
     pub edge: &'a mut [[f64; 5]],
 }
 
-/// The trait a plugin author implements; [`export_aero_plugin!`] turns it into the C table.
+/// The trait a plugin author implements; [`export_aero_plugin!`](crate::export_aero_plugin) turns it into the C table.
 pub trait PluginAero: Sized {
     /// Builds the model from its settings (the `[models.<name>]` table, as JSON).
     fn create(settings: &serde_json::Value) -> Result<Self, String>;
@@ -339,7 +339,7 @@ pub trait PluginAero: Sized {
     ) -> Result<(), String>;
 }
 
-/// Plugin-side glue used by [`export_aero_plugin!`]; not for hosts.
+/// Plugin-side glue used by [`export_aero_plugin!`](crate::export_aero_plugin); not for hosts.
 #[doc(hidden)]
 pub mod export {
     use super::*;

@@ -1,7 +1,7 @@
 //! The trimmed vehicle in flight: the `[simulation]` settings a flight reads, the one
 //! trim-then-fly setup (`simulate`, `compare`, the Python `Simulation`), and a flight a host
 //! program (Python, an FMU) advances one aeroelastic step at a time with its own commands,
-//! marching exactly as [`simulate`](super::simulate::simulate) does (one file: the settings, the
+//! marching exactly as [`super::simulate::simulate`] does (one file: the settings, the
 //! trim and the stepped flight are the one path from a config to a flying vehicle that every flying
 //! command and host shares).
 

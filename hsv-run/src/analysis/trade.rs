@@ -2,7 +2,7 @@
 //! trim, a flight from trim, or the lifting surface's flutter map), compared with the
 //! highest-fidelity combination, with the cost of each; split into deterministic shards
 //! ([`super::shards`]) that merge into the same table. The jobs themselves are in
-//! [`flight_jobs`] (trim, simulate) and [`flutter_job`] (one file: the spec, its cases and the
+//! `flight_jobs` (trim, simulate) and `flutter_job` (one file: the spec, its cases and the
 //! comparison into the table share the case numbering the shards and the merge rely on).
 //!
 //! A study is a list of [`Variation`]s (`main_body.aero=newtonian-scalar,shock-expansion`), each
@@ -415,7 +415,7 @@ pub struct TradeRow {
     /// Trim: the largest relative deviation of α, δe, φ (γ for a glide); simulate: the largest
     /// channel RMS deviation over the reference channel's scale, max(RMS, peak-to-peak, floor)
     /// ([`HISTORY_FLOORS`]); flutter: the largest relative deviation of the flutter Mach number
-    /// over the times ([`flutter_deviation`]). `None` when either failed.
+    /// over the times (`flutter_deviation`). `None` when either failed.
     pub error: Option<f64>,
     pub reference: bool,
     /// On the Pareto front of (cost, error): no other case is both cheaper and more accurate.

@@ -38,7 +38,7 @@ pub struct CompareArgs {
     /// Aeroelastic step, s (see `simulate --help`).
     #[arg(long = "dt-s", default_value_t = 0.001, allow_negative_numbers = true)]
     pub dt_s: f64,
-    /// Run folder (default: runs/compare-<UTC time>).
+    /// Run folder (default: `runs/compare-<UTC time>`).
     #[arg(long, value_name = "DIR")]
     pub out: Option<PathBuf>,
     /// Write into a non-empty --out folder.

@@ -31,7 +31,7 @@ pub struct LinearizeArgs {
     /// Perturbation of a trim value that is zero (state units).
     #[arg(long, default_value_t = 1e-6)]
     pub absolute: f64,
-    /// Run folder (default: runs/linearize-<UTC time>).
+    /// Run folder (default: `runs/linearize-<UTC time>`).
     #[arg(long, value_name = "DIR")]
     pub out: Option<PathBuf>,
     /// Write into a non-empty --out folder.

@@ -52,7 +52,7 @@ pub struct ConfigArg {
 /// `--out DIR` and `--force`, shared by every command that writes a run folder.
 #[derive(Args, Debug, Clone, Default)]
 pub struct OutArgs {
-    /// Run folder (default: a new runs/<command>-<UTC time>-<ms>); refused when it already
+    /// Run folder (default: a new `runs/<command>-<UTC time>-<ms>`); refused when it already
     /// holds files, unless --force.
     #[arg(long, value_name = "DIR")]
     pub out: Option<PathBuf>,

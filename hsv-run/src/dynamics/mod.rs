@@ -14,9 +14,9 @@
 //! - [`state_layout`]: the flat state-vector layout (quaternion or 3-2-1 Euler attitude) the
 //!   integrator and linearization work on.
 //! - [`integrate`]: classical fourth-order Runge-Kutta on a preallocated workspace.
-//! - [`linearize`]: A, B, C, D by central differences with the paper's perturbation rule, and
+//! - [`linearize`](mod@linearize): A, B, C, D by central differences with the paper's perturbation rule, and
 //!   the paper's sixth-order forward difference of a sampled time history.
-//! - [`flight_modes`]: eigenvalues with frequency and damping, named by eigenvector content
+//! - [`flight_modes`](mod@flight_modes): eigenvalues with frequency and damping, named by eigenvector content
 //!   (short period, phugoid, roll, Dutch roll, spiral, structural modes).
 
 pub mod equations_of_motion;

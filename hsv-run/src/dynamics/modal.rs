@@ -345,8 +345,8 @@ pub fn pivot_mode_shapes(
 }
 
 /// The 6 × 6 rigid mass matrix of a body about a point P for (a_P, α), the acceleration of P
-/// and the angular acceleration: force m a_P − m [c]× α and moment about P m [c]× a_P + I_P α,
-/// c = G − P, [c]× the cross-product matrix (symmetric because [c]× is skew). The
+/// and the angular acceleration: force m a_P − m \[c\]× α and moment about P m \[c\]× a_P + I_P α,
+/// c = G − P, \[c\]× the cross-product matrix (symmetric because \[c\]× is skew). The
 /// velocity-squared terms (m ω × (ω × c)) are left out: at the body's rates they are below
 /// 1e-3 g at a pivot's offset from the surface's centre of mass.
 pub fn pivot_mass_matrix(mass: &MassProperties, pivot_m: &Point3<f64>) -> Matrix6<f64> {

@@ -80,7 +80,7 @@ impl PanelMap {
     }
 }
 
-/// Revision of [`map_panels`], part of a POD basis's fingerprint: a basis trained from
+/// Revision of `map_panels`, part of a POD basis's fingerprint: a basis trained from
 /// snapshots of an earlier map (revision 1 sent the tip face's heat to the lower face) is
 /// retrained rather than reused.
 pub const PANEL_MAP_REVISION: u32 = 2;

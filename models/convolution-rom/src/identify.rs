@@ -73,7 +73,7 @@ pub struct ResponseBlock {
     pub steps: Vec<f64>,
     /// Correction factors `[mach][mode][amplitude][output]`; empty without correction.
     pub correction: Vec<f64>,
-    /// Mach correction of the rate responses `[mach][mode][output]` ([`tabulate_rate_correction`]);
+    /// Mach correction of the rate responses `[mach][mode][output]` (`tabulate_rate_correction`);
     /// empty without correction.
     pub rate_correction: Vec<f64>,
 }
@@ -111,7 +111,7 @@ impl ResponseBlock {
 #[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct Identification {
     pub format: u32,
-    /// What it was built from ([`fingerprint`]); a mismatch forces a rebuild.
+    /// What it was built from (`fingerprint`); a mismatch forces a rebuild.
     pub fingerprint: String,
     /// The source aero model.
     pub source: String,

@@ -34,7 +34,7 @@
 //! M_r = I and K_r = diag(ω²) with the N modes reproduced exactly (Rayleigh-Ritz on a subspace
 //! that contains them).
 //!
-//! **Temperature update** ([`StructureModel::set_temperatures`]): each element takes the mean
+//! **Temperature update** ([`ThermalStiffness::set_temperatures`]): each element takes the mean
 //! temperature of its nodes; s_e = E(T_e)/E(293 K), ε_e = α_sec(T_e)(T_e − 293 K). A membrane
 //! solve (root held in-plane) gives element resultants N_e; then
 //! K_r = Σ_e s_e K_r,e + Σ_e Σ_c N_e,c G_r,e,c from reduced element matrices precomputed once,

@@ -34,7 +34,7 @@ impl ThermalStiffness for RitzPlate {
 impl RitzPlate {
     /// Updates stiffness and the thermal-moment load from mid-plane node temperatures (K) and
     /// node through-thickness differences ΔT = T(lower face, z = +t/2) − T(upper face) (K,
-    /// linear in z; node order of [`RitzPlate::grid`]). [`StructureModel::set_temperatures`] is
+    /// linear in z; node order of [`RitzPlate::grid`]). [`ThermalStiffness::set_temperatures`] is
     /// this with ΔT = 0. Allocation-free.
     pub fn set_temperature_field(
         &mut self,

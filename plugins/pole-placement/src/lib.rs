@@ -2,7 +2,7 @@
 //! augmentation whose gains place the poles by Ackermann's formula.
 //!
 //! It shows what a third-party controller needs: implement [`Controller`] and a
-//! [`hsv_core::control::ControllerConstructor`] exactly as a built-in controller would, and
+//! [`hsv_core::registry::ControllerConstructor`] exactly as a built-in controller would, and
 //! export them with [`hsv_core::export_plugin!`] (plugin API 2.1); build with
 //! `cargo build --release -p hsv-plugin-pole-placement` and fly with
 //! `hsv-run --plugin target/release/libhsv_plugin_pole_placement.so simulate --controller pole-placement`.
@@ -46,7 +46,7 @@ const SETTINGS_DOC: &str = "sample_interval_s = 0.01  # s between samples (held 
 short_period_frequency_rad_s = 4.0  # placed short-period natural frequency
 short_period_damping = 0.7  # placed short-period damping ratio";
 
-/// Coefficients c of the monic polynomial sⁿ + c[0] sⁿ⁻¹ + … + c[n−1] with roots `poles`
+/// Coefficients c of the monic polynomial sⁿ + c\[0\] sⁿ⁻¹ + … + c\[n−1\] with roots `poles`
 /// (re, im); complex roots must come in conjugate pairs for the result to be real.
 pub fn characteristic_coefficients(poles: &[(f64, f64)]) -> Vec<f64> {
     // Multiply out Π (s − p) in complex arithmetic, highest power first.

@@ -5,9 +5,9 @@
 //! x₁ = c + (x₀ − c) e^(−Δt/τ); the change is then capped at the rate limit times Δt and the
 //! position clamped to its range. `[control.actuators]` keys (defaults in brackets):
 //! `elevon_limit_deg` [30: the travel of an all-moving hypersonic control surface; a choice,
-//! not from the paper], `elevon_rate_limit_deg_s` [100], `elevon_time_constant_s` [0.02: a
-//! 50 rad/s servo], `phi_min` [0], `phi_max` [1], `phi_time_constant_s` [0.1: the fuel
-//! system's lag], `phi_rate_limit_per_s` [2].
+//! not from the paper], `elevon_rate_limit_deg_s` \[100\], `elevon_time_constant_s` [0.02: a
+//! 50 rad/s servo], `phi_min` \[0\], `phi_max` \[1\], `phi_time_constant_s` [0.1: the fuel
+//! system's lag], `phi_rate_limit_per_s` \[2\].
 
 use hsv_core::control::ControlCommands;
 

@@ -48,7 +48,7 @@ pub struct TrackingSettings {
     pub integrate_within_m: f64,
     pub integrate_within_m_s: f64,
     /// Feed back the inertial flight-path angle γ and θ in place of the air-data α
-    /// ([`inertial_flight_path_law`]).
+    /// (`inertial_flight_path_law`).
     pub inertial_flight_path: bool,
 }
 

@@ -8,7 +8,7 @@
 //!   the aero of a named model on the deformed mesh, its static equilibrium and the identified
 //!   state matrix A (central differences, Eqs. 6-7) from the direct state derivative or from the
 //!   paper's sixth-order forward difference over 7 steps of the surface simulation.
-//! - [`stability`]: eigenvalues and eigenvectors of A with frequency and damping per root, mode
+//! - [`stability`](mod@stability): eigenvalues and eigenvectors of A with frequency and damping per root, mode
 //!   tracking by eigenvector correlation (MAC), and Brent's root finder for the crossing.
 //! - [`sweep`]: the heated surface (from 293 K, heated by the flow at each Mach number for the
 //!   requested time) analysed over a Mach grid and times.

@@ -15,7 +15,7 @@
 //! [`PanelFlutter::lambda_ackeret`] gives the same dynamic pressure with β = √(M² − 1)).
 //!
 //! **Search.** The Mach number at a fixed altitude sets q = γ p∞ M² / 2: the crossing of the
-//! growth margin ([`super::stability`]) is bracketed on a grid and found by Brent's method.
+//! growth margin ([`super::stability`](mod@super::stability)) is bracketed on a grid and found by Brent's method.
 
 use hsv_core::aero::{AeroModel, ReferenceValues};
 use hsv_core::flow::{FlightCondition, Freestream};

@@ -279,7 +279,7 @@ impl Pod {
         })
     }
 
-    /// Names the file the basis was read from, for the messages of [`Pod::check_range`].
+    /// Names the file the basis was read from, for the messages of `Pod::check_range`.
     pub fn with_basis_file(mut self, path: impl Into<String>) -> Self {
         self.basis_file = path.into();
         self

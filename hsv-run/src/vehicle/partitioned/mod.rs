@@ -44,7 +44,7 @@ use nalgebra::{DVector, Point3, Vector3};
 use rayon::prelude::*;
 
 use super::friction::RegionFriction;
-use super::region_rate::{DEFAULT_BODY_FRICTION_DT_S, RegionExchange, RegionLoadRate};
+use super::region_rate::{DEFAULT_BODY_FRICTION_DT_S, Publication, RegionExchange, RegionLoadRate};
 use super::{AnalysisNeeds, AssemblyError, RegionModelSet, RegionNeeds};
 use crate::disturbance::Disturbances;
 use crate::dynamics::{

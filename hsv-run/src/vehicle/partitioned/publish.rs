@@ -9,13 +9,12 @@ impl PartitionedVehicle {
     /// Publishes the body region's evaluation at `time_s` on its loads topic: its aero and
     /// engine loads (`body_loads`, [`body_region_loads`]) and generalized forces, with those of
     /// the regions that follow the body (evaluated here: the monolithic model's surfaces, the
-    /// fin). `converged` at an accepted state where the body falls due (what the predictor
-    /// extrapolates), else the iterate one derivative reads at once.
+    /// fin), converged or as an iterate ([`Publication`]).
     pub(super) fn publish_body_region(
         &mut self,
         (body_aero, engine_loads): (Loads, Loads),
         (state, controls, flight): (&VehicleState, &FlightControls, &FlightCondition),
-        (time_s, converged): (f64, bool),
+        at: (f64, Publication),
     ) -> Result<(), VehicleError> {
         self.evaluate_followers(state, controls, flight)?;
         let mut total = body_aero + engine_loads;
@@ -33,18 +32,9 @@ impl PartitionedVehicle {
             }
         }
         let generalized = b.published_generalized.as_slice();
-        if converged {
-            self.exchange
-                .publish_body(time_s, &total, &aero, generalized)?;
-        } else {
-            self.exchange
-                .publish_body_iterate(time_s, &total, &aero, generalized)?;
-        }
-        Ok(())
+        Ok(self.exchange.publish_body(at, &total, &aero, generalized)?)
     }
-}
 
-impl PartitionedVehicle {
     /// The surfaces that follow the body (the monolithic model's lifting surfaces, rotated by the
     /// elevon, and the fixed vertical fin): OML following the body's modes whose aero loads go
     /// straight to the body and to its generalized forces.
@@ -61,9 +51,7 @@ impl PartitionedVehicle {
         }
         Ok(())
     }
-}
 
-impl PartitionedVehicle {
     /// The heated surfaces' heat flux, where due, from their aero at the accepted `state`
     /// (each in its own flight condition, side by side).
     pub(super) fn refresh_heat_fluxes(
@@ -196,23 +184,12 @@ impl PartitionedVehicle {
         Ok(!self.surfaces.is_empty())
     }
 
-    /// Publishes every surface's evaluation at `time_s` on its loads topic: `converged` at an
-    /// accepted state where the surfaces fall due at their own rate, else the iterate one
-    /// derivative reads at once.
-    pub(super) fn publish_surfaces(
-        &mut self,
-        time_s: f64,
-        converged: bool,
-    ) -> Result<(), VehicleError> {
+    /// Publishes every surface's evaluation at `time_s` on its loads topic, converged or as an
+    /// iterate ([`Publication`]).
+    pub(super) fn publish_surfaces(&mut self, at: (f64, Publication)) -> Result<(), VehicleError> {
         for (index, s) in self.surfaces.iter().enumerate() {
-            let (applied, generalized) = (&s.applied_surface_frame, s.generalized.as_slice());
-            if converged {
-                self.exchange
-                    .publish_surface(index, time_s, applied, generalized)?;
-            } else {
-                self.exchange
-                    .publish_surface_iterate(index, time_s, applied, generalized)?;
-            }
+            self.exchange
+                .publish_surface(index, at, &s.applied_surface_frame, &s.generalized)?;
         }
         Ok(())
     }

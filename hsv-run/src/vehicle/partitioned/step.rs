@@ -200,11 +200,19 @@ impl PartitionedVehicle {
             done?;
             // Due at their own rate: converged. Evaluated beside the body for the first stage:
             // the iterate that stage reads.
-            let converged = self.surface_rate != RegionLoadRate::EveryStage;
-            self.publish_surfaces(time_s, converged)?;
+            let publication = if self.surface_rate == RegionLoadRate::EveryStage {
+                Publication::Iterate
+            } else {
+                Publication::Converged
+            };
+            self.publish_surfaces((time_s, publication))?;
         }
         if let Some(loads) = body_loads {
-            self.publish_body_region(loads?, (state, controls, &flight), (time_s, true))?;
+            self.publish_body_region(
+                loads?,
+                (state, controls, &flight),
+                (time_s, Publication::Converged),
+            )?;
             if held.is_none() && self.body.friction.is_some() {
                 self.exchange
                     .publish_friction(time_s, &self.body.friction_loads)?;
@@ -338,13 +346,17 @@ impl PartitionedVehicle {
         );
         if let Some(done) = surfaces_done {
             done?;
-            self.publish_surfaces(time_s, false)?;
+            self.publish_surfaces((time_s, Publication::Iterate))?;
         }
         if !surfaces_predicted {
             self.read_surface_loads(&controls.elevon, None)?;
         }
         if let Some(loads) = body_loads {
-            self.publish_body_region(loads?, (state, controls, flight), (time_s, false))?;
+            self.publish_body_region(
+                loads?,
+                (state, controls, flight),
+                (time_s, Publication::Iterate),
+            )?;
             self.exchange.read_body_latest(
                 &mut self.loads.body,
                 &mut self.aero_loads,

@@ -74,6 +74,18 @@ impl std::fmt::Debug for RegionExchange {
     }
 }
 
+/// How a region's evaluation enters its loads topic.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Publication {
+    /// At an accepted state where the region falls due at its own rate: committed to the history
+    /// the predictor extrapolates over the stages until the region's next evaluation.
+    Converged,
+    /// One derivative's evaluation (a stage, a trim or linearization point): the topic's
+    /// iterate, read at once by the coupling (`read_*_latest`), never extrapolated and never in
+    /// the history.
+    Iterate,
+}
+
 /// A region's loads topic and its latest publication ([`RegionExchange::loads_publications`]).
 #[derive(Debug, Clone, PartialEq, serde::Serialize)]
 pub struct LoadsPublication {
@@ -293,11 +305,10 @@ impl RegionExchange {
             .map(|s| s.time_s)
     }
 
-    /// Publishes the body's loads at the accepted state of `time_s`, converged: what the
-    /// predictor extrapolates over the stages until the next.
+    /// Publishes the body's loads at `time_s`, converged or as an iterate ([`Publication`]).
     pub fn publish_body(
         &mut self,
-        time_s: f64,
+        at: (f64, Publication),
         total: &Loads,
         aero: &Loads,
         generalized: &[f64],
@@ -305,27 +316,7 @@ impl RegionExchange {
         publish_loads(
             &mut self.data,
             self.body.publisher,
-            (time_s, true),
-            total,
-            aero,
-            generalized,
-        )
-    }
-
-    /// Publishes the body's loads of one derivative's evaluation at `time_s` (a stage, a trim
-    /// or linearization point) as the topic's iterate: read at once by the coupling
-    /// ([`Self::read_body_latest`]), never extrapolated, never in the history.
-    pub fn publish_body_iterate(
-        &mut self,
-        time_s: f64,
-        total: &Loads,
-        aero: &Loads,
-        generalized: &[f64],
-    ) -> Result<(), DataError> {
-        publish_loads(
-            &mut self.data,
-            self.body.publisher,
-            (time_s, false),
+            at,
             total,
             aero,
             generalized,
@@ -344,34 +335,11 @@ impl RegionExchange {
     }
 
     /// Publishes surface `index`'s applied loads about its pivot (its own frame) and aero
-    /// generalized forces at the accepted state of `time_s`, converged (as
-    /// [`Self::publish_body`]).
+    /// generalized forces at `time_s`, converged or as an iterate ([`Publication`]).
     pub fn publish_surface(
         &mut self,
         index: usize,
-        time_s: f64,
-        applied: &Loads,
-        generalized: &[f64],
-    ) -> Result<(), DataError> {
-        self.publish_surface_at(index, (time_s, true), applied, generalized)
-    }
-
-    /// Publishes surface `index`'s loads of one derivative's evaluation as the topic's iterate
-    /// (as [`Self::publish_body_iterate`]).
-    pub fn publish_surface_iterate(
-        &mut self,
-        index: usize,
-        time_s: f64,
-        applied: &Loads,
-        generalized: &[f64],
-    ) -> Result<(), DataError> {
-        self.publish_surface_at(index, (time_s, false), applied, generalized)
-    }
-
-    fn publish_surface_at(
-        &mut self,
-        index: usize,
-        publication: (f64, bool),
+        at: (f64, Publication),
         applied: &Loads,
         generalized: &[f64],
     ) -> Result<(), DataError> {
@@ -382,7 +350,7 @@ impl RegionExchange {
         publish_loads(
             &mut self.data,
             surface.publisher,
-            publication,
+            at,
             applied,
             &none,
             generalized,
@@ -553,12 +521,12 @@ fn copy_loads(
     Ok(())
 }
 
-/// Publishes one region's loads at `time_s`, in place (the head's buffers reused), and with
-/// `converged` commits them into the history the predictor reads.
+/// Publishes one region's loads at `time_s`, in place (the head's buffers reused); a
+/// converged publication is committed into the history the predictor reads.
 fn publish_loads(
     data: &mut DataManager,
     publisher: Publisher<PublishedLoads>,
-    (time_s, converged): (f64, bool),
+    (time_s, publication): (f64, Publication),
     total: &Loads,
     aero: &Loads,
     generalized: &[f64],
@@ -574,7 +542,7 @@ fn publish_loads(
             slot.generalized = DVector::from_column_slice(generalized);
         }
     })?;
-    if converged {
+    if publication == Publication::Converged {
         data.mark_converged(publisher)?;
     }
     Ok(())

@@ -43,7 +43,7 @@ pub mod published;
 
 use serde::{Deserialize, Serialize};
 
-pub use exchange::{LoadsPublication, RegionExchange};
+pub use exchange::{LoadsPublication, Publication, RegionExchange};
 pub use published::{PublishedFriction, PublishedLoads, PublishedTemperatures};
 
 /// The body's skin friction rate by default, s: the paper's aerothermal step (Table 3).

@@ -3,6 +3,7 @@
 
 use nalgebra::Vector3;
 
+use super::Publication::{Converged, Iterate};
 use super::*;
 
 fn loads(x: f64) -> Loads {
@@ -30,9 +31,9 @@ fn a_load_linear_in_time_is_extrapolated_exactly() {
     let mut h = exchange();
     let f = |t: f64| 3.0 - 7.0 * t;
     for t in [0.0, 1e-3] {
-        h.publish_body(t, &loads(f(t)), &loads(0.5 * f(t)), &[f(t); 2])
+        h.publish_body((t, Converged), &loads(f(t)), &loads(0.5 * f(t)), &[f(t); 2])
             .expect("published");
-        h.publish_surface(0, t, &loads(-f(t)), &[f(t); 3])
+        h.publish_surface(0, (t, Converged), &loads(-f(t)), &[f(t); 3])
             .expect("published");
     }
     let (mut total, mut aero, mut q) = (Loads::default(), Loads::default(), [0.0; 2]);
@@ -113,7 +114,7 @@ fn one_publication_is_held_none_is_refused_and_clearing_forgets() {
         !h.read_body(0.0, &mut total, &mut aero, &mut q)
             .expect("read")
     );
-    h.publish_body(0.0, &loads(4.0), &loads(1.0), &[4.0])
+    h.publish_body((0.0, Converged), &loads(4.0), &loads(1.0), &[4.0])
         .expect("published");
     assert!(
         h.read_body(5e-4, &mut total, &mut aero, &mut q)
@@ -122,7 +123,7 @@ fn one_publication_is_held_none_is_refused_and_clearing_forgets() {
     assert_eq!(total.force_n.x, 4.0);
     assert_eq!(q[0], 4.0);
     let err = h
-        .publish_body(5e-4, &loads(4.0), &loads(1.0), &[4.0])
+        .publish_body((5e-4, Converged), &loads(4.0), &loads(1.0), &[4.0])
         .expect_err("sooner than 1 ms");
     assert!(err.to_string().contains("main_body/loads"), "{err}");
     let saved = h.checkpoint();
@@ -145,7 +146,7 @@ fn one_publication_is_held_none_is_refused_and_clearing_forgets() {
 #[test]
 fn a_publication_of_the_wrong_length_is_refused_naming_the_topic() {
     let mut h = exchange();
-    h.publish_body(0.0, &loads(4.0), &loads(1.0), &[4.0])
+    h.publish_body((0.0, Converged), &loads(4.0), &loads(1.0), &[4.0])
         .expect("published");
     let (mut total, mut aero, mut q) = (Loads::default(), Loads::default(), [7.0; 2]);
     let err = h
@@ -170,7 +171,7 @@ fn a_publication_of_the_wrong_length_is_refused_naming_the_topic() {
         (Loads::default(), [7.0; 2]),
         "outputs untouched"
     );
-    h.publish_surface(0, 0.0, &loads(1.0), &[1.0; 3])
+    h.publish_surface(0, (0.0, Converged), &loads(1.0), &[1.0; 3])
         .expect("published");
     let err = h
         .read_surface(0, 0.0, &mut total, &mut [0.0; 4])
@@ -185,9 +186,9 @@ fn a_publication_of_the_wrong_length_is_refused_naming_the_topic() {
 fn an_iterate_is_read_at_once_and_never_extrapolated() {
     let mut h = exchange();
     let (mut total, mut aero, mut q) = (Loads::default(), Loads::default(), [0.0; 2]);
-    h.publish_body(0.0, &loads(1.0), &loads(1.0), &[1.0; 2])
+    h.publish_body((0.0, Converged), &loads(1.0), &loads(1.0), &[1.0; 2])
         .expect("converged");
-    h.publish_body_iterate(5e-4, &loads(9.0), &loads(8.0), &[9.0; 2])
+    h.publish_body((5e-4, Iterate), &loads(9.0), &loads(8.0), &[9.0; 2])
         .expect("iterate");
     h.read_body_latest(&mut total, &mut aero, &mut q)
         .expect("latest");
@@ -203,7 +204,7 @@ fn an_iterate_is_read_at_once_and_never_extrapolated() {
     );
     assert_eq!(h.body_time_s(), Some(0.0));
     // The next converged publication replaces the iterate; the predictor then uses both.
-    h.publish_body(1e-3, &loads(3.0), &loads(3.0), &[3.0; 2])
+    h.publish_body((1e-3, Converged), &loads(3.0), &loads(3.0), &[3.0; 2])
         .expect("converged");
     assert!(
         h.read_body(2e-3, &mut total, &mut aero, &mut q)
@@ -211,7 +212,7 @@ fn an_iterate_is_read_at_once_and_never_extrapolated() {
     );
     assert_eq!(total, loads(5.0));
     let mut q3 = [0.0; 3];
-    h.publish_surface_iterate(0, 1e-3, &loads(-2.0), &[2.0; 3])
+    h.publish_surface(0, (1e-3, Iterate), &loads(-2.0), &[2.0; 3])
         .expect("iterate");
     h.read_surface_latest(0, &mut total, &mut q3)
         .expect("latest");

@@ -61,7 +61,8 @@ mod restart;
 mod steady;
 mod step;
 
-pub use restart::{ThermalRestart, VehicleMemory, VehicleRestart};
+pub use super::regions::heated::ThermalRestart;
+pub use restart::{VehicleMemory, VehicleRestart};
 
 pub use super::error::VehicleError;
 use super::error::{assembly_error, model_error};

@@ -4,17 +4,6 @@
 
 use super::*;
 
-/// One heated surface's thermal state: its conduction state and the field its structure's
-/// stiffness was last updated from.
-#[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
-pub struct ThermalRestart {
-    pub state: DVector<f64>,
-    pub structure_k: Vec<f64>,
-    pub structure_difference_k: Vec<f64>,
-    pub conduction_time_s: f64,
-    pub stiffness_time_s: f64,
-}
-
 /// What the vehicle itself carries from one derivative and one step to the next, beyond the
 /// integrated [`VehicleState`]: the time, the coupling iteration's guesses (each surface's q̈,
 /// the body's η̈) and references (root forces, the last report), and the surfaces' modal
@@ -55,31 +44,6 @@ pub struct VehicleRestart {
     /// The regions' publications at their own rates: the data manager's checkpoint of the
     /// body's and each surface's loads topics and the body's skin friction.
     pub region_loads: hsv_core::data::DataCheckpoint,
-}
-
-impl HeatedSurface {
-    /// The thermal region's conduction state and the field the structure last read.
-    fn saved(&self) -> ThermalRestart {
-        ThermalRestart {
-            state: self.region.state().clone(),
-            structure_k: self.onto_structure.mean_k.clone(),
-            structure_difference_k: self.onto_structure.difference_k.clone(),
-            conduction_time_s: self.region.time_s(),
-            stiffness_time_s: self.stiffness_time_s,
-        }
-    }
-
-    /// Continues from `saved`; whether the structure's stiffness must be set from its field
-    /// again (it had been heated).
-    fn restore(&mut self, saved: &ThermalRestart) -> Result<bool, ModelError> {
-        self.region.restore(&saved.state, saved.conduction_time_s)?;
-        self.onto_structure.mean_k.clone_from(&saved.structure_k);
-        self.onto_structure
-            .difference_k
-            .clone_from(&saved.structure_difference_k);
-        self.stiffness_time_s = saved.stiffness_time_s;
-        Ok(self.stiffness_time_s > 0.0)
-    }
 }
 
 impl PartitionedVehicle {

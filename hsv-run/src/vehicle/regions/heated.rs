@@ -9,6 +9,7 @@ use hsv_core::aero::ModalHistory;
 use hsv_core::coupling::ElevonCommand;
 use hsv_core::flow::FlightCondition;
 use hsv_core::structure::StructureModel;
+use nalgebra::DVector;
 
 use super::surface::{Surface, surface_aero};
 use crate::vehicle::AssemblyError;
@@ -58,6 +59,45 @@ pub(in crate::vehicle) struct HeatedSurface {
     /// surface's `structure_temperatures` topic, the structure reads it into its stiffness and
     /// the vehicle's modal matrices follow.
     pub(in crate::vehicle) stiffness_changed: bool,
+}
+
+/// One heated surface's thermal state: its conduction state and the field its structure's
+/// stiffness was last updated from.
+#[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
+pub struct ThermalRestart {
+    pub state: DVector<f64>,
+    pub structure_k: Vec<f64>,
+    pub structure_difference_k: Vec<f64>,
+    pub conduction_time_s: f64,
+    pub stiffness_time_s: f64,
+}
+
+impl HeatedSurface {
+    /// The thermal region's conduction state and the field the structure last read.
+    pub(in crate::vehicle) fn saved(&self) -> ThermalRestart {
+        ThermalRestart {
+            state: self.region.state().clone(),
+            structure_k: self.onto_structure.mean_k.clone(),
+            structure_difference_k: self.onto_structure.difference_k.clone(),
+            conduction_time_s: self.region.time_s(),
+            stiffness_time_s: self.stiffness_time_s,
+        }
+    }
+
+    /// Continues from `saved`; whether the structure's stiffness must be set from its field
+    /// again (it had been heated).
+    pub(in crate::vehicle) fn restore(
+        &mut self,
+        saved: &ThermalRestart,
+    ) -> Result<bool, ModelError> {
+        self.region.restore(&saved.state, saved.conduction_time_s)?;
+        self.onto_structure.mean_k.clone_from(&saved.structure_k);
+        self.onto_structure
+            .difference_k
+            .clone_from(&saved.structure_difference_k);
+        self.stiffness_time_s = saved.stiffness_time_s;
+        Ok(self.stiffness_time_s > 0.0)
+    }
 }
 
 /// A surface's thermal model, with the transfer of its conduction nodes onto the structure's

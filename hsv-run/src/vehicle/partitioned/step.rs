@@ -28,8 +28,12 @@ impl PartitionedVehicle {
             )));
         }
         self.memory.time_s = time_s;
-        let flight = self.flight(state)?;
-        self.update_surface_flights(state, &flight)?;
+        // Only an aero model with memory commits anything at the step's end (in the flight
+        // condition each surface then flies in); for the others this is no work at all.
+        if self.memory.histories.iter().any(Option::is_some) {
+            let flight = self.flight(state)?;
+            self.update_surface_flights(state, &flight)?;
+        }
         for (i, s) in self.surfaces.iter_mut().enumerate() {
             if let (Some(rom), Some(history)) =
                 (s.aero.modal_history(), self.memory.histories[i].as_mut())
@@ -47,7 +51,6 @@ impl PartitionedVehicle {
             }
         }
         self.advance_heating(time_s)?;
-        self.memory.time_s = time_s;
         self.stage_one = None;
         Ok(())
     }

@@ -6,9 +6,10 @@
 use hsv_core::aero::{AeroModel, AeroSolution, PanelMotion};
 use hsv_core::flow::{FlightCondition, Freestream};
 use hsv_core::gas::{self, PerfectGas, ShockBranch};
-use hsv_core::mesh::{PanelMesh, PanelSpec, RegionKind, Strip, Surface};
+use hsv_core::mesh::{PanelMesh, RegionKind, Surface};
 use hsv_model_shock_expansion::ShockExpansion;
-use nalgebra::Point3;
+
+mod common;
 
 const MACH: f64 = 6.0;
 
@@ -19,26 +20,13 @@ fn wedge_strips(angles_rad: &[f64]) -> PanelMesh {
     let mut panels = Vec::new();
     let mut strips = Vec::new();
     for (k, &angle) in angles_rad.iter().enumerate() {
-        let y = k as f64;
         let rise = 0.5 * angle.tan();
-        let base = vertices.len();
-        for (x, z) in [(0.0, 0.0), (-0.5, rise), (-1.0, rise)] {
-            vertices.push(Point3::new(x, y, z));
-            vertices.push(Point3::new(x, y + 1.0, z));
-        }
-        let mut strip = Strip::default();
-        for i in 0..2 {
-            let (a0, a1, b0, b1) = (
-                base + 2 * i,
-                base + 2 * i + 1,
-                base + 2 * i + 2,
-                base + 2 * i + 3,
-            );
-            strip.panels.push(panels.len());
-            // Counter-clockwise seen from below: normals down (+z), the windward side.
-            panels.push(PanelSpec::quad(a0, a1, b1, b0, 0));
-        }
-        strips.push(strip);
+        common::push_extruded_strip(
+            (&mut vertices, &mut panels, &mut strips),
+            &[(0.0, 0.0), (-0.5, rise), (-1.0, rise)],
+            k as f64,
+            true,
+        );
     }
     PanelMesh::new(
         vertices,

@@ -11,10 +11,12 @@ use hsv_core::aero::{
 use hsv_core::error::ModelError;
 use hsv_core::flow::{FlightCondition, Freestream};
 use hsv_core::gas::{self, PerfectGas};
-use hsv_core::mesh::{PanelMesh, PanelSpec, RegionKind, Strip, Surface};
+use hsv_core::mesh::{PanelMesh, RegionKind, Surface};
 use hsv_core::registry::{ModelContext, Registry, RegistryError};
 use hsv_model_shock_expansion::{ShockExpansion, ShockExpansionPiston};
 use nalgebra::{Point3, Vector3};
+
+mod common;
 
 const GAMMA: f64 = 1.4;
 
@@ -32,29 +34,14 @@ fn section(upper: &[(f64, f64)], lower: &[(f64, f64)]) -> PanelMesh {
     let mut vertices = Vec::new();
     let mut panels = Vec::new();
     let mut strips = Vec::new();
-    for (surface, points) in [upper, lower].into_iter().enumerate() {
-        let base = vertices.len();
-        for &(x, z) in points {
-            vertices.push(Point3::new(x, 0.0, z));
-            vertices.push(Point3::new(x, 1.0, z));
-        }
-        let mut strip = Strip::default();
-        for i in 0..points.len() - 1 {
-            let (a0, a1, b0, b1) = (
-                base + 2 * i,
-                base + 2 * i + 1,
-                base + 2 * i + 2,
-                base + 2 * i + 3,
-            );
-            strip.panels.push(panels.len());
-            // Counter-clockwise seen from outside: above for the upper surface, below for the lower.
-            panels.push(if surface == 0 {
-                PanelSpec::quad(a0, b0, b1, a1, 0)
-            } else {
-                PanelSpec::quad(a0, a1, b1, b0, 0)
-            });
-        }
-        strips.push(strip);
+    // Upper surface seen from above, lower from below: normals out of the section.
+    for (points, facing_down) in [(upper, false), (lower, true)] {
+        common::push_extruded_strip(
+            (&mut vertices, &mut panels, &mut strips),
+            points,
+            0.0,
+            facing_down,
+        );
     }
     let mesh = PanelMesh::new(
         vertices,
